@@ -1,0 +1,28 @@
+// Each subcommand registers itself on the app and returns the action to run once parsing
+// succeeded. Actions throw zhf::io errors or UsageError; main maps them to exit codes.
+#pragma once
+
+#include <functional>
+#include <stdexcept>
+
+#include <CLI/CLI.hpp>
+
+namespace zhf::cli {
+
+// Exit codes (documented in README.md).
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitFailure = 1;      // a check failed (e.g. verify), or an internal error
+inline constexpr int kExitUsage = 2;        // bad command line
+inline constexpr int kExitBadInput = 3;     // an input file is missing or malformed
+inline constexpr int kExitOutput = 4;       // an output could not be written
+inline constexpr int kExitInterrupted = 130;
+
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+using Action = std::function<int()>;
+
+void add_candidates_command(CLI::App& app, Action& action);
+
+}  // namespace zhf::cli

@@ -1,0 +1,41 @@
+// zhf: sparse zonal-harmonic factorisation of SH rotation. Thin front end over the libraries.
+#include <iostream>
+
+#include "commands.h"
+#include "zhf/io/errors.h"
+
+int main(int argc, char** argv) {
+  using namespace zhf::cli;
+  CLI::App app{"zhf " ZHF_VERSION ": fast real spherical-harmonic rotation by sparse zonal-harmonic factorisation"};
+  app.set_version_flag("--version", "zhf " ZHF_VERSION);
+  app.require_subcommand(1);
+  Action action;
+  add_candidates_command(app, action);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "zhf: " << e.what() << " (see zhf --help)\n";
+    return kExitUsage;
+  }
+  try {
+    return action();
+  } catch (const UsageError& e) {
+    std::cerr << "zhf: " << e.what() << "\n";
+    return kExitUsage;
+  } catch (const zhf::io::InputError& e) {
+    std::cerr << "zhf: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const zhf::io::OutputError& e) {
+    std::cerr << "zhf: " << e.what() << "\n";
+    return kExitOutput;
+  } catch (const std::exception& e) {
+    std::cerr << "zhf: internal error: " << e.what() << "\n";
+    return kExitFailure;
+  }
+}

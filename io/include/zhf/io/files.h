@@ -1,0 +1,23 @@
+// File reading and all-or-nothing writing.
+#pragma once
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace zhf::io {
+
+// Writes content to a temporary file beside path, flushes it to disk and renames it over
+// path, so readers see either the old file or the complete new one. Throws OutputError.
+void write_file_atomically(const std::string& path, const std::string& content);
+
+// Throws InputError naming the path when it is missing or unreadable.
+std::string read_text_file(const std::string& path);
+
+// Throws InputError naming the path (and line/column) when it is empty or not valid JSON.
+nlohmann::json read_json_file(const std::string& path);
+
+// JSON text as zhf writes it everywhere: two-space indent, trailing newline.
+std::string json_text(const nlohmann::json& value);
+
+}  // namespace zhf::io
