@@ -20,7 +20,7 @@ constexpr double kFloatVsClosedForm = 2e-6;
 constexpr double kOrthonormality = 1e-13;
 // N = 64 against the long-double unnormalised recurrence, relative to the band's largest
 // value at that point (absolute error near a root of P_l^m is what the recurrence offers).
-constexpr double kOrder64Relative = 1e-11;
+constexpr double kOrder64Relative = 1e-12;  // measured max abs error 1.6e-13
 
 struct Angles {
   double theta, phi;
