@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <stdexcept>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
@@ -24,5 +25,7 @@ struct UsageError : std::runtime_error {
 using Action = std::function<int()>;
 
 void add_candidates_command(CLI::App& app, Action& action);
+// command_line is how the invocation is recorded in provenance (see main.cc).
+void add_optimize_command(CLI::App& app, Action& action, const std::string& command_line);
 
 }  // namespace zhf::cli

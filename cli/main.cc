@@ -1,8 +1,30 @@
 // zhf: sparse zonal-harmonic factorisation of SH rotation. Thin front end over the libraries.
 #include <iostream>
+#include <string>
 
 #include "commands.h"
 #include "zhf/io/errors.h"
+
+namespace {
+
+// "zhf" and the arguments, without the ones that cannot change an output (--threads,
+// --quiet), so a recorded command reproduces the same bytes on any machine.
+std::string recorded_command(int argc, char** argv) {
+  std::string command = "zhf";
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--quiet") continue;
+    if (arg == "--threads") {
+      ++i;
+      continue;
+    }
+    if (arg.rfind("--threads=", 0) == 0) continue;
+    command += " " + arg;
+  }
+  return command;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace zhf::cli;
@@ -11,6 +33,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   Action action;
   add_candidates_command(app, action);
+  add_optimize_command(app, action, recorded_command(argc, argv));
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -13,6 +13,7 @@ namespace zhf::candidates {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+constexpr double kSnapToZero = 1e-15;
 
 std::string legendre_name(int l, int m) { return "P_" + std::to_string(l) + "^" + std::to_string(m); }
 
@@ -88,40 +89,48 @@ CandidateSet enumerate_candidates(int order) {
     set.phis.push_back({kPi * f.num / f.den, by_fraction[{f.num, f.den}]});
   }
 
-  auto make_direction = [](const AngleValue& theta, double phi, const std::vector<std::string>& phi_sources) {
+  auto make_direction = [&](int theta_index, int phi_index) {
+    const AngleValue& theta = set.thetas[theta_index];
+    const double phi = phi_index < 0 ? 0.0 : set.phis[phi_index].value;
+    const std::vector<std::string> no_sources;
+    const std::vector<std::string>& phi_sources = phi_index < 0 ? no_sources : set.phis[phi_index].sources;
     Direction d;
     d.theta = theta.value;
     d.phi = phi;
+    d.theta_index = theta_index;
+    d.phi_index = phi_index;
     sh::direction_from_angles(d.theta, d.phi, d.xyz);
+    // cos(pi/2) and friends come out as ~6e-17; the true component is exactly zero.
+    for (double& c : d.xyz)
+      if (std::abs(c) < kSnapToZero) c = 0.0;
     d.sources = theta.sources;
     d.sources.insert(d.sources.end(), phi_sources.begin(), phi_sources.end());
     return d;
   };
-  for (const AngleValue& theta : set.thetas) {
-    const bool pole = theta.value == 0.0 || theta.value == kPi;
+  for (int t = 0; t < static_cast<int>(set.thetas.size()); ++t) {
+    const bool pole = set.thetas[t].value == 0.0 || set.thetas[t].value == kPi;
     if (pole) {
-      set.directions.push_back(make_direction(theta, 0.0, {}));
-      set.directions.back().xyz[0] = set.directions.back().xyz[1] = 0.0;  // exact pole
+      set.directions.push_back(make_direction(t, -1));
       continue;
     }
-    for (const AngleValue& phi : set.phis) set.directions.push_back(make_direction(theta, phi.value, phi.sources));
+    for (int p = 0; p < static_cast<int>(set.phis.size()); ++p) set.directions.push_back(make_direction(t, p));
   }
   return set;
 }
 
-nlohmann::json to_json(const CandidateSet& set) {
-  nlohmann::json out;
+nlohmann::ordered_json to_json(const CandidateSet& set) {
+  nlohmann::ordered_json out;
   out["format"] = "zhf-candidates-1";
   out["order"] = set.order;
   out["theta_merge_tolerance"] = kThetaMergeTolerance;
   auto values = [](const std::vector<AngleValue>& list) {
-    nlohmann::json array = nlohmann::json::array();
+    nlohmann::ordered_json array = nlohmann::ordered_json::array();
     for (const AngleValue& v : list) array.push_back({{"value", v.value}, {"sources", v.sources}});
     return array;
   };
   out["theta_values"] = values(set.thetas);
   out["phi_values"] = values(set.phis);
-  nlohmann::json directions = nlohmann::json::array();
+  nlohmann::ordered_json directions = nlohmann::ordered_json::array();
   for (const Direction& d : set.directions) {
     directions.push_back({{"theta", d.theta},
                           {"phi", d.phi},

@@ -75,6 +75,55 @@ nlohmann::json read_json_file(const std::string& path) {
   }
 }
 
-std::string json_text(const nlohmann::json& value) { return value.dump(2) + "\n"; }
+namespace {
+
+bool is_flat_numeric_array(const nlohmann::ordered_json& value) {
+  if (!value.is_array() || value.empty()) return false;
+  for (const auto& item : value)
+    if (!item.is_number()) return false;
+  return true;
+}
+
+void write_json(const nlohmann::ordered_json& value, int indent, std::string& out) {
+  const std::string pad(indent + 2, ' ');
+  if (value.is_object() && !value.empty()) {
+    out += "{\n";
+    size_t i = 0;
+    for (auto it = value.begin(); it != value.end(); ++it, ++i) {
+      out += pad + nlohmann::ordered_json(it.key()).dump() + ": ";
+      write_json(it.value(), indent + 2, out);
+      out += (i + 1 < value.size()) ? ",\n" : "\n";
+    }
+    out += std::string(indent, ' ') + "}";
+  } else if (value.is_array() && !value.empty() && !is_flat_numeric_array(value)) {
+    out += "[\n";
+    for (size_t i = 0; i < value.size(); ++i) {
+      out += pad;
+      write_json(value[i], indent + 2, out);
+      out += (i + 1 < value.size()) ? ",\n" : "\n";
+    }
+    out += std::string(indent, ' ') + "]";
+  } else {
+    std::string flat = value.dump();
+    if (is_flat_numeric_array(value)) {
+      // dump() gives "[1,2,3]"; a space after each comma reads better.
+      std::string spaced;
+      for (char c : flat) {
+        spaced += c;
+        if (c == ',') spaced += ' ';
+      }
+      flat = spaced;
+    }
+    out += flat;
+  }
+}
+
+}  // namespace
+
+std::string json_text(const nlohmann::ordered_json& value) {
+  std::string out;
+  write_json(value, 0, out);
+  return out + "\n";
+}
 
 }  // namespace zhf::io

@@ -30,6 +30,8 @@ struct Direction {
   double theta = 0;
   double phi = 0;
   double xyz[3] = {0, 0, 0};
+  int theta_index = 0;  // into CandidateSet::thetas
+  int phi_index = -1;   // into CandidateSet::phis; -1 at the poles
   std::vector<std::string> sources;  // theta's sources then phi's
 };
 
@@ -50,7 +52,7 @@ struct PiFraction {
 };
 std::vector<std::pair<PiFraction, std::string>> phi_zeros(int max_m);
 
-nlohmann::json to_json(const CandidateSet& set);
+nlohmann::ordered_json to_json(const CandidateSet& set);
 
 // Index of the candidate within max_distance of xyz (Euclidean), or -1.
 int find_direction(const CandidateSet& set, const double xyz[3], double max_distance);

@@ -17,7 +17,9 @@ std::string read_text_file(const std::string& path);
 // Throws InputError naming the path (and line/column) when it is empty or not valid JSON.
 nlohmann::json read_json_file(const std::string& path);
 
-// JSON text as zhf writes it everywhere: two-space indent, trailing newline.
-std::string json_text(const nlohmann::json& value);
+// JSON text as zhf writes it everywhere: two-space indent, arrays of numbers on one line
+// (matrix rows stay readable), keys in insertion order, numbers round-trip exact, trailing
+// newline.
+std::string json_text(const nlohmann::ordered_json& value);
 
 }  // namespace zhf::io

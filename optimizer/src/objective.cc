@@ -1,0 +1,125 @@
+#include "zhf/optimizer/objective.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <Eigen/SVD>
+
+#include "zhf/sh/eval.h"
+#include "zhf/sh/index.h"
+
+namespace zhf::optimizer {
+
+int lobe_count(int order, bool lobe_sharing) { return lobe_sharing ? 2 * order - 1 : order * order - 4; }
+
+int lobe_index(int l, int d, bool lobe_sharing) { return lobe_sharing ? d : l * l - 4 + d; }
+
+bool better(const Fitness& a, const Fitness& b) {
+  if (a.feasible != b.feasible) return a.feasible;
+  if (a.invertible != b.invertible) return a.invertible;
+  if (a.zeros != b.zeros) return a.zeros > b.zeros;
+  if (a.worst_condition != b.worst_condition) return a.worst_condition < b.worst_condition;
+  return a.multiplies < b.multiplies;
+}
+
+int zero_small_entries(Eigen::MatrixXd& inverse) {
+  const double threshold = kZeroRelative * inverse.cwiseAbs().maxCoeff();
+  int zeros = 0;
+  for (int i = 0; i < inverse.rows(); ++i)
+    for (int j = 0; j < inverse.cols(); ++j)
+      if (std::abs(inverse(i, j)) <= threshold) {
+        inverse(i, j) = 0;
+        ++zeros;
+      }
+  return zeros;
+}
+
+int multiply_cost(const Eigen::MatrixXd& inverse) {
+  int cost = 0;
+  std::vector<double> magnitudes;
+  for (int j = 0; j < inverse.cols(); ++j) {
+    magnitudes.clear();
+    for (int i = 0; i < inverse.rows(); ++i)
+      if (inverse(i, j) != 0) magnitudes.push_back(std::abs(inverse(i, j)));
+    std::sort(magnitudes.begin(), magnitudes.end());
+    for (size_t k = 0; k < magnitudes.size(); ++k)
+      if (k == 0 || magnitudes[k] - magnitudes[k - 1] > 1e-12 * magnitudes[k]) ++cost;
+  }
+  return cost;
+}
+
+LobeEvaluator::LobeEvaluator(const candidates::CandidateSet& set, bool lobe_sharing, double max_condition)
+    : candidates_(set), order_(set.order), lobe_sharing_(lobe_sharing), max_condition_(max_condition) {
+  const int count = sh::coefficient_count(order_);
+  sh_.resize(set.directions.size() * count);
+  for (size_t c = 0; c < set.directions.size(); ++c) sh::eval_sh(order_, set.directions[c].xyz, &sh_[c * count]);
+}
+
+Eigen::MatrixXd LobeEvaluator::band_matrix(const Genome& genes, int l) const {
+  const int size = 2 * l + 1;
+  const int count = sh::coefficient_count(order_);
+  Eigen::MatrixXd y(size, size);
+  for (int d = 0; d < size; ++d) {
+    const double* row = &sh_[size_t(genes[lobe_index(l, d, lobe_sharing_)]) * count + l * l];
+    for (int k = 0; k < size; ++k) y(d, k) = row[k];
+  }
+  return y;
+}
+
+Fitness LobeEvaluator::evaluate(const Genome& genes) const {
+  Fitness fitness;
+  fitness.invertible = true;
+  for (int l = 2; l < order_; ++l) {
+    const Eigen::MatrixXd y = band_matrix(genes, l);
+    const Eigen::MatrixXd gram = y.transpose() * y;
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(gram, Eigen::EigenvaluesOnly);
+    const double lo = eigen.eigenvalues()(0), hi = eigen.eigenvalues()(gram.rows() - 1);
+    const double condition = lo > 0 ? std::sqrt(hi / lo) : INFINITY;
+    if (!(condition <= kSingularCondition)) {
+      fitness.invertible = false;
+      fitness.feasible = false;
+      fitness.worst_condition = INFINITY;
+      return fitness;
+    }
+    fitness.worst_condition = std::max(fitness.worst_condition, condition);
+    Eigen::MatrixXd inverse = y.partialPivLu().inverse();
+    fitness.zeros += zero_small_entries(inverse);
+    fitness.multiplies += multiply_cost(inverse);
+  }
+  fitness.feasible = fitness.worst_condition <= max_condition_;
+  return fitness;
+}
+
+std::vector<BandAnalysis> LobeEvaluator::analyze(const Genome& genes) const {
+  std::vector<BandAnalysis> bands;
+  for (int l = 2; l < order_; ++l) {
+    BandAnalysis band;
+    band.l = l;
+    for (int d = 0; d < 2 * l + 1; ++d) band.lobes.push_back(lobe_index(l, d, lobe_sharing_));
+    band.y = band_matrix(genes, l);
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(band.y);
+    const auto& s = svd.singularValues();
+    band.condition = s(s.size() - 1) > 0 ? s(0) / s(s.size() - 1) : INFINITY;
+    band.inverse = band.y.fullPivLu().inverse();
+    band.zeros = zero_small_entries(band.inverse);
+    bands.push_back(std::move(band));
+  }
+  return bands;
+}
+
+Fitness LobeEvaluator::fitness_of(const std::vector<BandAnalysis>& bands) const {
+  Fitness fitness;
+  fitness.invertible = true;
+  for (const BandAnalysis& band : bands) {
+    if (!(band.condition <= kSingularCondition)) fitness.invertible = false;
+    fitness.zeros += band.zeros;
+    fitness.worst_condition = std::max(fitness.worst_condition, band.condition);
+    fitness.multiplies += multiply_cost(band.inverse);
+  }
+  fitness.feasible = fitness.invertible && fitness.worst_condition <= max_condition_;
+  return fitness;
+}
+
+}  // namespace zhf::optimizer
