@@ -27,5 +27,6 @@ using Action = std::function<int()>;
 void add_candidates_command(CLI::App& app, Action& action);
 // command_line is how the invocation is recorded in provenance (see main.cc).
 void add_optimize_command(CLI::App& app, Action& action, const std::string& command_line);
+void add_codegen_commands(CLI::App& app, Action& action, const std::string& command_line);
 
 }  // namespace zhf::cli

@@ -33,7 +33,9 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   Action action;
   add_candidates_command(app, action);
-  add_optimize_command(app, action, recorded_command(argc, argv));
+  const std::string command = recorded_command(argc, argv);
+  add_optimize_command(app, action, command);
+  add_codegen_commands(app, action, command);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -19,6 +19,8 @@ int lobe_index(int l, int d, bool lobe_sharing) { return lobe_sharing ? d : l * 
 bool better(const Fitness& a, const Fitness& b) {
   if (a.feasible != b.feasible) return a.feasible;
   if (a.invertible != b.invertible) return a.invertible;
+  // Outside the bound, head for it: the better-conditioned set wins.
+  if (!a.feasible && a.worst_condition != b.worst_condition) return a.worst_condition < b.worst_condition;
   if (a.zeros != b.zeros) return a.zeros > b.zeros;
   if (a.worst_condition != b.worst_condition) return a.worst_condition < b.worst_condition;
   return a.multiplies < b.multiplies;

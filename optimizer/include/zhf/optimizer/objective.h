@@ -34,6 +34,7 @@ struct Fitness {
 };
 
 // Strict order: feasible first, then more zeros, lower worst condition, fewer multiplies.
+// Between two sets outside the condition bound, the lower worst condition wins.
 bool better(const Fitness& a, const Fitness& b);
 
 // Cost model for z = A^T f until code generation reports real counts: one multiply per

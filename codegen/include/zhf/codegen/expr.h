@@ -1,0 +1,60 @@
+// The one expression model every backend prints: a DAG of scalar (or RGB-vector) additions,
+// subtractions, negations and multiplications over inputs and constants. Construction folds
+// constants and signs and shares identical subexpressions, so the three languages get the
+// same algorithm and the same operation counts by construction.
+#pragma once
+
+#include <map>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+namespace zhf::codegen {
+
+enum class Op { kInput, kConst, kAdd, kSub, kMul, kNeg };
+
+struct Node {
+  Op op = Op::kConst;
+  int a = -1, b = -1;   // operands
+  double value = 0;     // kConst
+  int param = -1;       // kInput: parameter and element
+  int element = -1;
+  bool vector = false;  // an RGB value (float3/vec3) in the shader backends
+};
+
+struct OpCount {
+  int multiplies = 0;
+  int adds = 0;  // additions, subtractions and negations
+};
+
+class Graph {
+ public:
+  int input(int param, int element, bool vector = false);
+  int constant(double value);
+  int add(int a, int b);
+  int sub(int a, int b);
+  int mul(int a, int b);
+  int neg(int a);
+  int scale(double c, int a) { return mul(constant(c), a); }
+
+  // sum_i c_i x_i with terms of equal |c| (to 1e-12 relative) sharing one multiply:
+  // c (x_1 - x_2 + ...). Terms with c = 0 are dropped.
+  int linear(const std::vector<std::pair<double, int>>& terms);
+
+  const Node& node(int i) const { return nodes_[i]; }
+  int size() const { return static_cast<int>(nodes_.size()); }
+  bool is_const(int i, double value) const { return nodes_[i].op == Op::kConst && nodes_[i].value == value; }
+
+  // Operations needed for the given outputs (each shared node counted once).
+  OpCount count(const std::vector<int>& outputs) const;
+  // Nodes reachable from outputs, in creation (= dependency) order.
+  std::vector<int> live(const std::vector<int>& outputs) const;
+
+ private:
+  int intern(const Node& n);
+  std::vector<Node> nodes_;
+  std::map<std::tuple<int, int, int, double, int, int>, int> index_;
+};
+
+}  // namespace zhf::codegen

@@ -1,0 +1,72 @@
+// The functions zhf emits for one order, built once on the expression graph and printed by
+// every backend.
+//
+// Rotation by lobes (bands >= 2): with lobe d's unit direction w_d = u_d / |u_d|, where u_d is
+// w_d rescaled so its components are +-1 where they can be (then R u_d is additions only),
+// and with band-l SH homogeneous of degree l (r^2 = |u_d|^2 is a compile-time constant),
+//   f'_{l,m} = K_{l,m} sum_d H_{l,m}(R u_d) zhat_{l,d},
+//   zhat_{l,d} = sum_m' (A_l[m'][d] / |u_d|^l) f_{l,m'}   (sparse: A^T with scale folded in)
+// where H are the scaled Legendre-times-(x+iy)^m polynomials of eval.h and K_{l,m} collects
+// every normalisation: one multiply per output instead of one per lobe.
+#pragma once
+
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "zhf/codegen/expr.h"
+#include "zhf/optimizer/lobe_table.h"
+
+namespace zhf::codegen {
+
+struct Param {
+  std::string name;
+  int size = 0;            // elements per channel
+  bool output = false;
+  bool rgb = false;        // three channels (planar [3][size] in C++, float3[size] in shaders)
+};
+
+struct Output {
+  int param = 0;
+  int element = 0;
+  int node = 0;
+};
+
+struct Function {
+  std::string name;
+  std::string doc;         // one line: what it computes
+  std::vector<Param> params;
+  Graph graph;
+  std::vector<Output> outputs;
+  bool rgb = false;
+  bool batch = false;      // C++ only: loop over count vectors in structure-of-arrays layout
+
+  std::vector<int> output_nodes() const;
+};
+
+struct Lobe {
+  double unit[3];          // w_d
+  double scaled[3];        // u_d
+  std::string source;
+};
+
+struct Module {
+  int order = 0;
+  optimizer::LobeTable table;
+  std::vector<Lobe> lobes;
+  std::vector<Function> functions;
+};
+
+struct ModuleOptions {
+  bool single_channel = true;
+  bool rgb = true;
+  bool batch = true;       // emitted by backends that support it
+};
+
+// Order 2 needs no table: pass a table with order 2 and no lobes.
+Module build_module(const optimizer::LobeTable& table, const ModuleOptions& options);
+
+// The lobe-free order-2 table.
+optimizer::LobeTable order2_table();
+
+}  // namespace zhf::codegen

@@ -1,0 +1,174 @@
+#include "c_family_printer.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+
+namespace zhf::codegen {
+namespace {
+
+std::string shortest(double value, Precision precision) {
+  char buffer[64];
+  if (precision == Precision::kFloat) {
+    const float f = static_cast<float>(value);
+    for (int digits = 1; digits <= 9; ++digits) {
+      std::snprintf(buffer, sizeof buffer, "%.*g", digits, static_cast<double>(f));
+      if (std::strtof(buffer, nullptr) == f) break;
+    }
+  } else {
+    for (int digits = 1; digits <= 17; ++digits) {
+      std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+      if (std::strtod(buffer, nullptr) == value) break;
+    }
+  }
+  std::string text = buffer;
+  if (text.find_first_of(".e") == std::string::npos) text += ".0";
+  return text;
+}
+
+class Printer {
+ public:
+  Printer(const Function& f, const LanguageConfig& c, Precision p) : f_(f), c_(c), p_(p) {}
+
+  std::string print(OpCount& ops) {
+    std::ostringstream out;
+    out << "// " << f_.name << ": " << f_.doc << ".\n";
+    out << c_.function_prefix << "void " << f_.name << "(" << signature() << ") {\n";
+    std::string indent = "  ";
+    if (f_.batch) {
+      out << "  for (std::size_t v = 0; v < count; ++v) {\n";
+      indent = "    ";
+    }
+    const std::vector<int> outputs = f_.output_nodes();
+    for (int i : f_.graph.live(outputs)) {
+      const Node& n = f_.graph.node(i);
+      if (n.op == Op::kInput || n.op == Op::kConst) continue;
+      const int lanes = scalarized(n) ? 3 : 1;
+      for (int lane = 0; lane < lanes; ++lane) {
+        out << indent << c_.temp_qualifier << type_of(n) << " " << temp(i, scalarized(n) ? lane : -1) << " = "
+            << expression(n, scalarized(n) ? lane : -1) << ";\n";
+        if (n.op == Op::kMul) ++ops.multiplies;
+        else ++ops.adds;
+      }
+    }
+    for (const Output& o : f_.outputs) {
+      const Node& n = f_.graph.node(o.node);
+      const Param& param = f_.params[o.param];
+      if (param.rgb && c_.planar_rgb) {
+        for (int lane = 0; lane < 3; ++lane)
+          out << indent << access(o.param, o.element, lane) << " = " << operand(o.node, n.vector ? lane : -1) << ";\n";
+      } else {
+        out << indent << access(o.param, o.element, -1) << " = " << operand(o.node, -1) << ";\n";
+      }
+    }
+    if (f_.batch) out << "  }\n";
+    out << "}\n";
+    return out.str();
+  }
+
+ private:
+  bool scalarized(const Node& n) const { return n.vector && c_.vector.empty(); }
+  std::string type_of(const Node& n) const { return n.vector && !c_.vector.empty() ? c_.vector : c_.scalar; }
+  static std::string temp(int i, int lane) {
+    return "t" + std::to_string(i) + (lane < 0 ? "" : std::string("_") + "rgb"[lane]);
+  }
+
+  std::string signature() const {
+    std::string s;
+    if (f_.batch) s += "std::size_t count, ";
+    for (size_t k = 0; k < f_.params.size(); ++k) {
+      const Param& p = f_.params[k];
+      if (k) s += ", ";
+      if (f_.batch) {
+        s += (p.output ? "" : "const ") + c_.scalar + "* " + p.name;
+        continue;
+      }
+      s += p.output ? c_.output_array_qualifier : c_.input_array_qualifier;
+      if (p.rgb && !c_.vector.empty()) {
+        s += c_.vector + " " + p.name + "[" + std::to_string(p.size) + "]";
+      } else if (p.rgb) {
+        s += c_.scalar + " " + p.name + "[3][" + std::to_string(p.size) + "]";
+      } else {
+        s += c_.scalar + " " + p.name + "[" + std::to_string(p.size) + "]";
+      }
+    }
+    return s;
+  }
+
+  std::string access(int param, int element, int lane) const {
+    const Param& p = f_.params[param];
+    if (f_.batch) return p.name + "[" + std::to_string(element) + " * count + v]";
+    if (p.rgb && c_.planar_rgb) return p.name + "[" + std::to_string(lane) + "][" + std::to_string(element) + "]";
+    return p.name + "[" + std::to_string(element) + "]";
+  }
+
+  std::string literal(double v) const { return format_literal(v, c_, p_); }
+
+  std::string operand(int i, int lane) const {
+    const Node& n = f_.graph.node(i);
+    if (n.op == Op::kConst) return literal(n.value);
+    if (n.op == Op::kInput) return access(n.param, n.element, n.vector ? lane : -1);
+    return temp(i, scalarized(n) ? lane : -1);
+  }
+
+  std::string expression(const Node& n, int lane) const {
+    switch (n.op) {
+      case Op::kAdd: return operand(n.a, lane) + " + " + operand(n.b, lane);
+      case Op::kSub: return operand(n.a, lane) + " - " + operand(n.b, lane);
+      case Op::kMul: return operand(n.a, lane) + " * " + operand(n.b, lane);
+      case Op::kNeg: return "-" + operand(n.a, lane);
+      default: return "";
+    }
+  }
+
+  const Function& f_;
+  const LanguageConfig& c_;
+  Precision p_;
+};
+
+}  // namespace
+
+std::string format_literal(double value, const LanguageConfig& config, Precision precision) {
+  if (config.wrap_literals_in_type) return config.scalar + "(" + shortest(value, Precision::kDouble) + ")";
+  return shortest(value, precision) + config.literal_suffix;
+}
+
+std::string print_function(const Function& function, const LanguageConfig& config, Precision precision,
+                           OpCount& ops) {
+  ops = OpCount{};
+  return Printer(function, config, precision).print(ops);
+}
+
+std::string banner(const std::string& comment, const std::string& command, const std::vector<FunctionCount>& counts) {
+  std::ostringstream out;
+  out << comment << " Generated by zhf " << ZHF_VERSION << ": " << command << "\n";
+  out << comment << " Do not edit: change the generator or the lobe table and run `zhf generate`.\n";
+  out << comment << " Operations per call (multiplies, adds; a vector operation counts once):\n";
+  for (const FunctionCount& c : counts)
+    out << comment << "   " << c.name << ": " << c.ops.multiplies << " multiplies, " << c.ops.adds << " adds\n";
+  return out.str();
+}
+
+std::vector<std::string> lobe_derivation(const Module& module, const EmitOptions& options) {
+  std::vector<std::string> lines;
+  if (module.lobes.empty()) {
+    lines.push_back("Order " + std::to_string(module.order) + " has no lobe bands: band 0 is copied, band 1 rotates as a 3-vector.");
+    return lines;
+  }
+  lines.push_back("Lobe directions w_d (unit vectors) for order " + std::to_string(module.order) + ", from " +
+                  options.table_path + ";");
+  const auto& p = module.table.provenance;
+  if (p.contains("command")) lines.push_back("made by: " + p["command"].get<std::string>());
+  lines.push_back(std::string("lobe sharing: ") + (module.table.lobe_sharing ? "band l uses lobes 0..2l" : "each band has its own lobes") +
+                  "; " + std::to_string(module.table.zeros) + " of " + std::to_string(module.table.entries) +
+                  " entries of A_l = Y_l^-1 are structural zeros.");
+  lines.push_back("The rotations evaluate SH at R u_d, u_d = w_d rescaled so its components are +-1 where possible,");
+  lines.push_back("with A_l's column d scaled by |u_d|^-l (band-l SH are homogeneous of degree l) and each");
+  lines.push_back("output's normalisation applied once after the sum over lobes.");
+  for (size_t d = 0; d < module.lobes.size(); ++d)
+    lines.push_back("  w_" + std::to_string(d) + ": " + module.lobes[d].source);
+  return lines;
+}
+
+}  // namespace zhf::codegen

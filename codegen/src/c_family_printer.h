@@ -1,0 +1,39 @@
+// The printer all three backends share: straight-line SSA code from the expression graph.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "zhf/codegen/emitter.h"
+
+namespace zhf::codegen {
+
+struct LanguageConfig {
+  std::string name;
+  std::string extension;
+  std::string scalar;          // "T", "float", "double"
+  std::string vector;          // "float3", "vec3"; empty: RGB is printed as three scalars
+  std::string literal_suffix;  // "f", "lf", "L"; for C++ literals are wrapped as T(...)
+  bool wrap_literals_in_type = false;
+  std::string temp_qualifier;  // "const " where a local may be const at run time
+  std::string function_prefix; // "template <class T>\ninline " for C++
+  std::string input_array_qualifier;  // "const " in C++, "in " in GLSL, "" in HLSL
+  std::string output_array_qualifier; // "" in C++, "out " in shaders
+  bool batch = false;          // structure-of-arrays batch entry points
+  bool planar_rgb = false;     // C++: RGB parameters are [3][n]
+};
+
+std::string format_literal(double value, const LanguageConfig& config, Precision precision);
+
+// The function's source text; ops receives the operation count of what was printed
+// (a vector operation counts once).
+std::string print_function(const Function& function, const LanguageConfig& config, Precision precision,
+                           OpCount& ops);
+
+// The common file banner: generator, command, do-not-edit, op counts.
+std::string banner(const std::string& comment, const std::string& command, const std::vector<FunctionCount>& counts);
+
+// The lobe table derivation comment lines (without comment markers).
+std::vector<std::string> lobe_derivation(const Module& module, const EmitOptions& options);
+
+}  // namespace zhf::codegen

@@ -1,0 +1,158 @@
+#include "zhf/codegen/expr.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace zhf::codegen {
+
+int Graph::intern(const Node& n) {
+  const auto key = std::make_tuple(static_cast<int>(n.op), n.a, n.b, n.value, n.param, n.element);
+  auto it = index_.find(key);
+  if (it != index_.end()) return it->second;
+  nodes_.push_back(n);
+  index_.emplace(key, size() - 1);
+  return size() - 1;
+}
+
+int Graph::input(int param, int element, bool vector) {
+  Node n;
+  n.op = Op::kInput;
+  n.param = param;
+  n.element = element;
+  n.vector = vector;
+  return intern(n);
+}
+
+int Graph::constant(double value) {
+  Node n;
+  n.op = Op::kConst;
+  n.value = value == 0 ? 0.0 : value;  // one zero, not two
+  return intern(n);
+}
+
+int Graph::neg(int a) {
+  const Node& x = nodes_[a];
+  if (x.op == Op::kConst) return constant(-x.value);
+  if (x.op == Op::kNeg) return x.a;
+  if (x.op == Op::kSub) return sub(x.b, x.a);
+  if (x.op == Op::kMul && nodes_[x.a].op == Op::kConst) return mul(constant(-nodes_[x.a].value), x.b);
+  Node n;
+  n.op = Op::kNeg;
+  n.a = a;
+  n.vector = x.vector;
+  return intern(n);
+}
+
+int Graph::add(int a, int b) {
+  if (is_const(a, 0)) return b;
+  if (is_const(b, 0)) return a;
+  if (nodes_[a].op == Op::kConst && nodes_[b].op == Op::kConst) return constant(nodes_[a].value + nodes_[b].value);
+  if (nodes_[b].op == Op::kNeg) return sub(a, nodes_[b].a);
+  if (nodes_[a].op == Op::kNeg) return sub(b, nodes_[a].a);
+  if (a > b) std::swap(a, b);  // commutative: one canonical order for sharing
+  Node n;
+  n.op = Op::kAdd;
+  n.a = a;
+  n.b = b;
+  n.vector = nodes_[a].vector || nodes_[b].vector;
+  return intern(n);
+}
+
+int Graph::sub(int a, int b) {
+  if (is_const(b, 0)) return a;
+  if (is_const(a, 0)) return neg(b);
+  if (a == b) return constant(0);
+  if (nodes_[a].op == Op::kConst && nodes_[b].op == Op::kConst) return constant(nodes_[a].value - nodes_[b].value);
+  if (nodes_[b].op == Op::kNeg) return add(a, nodes_[b].a);
+  Node n;
+  n.op = Op::kSub;
+  n.a = a;
+  n.b = b;
+  n.vector = nodes_[a].vector || nodes_[b].vector;
+  return intern(n);
+}
+
+int Graph::mul(int a, int b) {
+  if (nodes_[b].op == Op::kConst) std::swap(a, b);  // constants first
+  if (nodes_[a].op == Op::kConst) {
+    const double c = nodes_[a].value;
+    if (c == 0) return constant(0);
+    if (c == 1) return b;
+    if (c == -1) return neg(b);
+    if (nodes_[b].op == Op::kConst) return constant(c * nodes_[b].value);
+    if (nodes_[b].op == Op::kNeg) return mul(constant(-c), nodes_[b].a);
+    if (nodes_[b].op == Op::kMul && nodes_[nodes_[b].a].op == Op::kConst)
+      return mul(constant(c * nodes_[nodes_[b].a].value), nodes_[b].b);
+  } else {
+    if (nodes_[a].op == Op::kNeg) return neg(mul(nodes_[a].a, b));
+    if (nodes_[b].op == Op::kNeg) return neg(mul(a, nodes_[b].a));
+    if (a > b) std::swap(a, b);
+  }
+  Node n;
+  n.op = Op::kMul;
+  n.a = a;
+  n.b = b;
+  n.vector = nodes_[a].vector || nodes_[b].vector;
+  return intern(n);
+}
+
+int Graph::linear(const std::vector<std::pair<double, int>>& terms) {
+  // Groups in order of first appearance, so output is deterministic and reads like the matrix.
+  std::vector<double> magnitudes;
+  std::vector<std::vector<std::pair<double, int>>> groups;
+  for (const auto& [c, x] : terms) {
+    if (c == 0 || is_const(x, 0)) continue;
+    const double m = std::abs(c);
+    size_t g = 0;
+    while (g < magnitudes.size() && std::abs(magnitudes[g] - m) > 1e-12 * m) ++g;
+    if (g == magnitudes.size()) {
+      magnitudes.push_back(m);
+      groups.emplace_back();
+    }
+    groups[g].push_back({c, x});
+  }
+  int total = constant(0);
+  for (size_t g = 0; g < groups.size(); ++g) {
+    // Lead with a positive term when there is one: c (x - y) rather than -c (y - x).
+    auto& group = groups[g];
+    std::stable_partition(group.begin(), group.end(), [](const auto& t) { return t.first > 0; });
+    const double lead = group.front().first;
+    int inner = constant(0);
+    for (const auto& [c, x] : group) inner = (c > 0) == (lead > 0) ? add(inner, x) : sub(inner, x);
+    total = add(total, scale(lead, inner));
+  }
+  return total;
+}
+
+std::vector<int> Graph::live(const std::vector<int>& outputs) const {
+  std::vector<char> seen(nodes_.size(), 0);
+  std::vector<int> stack(outputs.begin(), outputs.end());
+  while (!stack.empty()) {
+    const int i = stack.back();
+    stack.pop_back();
+    if (i < 0 || seen[i]) continue;
+    seen[i] = 1;
+    stack.push_back(nodes_[i].a);
+    stack.push_back(nodes_[i].b);
+  }
+  std::vector<int> order;
+  for (int i = 0; i < size(); ++i)
+    if (seen[i]) order.push_back(i);
+  return order;
+}
+
+OpCount Graph::count(const std::vector<int>& outputs) const {
+  OpCount count;
+  for (int i : live(outputs)) {
+    switch (nodes_[i].op) {
+      case Op::kMul: ++count.multiplies; break;
+      case Op::kAdd:
+      case Op::kSub:
+      case Op::kNeg: ++count.adds; break;
+      default: break;
+    }
+  }
+  return count;
+}
+
+}  // namespace zhf::codegen

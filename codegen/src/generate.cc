@@ -1,0 +1,141 @@
+#include "zhf/codegen/generate.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <system_error>
+
+#include "zhf/io/errors.h"
+#include "zhf/io/files.h"
+
+namespace zhf::codegen {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string precision_name(Precision p) { return p == Precision::kDouble ? "double" : "float"; }
+
+void check_output_dir(const fs::path& dir) {
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+    throw io::OutputError(dir.string() + ": exists and is not a directory");
+  if (!fs::exists(dir, ec) || fs::exists(dir / "manifest.json", ec)) return;
+  // A directory with nothing but zhf's own lobes/ is a generated/ tree before its first run.
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir, ec))
+    if (entry.path().filename() != "lobes")
+      throw io::OutputError(dir.string() + ": not empty and has no zhf manifest.json; refusing to write into it");
+}
+
+}  // namespace
+
+std::string content_hash(const std::string& bytes) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : bytes) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  char buffer[17];
+  std::snprintf(buffer, sizeof buffer, "%016llx", static_cast<unsigned long long>(h));
+  return buffer;
+}
+
+EmittedFile emit_file(const optimizer::LobeTable& table, const std::string& language, const EmitOptions& options,
+                      const ModuleOptions& module_options) {
+  const auto backend = make_backend(language);
+  if (!backend) throw std::invalid_argument("unknown language " + language);
+  return backend->emit(build_module(table, module_options), options);
+}
+
+GenerateResult generate(const GenerateOptions& options) {
+  const fs::path out(options.out_dir);
+  check_output_dir(out);
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  if (ec) throw io::OutputError(out.string() + ": cannot create: " + ec.message());
+  // Staging inside out_dir keeps the final renames on one file system.
+  std::string pattern = (out / ".zhf-staging-XXXXXX").string();
+  std::vector<char> name(pattern.begin(), pattern.end());
+  name.push_back('\0');
+  if (!mkdtemp(name.data())) throw io::OutputError(out.string() + ": cannot create a staging directory");
+  const fs::path staging(name.data());
+  struct Cleanup {
+    fs::path path;
+    ~Cleanup() {
+      std::error_code ignored;
+      fs::remove_all(path, ignored);
+    }
+  } cleanup{staging};
+
+  GenerateResult result;
+  nlohmann::ordered_json manifest;
+  manifest["format"] = "zhf-manifest-1";
+  manifest["generator"] = std::string("zhf ") + ZHF_VERSION;
+  manifest["command"] = options.command;
+  nlohmann::ordered_json files = nlohmann::ordered_json::array();
+  auto stage = [&](const std::string& relative, const std::string& text) {
+    fs::create_directories((staging / relative).parent_path());
+    io::write_file_atomically((staging / relative).string(), text);
+    result.files.push_back(relative);
+  };
+
+  for (int order : options.orders) {
+    if (options.stop && options.stop->load()) {
+      result.interrupted = true;
+      return result;
+    }
+    const optimizer::LobeTable table =
+        order == 2 ? order2_table()
+                   : optimizer::read_table((fs::path(options.tables_dir) / ("order_" + std::to_string(order) + ".json")).string());
+    if (table.order != order)
+      throw io::InputError(options.tables_dir + "/order_" + std::to_string(order) + ".json: order: says " +
+                           std::to_string(table.order));
+    const std::string table_name = "lobes/order_" + std::to_string(order) + ".json";
+    stage(table_name, io::json_text(optimizer::to_json(table)));
+    OrderSummary summary;
+    summary.order = order;
+    summary.lobes = static_cast<int>(table.lobes.size());
+    summary.zeros = table.zeros;
+    summary.entries = table.entries;
+    summary.worst_condition = table.worst_condition();
+    summary.files = 1;
+    const Module module = build_module(table, options.module);
+    EmitOptions emit;
+    emit.precision = options.precision;
+    emit.command = options.command;
+    emit.table_path = "generated/" + table_name;
+    for (const std::string& language : options.languages) {
+      const auto backend = make_backend(language);
+      const EmittedFile file = backend->emit(module, emit);
+      const std::string relative = language + "/" + file.file_name;
+      stage(relative, file.text);
+      ++summary.files;
+      nlohmann::ordered_json functions = nlohmann::ordered_json::array();
+      for (const FunctionCount& c : file.counts) {
+        functions.push_back({{"name", c.name}, {"multiplies", c.ops.multiplies}, {"adds", c.ops.adds}});
+        if (language == "cpp" && c.name == "rotate_order" + std::to_string(order)) summary.rotate_ops = c.ops;
+      }
+      files.push_back({{"path", relative},
+                       {"order", order},
+                       {"language", language},
+                       {"precision", language == "cpp" ? "template" : precision_name(options.precision)},
+                       {"functions", functions},
+                       {"fnv1a64", content_hash(file.text)}});
+    }
+    result.orders.push_back(summary);
+  }
+  manifest["files"] = files;
+  stage("manifest.json", io::json_text(manifest));
+
+  if (options.stop && options.stop->load()) {
+    result.interrupted = true;
+    return result;
+  }
+  // Commit: every file is complete in staging; each rename replaces one old file whole.
+  for (const std::string& relative : result.files) {
+    fs::create_directories((out / relative).parent_path(), ec);
+    fs::rename(staging / relative, out / relative, ec);
+    if (ec) throw io::OutputError((out / relative).string() + ": cannot move into place: " + ec.message());
+  }
+  return result;
+}
+
+}  // namespace zhf::codegen

@@ -1,0 +1,325 @@
+#include "zhf/codegen/kernels.h"
+
+#include <cmath>
+#include <map>
+
+#include "zhf/sh/eval.h"
+#include "zhf/sh/index.h"
+
+namespace zhf::codegen {
+namespace {
+
+constexpr double kInvSqrt4Pi = 0.28209479177387814347;
+constexpr double kSqrt3Over4Pi = 0.48860251190291992159;  // band 1: c (y, z, x)
+
+// Band 1 is c (y, z, x): element m of band 1 is axis kAxisOfM[m + 1].
+constexpr int kAxisOfM[3] = {1, 2, 0};
+
+struct Vec3 {
+  int c[3];
+};
+
+// Scaled Legendre recurrences for the homogeneous band-l polynomials (see eval.h):
+//   q_m^m = 1, q_{m+1}^m = z, q_l^m = z q_{l-1}^m - c_{l,m}(r2) q_{l-2}^m,
+// with Q_l^m = sigma_{l,m} q_l^m; sigma depends on l, m only, so it moves to the output.
+struct Legendre {
+  std::vector<std::vector<double>> sigma;  // [l][m]
+  explicit Legendre(int order) : sigma(order, std::vector<double>(order, 0.0)) {
+    double q_mm = kInvSqrt4Pi;
+    for (int m = 0; m < order; ++m) {
+      if (m > 0) q_mm *= std::sqrt((2.0 * m + 1) / (2.0 * m));
+      sigma[m][m] = q_mm;
+      if (m + 1 < order) sigma[m + 1][m] = std::sqrt(2.0 * m + 3) * q_mm;
+      for (int l = m + 2; l < order; ++l) sigma[l][m] = a(l, m) * sigma[l - 1][m];
+    }
+  }
+  static double a(int l, int m) { return std::sqrt((4.0 * l * l - 1) / (double(l) * l - double(m) * m)); }
+  static double b(int l, int m) {
+    const double lm1 = l - 1.0;
+    return std::sqrt((lm1 * lm1 - double(m) * m) / (4 * lm1 * lm1 - 1));
+  }
+  // c_{l,m}(r2) = b r2 sigma_{l-2} / sigma_{l-1}.
+  double c(int l, int m, double r2) const { return b(l, m) * r2 * sigma[l - 2][m] / sigma[l - 1][m]; }
+  // y_l^{+-m} = output_scale * q_l^m * (C_m or S_m).
+  double output_scale(int l, int m) const { return (m == 0 ? 1.0 : sh::kSqrt2) * sigma[l][std::abs(m)]; }
+};
+
+// H_{l,m}(v) / output_scale for bands in [first_band, order) at v (given r2 = |v|^2);
+// entry [index(l, m)], -1 where not computed.
+std::vector<int> homogeneous_sh(Graph& g, const Vec3& v, double r2, int order, const std::vector<bool>& bands,
+                                const Legendre& legendre) {
+  std::vector<int> out(sh::coefficient_count(order), -1);
+  const int x = v.c[0], y = v.c[1], z = v.c[2];
+  int top = -1;
+  for (int l = 0; l < order; ++l)
+    if (bands[l]) top = l;
+  int c_m = g.constant(1), s_m = g.constant(0);
+  for (int m = 0; m <= top; ++m) {
+    if (m == 1) {
+      c_m = x;
+      s_m = y;
+    } else if (m == 2) {
+      c_m = g.mul(g.sub(x, y), g.add(x, y));  // x^2 - y^2
+      const int xy = g.mul(x, y);
+      s_m = g.add(xy, xy);                    // 2xy
+    } else if (m > 2) {
+      const int c_next = g.sub(g.mul(x, c_m), g.mul(y, s_m));
+      s_m = g.add(g.mul(x, s_m), g.mul(y, c_m));
+      c_m = c_next;
+    }
+    int q_prev = -1, q = g.constant(1);
+    for (int l = m; l <= top; ++l) {
+      if (l == m + 1) {
+        q_prev = q;
+        q = z;
+      } else if (l > m + 1) {
+        const int next = g.sub(g.mul(z, q), g.scale(legendre.c(l, m, r2), q_prev));
+        q_prev = q;
+        q = next;
+      }
+      if (!bands[l]) continue;
+      if (m == 0) {
+        out[sh::index(l, 0)] = q;
+      } else {
+        out[sh::index(l, m)] = g.mul(q, c_m);
+        out[sh::index(l, -m)] = g.mul(q, s_m);
+      }
+    }
+  }
+  return out;
+}
+
+// Lobe direction rescaled so R u costs additions only where the components allow.
+void scale_lobe(const double w[3], double u[3]) {
+  double largest = 0, smallest = INFINITY;
+  for (int k = 0; k < 3; ++k) {
+    const double a = std::abs(w[k]);
+    if (a == 0) continue;
+    largest = std::max(largest, a);
+    smallest = std::min(smallest, a);
+  }
+  // All nonzero components equal in magnitude: scale them to exactly +-1; otherwise make
+  // the largest one +-1 (one column of R then needs no multiply).
+  const bool equal = largest - smallest <= 1e-14 * largest;
+  for (int k = 0; k < 3; ++k) {
+    if (w[k] == 0) {
+      u[k] = 0;
+    } else if (equal) {
+      u[k] = w[k] > 0 ? 1.0 : -1.0;
+    } else {
+      u[k] = w[k] / largest;
+    }
+  }
+}
+
+double norm2(const double u[3]) { return u[0] * u[0] + u[1] * u[1] + u[2] * u[2]; }
+
+// v = M u where M is R (transpose = false) or R^T, R = param 0 row-major.
+Vec3 rotate(Graph& g, const double u[3], bool transpose) {
+  Vec3 v;
+  for (int i = 0; i < 3; ++i) {
+    std::vector<std::pair<double, int>> terms;
+    for (int j = 0; j < 3; ++j) terms.push_back({u[j], g.input(0, transpose ? 3 * j + i : 3 * i + j)});
+    v.c[i] = g.linear(terms);
+  }
+  return v;
+}
+
+class Builder {
+ public:
+  Builder(const optimizer::LobeTable& table, const std::vector<Lobe>& lobes)
+      : table_(table), lobes_(lobes), order_(table.order), count_(sh::coefficient_count(table.order)),
+        legendre_(std::max(table.order, 1)) {}
+
+  Function sh_eval() const {
+    Function f = make("sh_eval_order" + std::to_string(order_),
+                      "y[index(l,m)] = y_l^m(dir) for every band, dir a unit vector",
+                      {{"dir", 3, false, false}, {"y", count_, true, false}});
+    Graph& g = f.graph;
+    const Vec3 v{{g.input(0, 0), g.input(0, 1), g.input(0, 2)}};
+    put(f, 1, 0, g.constant(kInvSqrt4Pi));
+    if (order_ > 1)
+      for (int m = -1; m <= 1; ++m) put(f, 1, sh::index(1, m), g.scale(kSqrt3Over4Pi, v.c[kAxisOfM[m + 1]]));
+    std::vector<bool> bands(order_, false);
+    for (int l = 2; l < order_; ++l) bands[l] = true;
+    const std::vector<int> h = homogeneous_sh(g, v, 1.0, order_, bands, legendre_);
+    for (int l = 2; l < order_; ++l)
+      for (int m = -l; m <= l; ++m) put(f, 1, sh::index(l, m), g.scale(legendre_.output_scale(l, m), h[sh::index(l, m)]));
+    return f;
+  }
+
+  // z[l^2 + d] = sum_m A_l[m][d] f[l^2 + m] (transpose) or out[l^2 + m] = sum_d A_l[m][d] s[l^2 + d].
+  Function sparse_multiply(bool transpose) const {
+    const std::string name = std::string(transpose ? "AhatTransposeMultiply" : "AhatMultiply") + "_order" +
+                             std::to_string(order_);
+    const std::string doc = transpose
+                                ? "lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied"
+                                : "coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied";
+    Function f = make(name, doc, {{transpose ? "f" : "s", count_, false, false}, {transpose ? "z" : "f", count_, true, false}});
+    Graph& g = f.graph;
+    for (int i = 0; i < std::min(count_, 4); ++i) put(f, 1, i, g.input(0, i));
+    for (const optimizer::TableBand& band : table_.bands) {
+      const int l = band.l, base = l * l;
+      for (int i = 0; i < 2 * l + 1; ++i) {
+        std::vector<std::pair<double, int>> terms;
+        for (int k = 0; k < 2 * l + 1; ++k)
+          terms.push_back({transpose ? band.inverse(k, i) : band.inverse(i, k), g.input(0, base + k)});
+        put(f, 1, base + i, g.linear(terms));
+      }
+    }
+    return f;
+  }
+
+  // The standard rotation; rgb shares the per-rotation work across three channels.
+  Function rotation(bool rgb, bool batch) const {
+    std::string name = std::string(rgb ? "rotate_rgb" : batch ? "rotate_batch" : "rotate") + "_order" + std::to_string(order_);
+    std::string doc = "rotated = coefficients of f(R^T w), R row-major mapping v to R v";
+    if (rgb) doc += ", for three channels";
+    if (batch) doc += ", for count vectors each with its own R (structure of arrays)";
+    Function f = make(name, doc, {{"R", 9, false, false}, {"coeffs", count_, false, rgb}, {"rotated", count_, true, rgb}});
+    f.rgb = rgb;
+    f.batch = batch;
+    Graph& g = f.graph;
+    const int in = 1, out = 2;
+    put(f, out, 0, g.input(in, 0, rgb));
+    if (order_ > 1) {
+      for (int m = -1; m <= 1; ++m) {
+        std::vector<std::pair<double, int>> terms;
+        for (int n = -1; n <= 1; ++n)
+          terms.push_back({1.0, g.mul(g.input(0, 3 * kAxisOfM[m + 1] + kAxisOfM[n + 1]), g.input(in, sh::index(1, n), rgb))});
+        put(f, out, sh::index(1, m), sum(g, terms));
+      }
+    }
+    const std::vector<std::vector<int>> h = lobe_polynomials(g, /*transpose=*/false);
+    for (const optimizer::TableBand& band : table_.bands) {
+      const int l = band.l, base = l * l;
+      std::vector<int> zhat(2 * l + 1);
+      for (int d = 0; d < 2 * l + 1; ++d) {
+        const double scale = std::pow(norm2(lobes_[band.lobes[d]].scaled), -0.5 * l);
+        std::vector<std::pair<double, int>> terms;
+        for (int k = 0; k < 2 * l + 1; ++k) terms.push_back({band.inverse(k, d) * scale, g.input(in, base + k, rgb)});
+        zhat[d] = g.linear(terms);
+      }
+      for (int m = -l; m <= l; ++m) {
+        std::vector<std::pair<double, int>> terms;
+        for (int d = 0; d < 2 * l + 1; ++d) terms.push_back({1.0, g.mul(h[band.lobes[d]][sh::index(l, m)], zhat[d])});
+        put(f, out, base + m + l, g.scale(legendre_.output_scale(l, m), sum(g, terms)));
+      }
+    }
+    return f;
+  }
+
+  // rotated = A s with s the band's function sampled at R^T w_d: same result, the work
+  // arranged as a renderer sampling a texture would.
+  Function signal_tailored() const {
+    Function f = make("rotate_signal_tailored_order" + std::to_string(order_),
+                      "rotated = A s, s = each band of f sampled at the inverse-rotated lobes R^T w_d",
+                      {{"R", 9, false, false}, {"coeffs", count_, false, false}, {"rotated", count_, true, false}});
+    Graph& g = f.graph;
+    put(f, 2, 0, g.input(1, 0));
+    if (order_ > 1) {
+      for (int m = -1; m <= 1; ++m) {
+        std::vector<std::pair<double, int>> terms;
+        for (int n = -1; n <= 1; ++n)
+          terms.push_back({1.0, g.mul(g.input(0, 3 * kAxisOfM[m + 1] + kAxisOfM[n + 1]), g.input(1, sh::index(1, n)))});
+        put(f, 2, sh::index(1, m), sum(g, terms));
+      }
+    }
+    const std::vector<std::vector<int>> h = lobe_polynomials(g, /*transpose=*/true);
+    for (const optimizer::TableBand& band : table_.bands) {
+      const int l = band.l, base = l * l;
+      std::vector<int> weighted(2 * l + 1);
+      for (int m = -l; m <= l; ++m) weighted[m + l] = g.scale(legendre_.output_scale(l, m), g.input(1, base + m + l));
+      std::vector<int> samples(2 * l + 1);
+      for (int d = 0; d < 2 * l + 1; ++d) {
+        std::vector<std::pair<double, int>> terms;
+        for (int m = -l; m <= l; ++m) terms.push_back({1.0, g.mul(h[band.lobes[d]][sh::index(l, m)], weighted[m + l])});
+        samples[d] = sum(g, terms);
+      }
+      for (int m = -l; m <= l; ++m) {
+        std::vector<std::pair<double, int>> terms;
+        for (int d = 0; d < 2 * l + 1; ++d)
+          terms.push_back({band.inverse(m + l, d) * std::pow(norm2(lobes_[band.lobes[d]].scaled), -0.5 * l), samples[d]});
+        put(f, 2, base + m + l, g.linear(terms));
+      }
+    }
+    return f;
+  }
+
+ private:
+  Function make(const std::string& name, const std::string& doc, std::vector<Param> params) const {
+    Function f;
+    f.name = name;
+    f.doc = doc;
+    f.params = std::move(params);
+    return f;
+  }
+  static void put(Function& f, int param, int element, int node) { f.outputs.push_back({param, element, node}); }
+  static int sum(Graph& g, const std::vector<std::pair<double, int>>& terms) {
+    int total = g.constant(0);
+    for (const auto& t : terms) total = g.add(total, t.second);
+    return total;
+  }
+
+  // Per lobe, the homogeneous polynomials of every band that uses it, at R u_d (or R^T u_d).
+  std::vector<std::vector<int>> lobe_polynomials(Graph& g, bool transpose) const {
+    std::vector<std::vector<bool>> bands_of_lobe(lobes_.size(), std::vector<bool>(order_, false));
+    for (const optimizer::TableBand& band : table_.bands)
+      for (int d : band.lobes) bands_of_lobe[d][band.l] = true;
+    std::vector<std::vector<int>> h;
+    for (size_t d = 0; d < lobes_.size(); ++d) {
+      const Vec3 v = rotate(g, lobes_[d].scaled, transpose);
+      h.push_back(homogeneous_sh(g, v, norm2(lobes_[d].scaled), order_, bands_of_lobe[d], legendre_));
+    }
+    return h;
+  }
+
+  const optimizer::LobeTable& table_;
+  const std::vector<Lobe>& lobes_;
+  int order_;
+  int count_;
+  Legendre legendre_;
+};
+
+}  // namespace
+
+std::vector<int> Function::output_nodes() const {
+  std::vector<int> nodes;
+  for (const Output& o : outputs) nodes.push_back(o.node);
+  return nodes;
+}
+
+optimizer::LobeTable order2_table() {
+  optimizer::LobeTable table;
+  table.order = 2;
+  table.lobe_sharing = true;
+  return table;
+}
+
+Module build_module(const optimizer::LobeTable& table, const ModuleOptions& options) {
+  Module module;
+  module.order = table.order;
+  module.table = table;
+  for (const optimizer::TableLobe& t : table.lobes) {
+    Lobe lobe;
+    std::copy(t.xyz, t.xyz + 3, lobe.unit);
+    scale_lobe(t.xyz, lobe.scaled);
+    lobe.source = t.source;
+    module.lobes.push_back(lobe);
+  }
+  const Builder builder(module.table, module.lobes);
+  module.functions.push_back(builder.sh_eval());
+  if (table.order > 2) {
+    module.functions.push_back(builder.sparse_multiply(true));
+    module.functions.push_back(builder.sparse_multiply(false));
+  }
+  if (options.single_channel) {
+    module.functions.push_back(builder.rotation(false, false));
+    module.functions.push_back(builder.signal_tailored());
+  }
+  if (options.rgb) module.functions.push_back(builder.rotation(true, false));
+  if (options.batch) module.functions.push_back(builder.rotation(false, true));
+  return module;
+}
+
+}  // namespace zhf::codegen

@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Regenerates the checked-in lobe tables generated/lobes/order_N.json, each with the command
+# recorded in its provenance. Orders 3..8 take seconds to minutes; 9..12 up to an hour each.
+# Usage: scripts/make_tables.sh [ORDER...]   (default: 3..12); ZHF_THREADS sets the thread count.
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
+cd "$ZHF_ROOT"
+
+table_command() {
+  local order=$1
+  local extra=""
+  # Above order 8 a local-search kick costs seconds; stop after fewer fruitless kicks.
+  [ "$order" -gt 8 ] && extra=" --local-search-stall 25"
+  echo "optimize --order $order --seed 1$extra --out generated/lobes/order_$order.json"
+}
+
+orders=("$@")
+[ ${#orders[@]} -gt 0 ] || orders=(3 4 5 6 7 8 9 10 11 12)
+for order in "${orders[@]}"; do
+  echo "== order $order"
+  start=$(date +%s)
+  # shellcheck disable=SC2046
+  "$ZHF_BUILD/cli/zhf" $(table_command "$order") --threads "${ZHF_THREADS:-0}" --quiet
+  echo "   $(( $(date +%s) - start )) s"
+done

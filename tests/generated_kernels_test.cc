@@ -1,0 +1,214 @@
+// The checked-in C++ kernels against the double reference rotation, and every variant
+// against the scalar kernel.
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "zhf/runtime/rotator.h"
+#include "zhf/sh/eval.h"
+#include "zhf/sh/reference_rotation.h"
+
+namespace zhf {
+namespace {
+
+constexpr int kTrials = 1000;
+// Generated kernels vs the Ivanic-Ruedenberg reference, unit-norm coefficient vectors.
+constexpr double kDoubleTolerance = 1e-12;
+constexpr double kFloatTolerance = 1e-6;
+// Variants that do the same arithmetic in another arrangement (RGB, batch, runtime) vs the
+// scalar kernel; signal-tailored and dense reorder sums, so they get the double tolerance.
+constexpr double kSameArithmetic = 0.0;
+
+struct Case {
+  sh::Matrix3 r;
+  Eigen::VectorXd f;
+  Eigen::VectorXd reference;
+};
+
+std::vector<Case> cases(int order, int count, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal;
+  std::vector<Case> out;
+  for (int k = 0; k < count; ++k) {
+    Case c;
+    c.r = sh::random_rotation(rng);
+    c.f.resize(order * order);
+    for (int i = 0; i < c.f.size(); ++i) c.f[i] = normal(rng);
+    c.f.normalize();
+    c.reference = sh::apply_band_matrices(sh::ivanic_ruedenberg(c.r, order), c.f);
+    out.push_back(c);
+  }
+  return out;
+}
+
+template <class T>
+std::vector<T> to(const Eigen::VectorXd& v) {
+  return std::vector<T>(v.data(), v.data() + v.size());
+}
+template <class T>
+std::vector<T> to(const sh::Matrix3& r) {
+  std::vector<T> out(9);
+  for (int i = 0; i < 9; ++i) out[i] = static_cast<T>(r(i / 3, i % 3));
+  return out;
+}
+
+template <int N>
+struct Kernels;
+#define ZHF_KERNELS(N)                                                                                     \
+  template <>                                                                                              \
+  struct Kernels<N> {                                                                                      \
+    template <class T>                                                                                     \
+    static void rotate(const T* r, const T* in, T* out) { gen::rotate_order##N<T>(r, in, out); }           \
+    template <class T>                                                                                     \
+    static void tailored(const T* r, const T* in, T* out) { gen::rotate_signal_tailored_order##N<T>(r, in, out); } \
+    template <class T>                                                                                     \
+    static void batch(std::size_t n, const T* r, const T* in, T* out) { gen::rotate_batch_order##N<T>(n, r, in, out); } \
+    template <class T>                                                                                     \
+    static void eval(const T* d, T* y) { gen::sh_eval_order##N<T>(d, y); }                                 \
+  };
+ZHF_KERNELS(2)
+ZHF_KERNELS(3)
+ZHF_KERNELS(4)
+ZHF_KERNELS(5)
+ZHF_KERNELS(6)
+ZHF_KERNELS(7)
+ZHF_KERNELS(8)
+#undef ZHF_KERNELS
+
+template <class T>
+double max_error(const std::vector<T>& out, const Eigen::VectorXd& expected, int& at) {
+  double worst = 0;
+  for (int i = 0; i < expected.size(); ++i) {
+    const double e = std::abs(double(out[i]) - expected[i]);
+    if (!(e <= worst)) {
+      worst = e;
+      at = i;
+    }
+  }
+  return worst;
+}
+
+template <int N, class T>
+void check_against_reference(double tolerance) {
+  double worst = 0;
+  int worst_index = 0, worst_trial = 0;
+  const auto all = cases(N, kTrials, 100 + N);
+  for (int k = 0; k < kTrials; ++k) {
+    const auto r = to<T>(all[k].r);
+    const auto in = to<T>(all[k].f);
+    std::vector<T> out(N * N);
+    Kernels<N>::rotate(r.data(), in.data(), out.data());
+    int at = 0;
+    const double e = max_error(out, all[k].reference, at);
+    if (e > worst) {
+      worst = e;
+      worst_index = at;
+      worst_trial = k;
+    }
+  }
+  int band = 0;
+  while ((band + 1) * (band + 1) <= worst_index) ++band;
+  EXPECT_LE(worst, tolerance) << "order " << N << ", band " << band << ", index " << worst_index << ", trial "
+                              << worst_trial << (sizeof(T) == 4 ? " (float)" : " (double)");
+  ::testing::Test::RecordProperty("max_error_order" + std::to_string(N) + (sizeof(T) == 4 ? "_float" : "_double"), std::to_string(worst));
+}
+
+template <int N>
+void check_variants() {
+  using T = double;
+  const auto all = cases(N, 50, 200 + N);
+  const runtime::Rotator<T> generated = runtime::Rotator<T>::generated(N);
+  std::vector<T> batch_r(9 * all.size()), batch_in(N * N * all.size()), batch_out(N * N * all.size());
+  for (size_t k = 0; k < all.size(); ++k) {
+    const auto r = to<T>(all[k].r);
+    const auto in = to<T>(all[k].f);
+    std::vector<T> scalar(N * N), other(N * N);
+    Kernels<N>::rotate(r.data(), in.data(), scalar.data());
+    for (int i = 0; i < 9; ++i) batch_r[i * all.size() + k] = r[i];
+    for (int i = 0; i < N * N; ++i) batch_in[i * all.size() + k] = in[i];
+
+    Kernels<N>::tailored(r.data(), in.data(), other.data());
+    for (int i = 0; i < N * N; ++i) EXPECT_NEAR(other[i], scalar[i], kDoubleTolerance) << "signal-tailored order " << N << " index " << i;
+
+    // RGB: three different channels, each equal to its own scalar rotation.
+    std::vector<T> rgb_in(3 * N * N), rgb_out(3 * N * N);
+    for (int c = 0; c < 3; ++c)
+      for (int i = 0; i < N * N; ++i) rgb_in[c * N * N + i] = in[(i + c * 7) % (N * N)] * (c + 1);
+    generated.rotate_rgb(r.data(), rgb_in.data(), rgb_out.data());
+    for (int c = 0; c < 3; ++c) {
+      std::vector<T> expected(N * N);
+      Kernels<N>::rotate(r.data(), rgb_in.data() + c * N * N, expected.data());
+      for (int i = 0; i < N * N; ++i)
+        EXPECT_NEAR(rgb_out[c * N * N + i], expected[i], kSameArithmetic) << "rgb order " << N << " channel " << c << " index " << i;
+    }
+
+    const runtime::DenseRotation<T> dense = generated.dense(r.data());
+    dense.apply(in.data(), other.data());
+    for (int i = 0; i < N * N; ++i) EXPECT_NEAR(other[i], scalar[i], kDoubleTolerance) << "dense order " << N << " index " << i;
+
+    if (N >= 3) {
+      const runtime::Rotator<T> from_json =
+          runtime::Rotator<T>::from_table(runtime::read_lobe_table(std::string(ZHF_SOURCE_DIR) + "/generated/lobes/order_" + std::to_string(N) + ".json"));
+      from_json.rotate(r.data(), in.data(), other.data());
+      for (int i = 0; i < N * N; ++i) EXPECT_NEAR(other[i], scalar[i], kDoubleTolerance) << "runtime JSON order " << N << " index " << i;
+    }
+  }
+  Kernels<N>::batch(all.size(), batch_r.data(), batch_in.data(), batch_out.data());
+  for (size_t k = 0; k < all.size(); ++k) {
+    const auto r = to<T>(all[k].r);
+    const auto in = to<T>(all[k].f);
+    std::vector<T> scalar(N * N);
+    Kernels<N>::rotate(r.data(), in.data(), scalar.data());
+    for (int i = 0; i < N * N; ++i)
+      EXPECT_NEAR(batch_out[i * all.size() + k], scalar[i], kSameArithmetic) << "batch order " << N << " vector " << k << " index " << i;
+  }
+}
+
+template <int N>
+void check_composition() {
+  using T = double;
+  std::mt19937_64 rng(300 + N);
+  for (int k = 0; k < 100; ++k) {
+    const sh::Matrix3 r1 = sh::random_rotation(rng), r2 = sh::random_rotation(rng);
+    const auto f = to<T>(cases(N, 1, 400 + k)[0].f);
+    std::vector<T> step(N * N), twice(N * N), once(N * N);
+    Kernels<N>::rotate(to<T>(r2).data(), f.data(), step.data());
+    Kernels<N>::rotate(to<T>(r1).data(), step.data(), twice.data());
+    Kernels<N>::rotate(to<T>(sh::Matrix3(r1 * r2)).data(), f.data(), once.data());
+    for (int i = 0; i < N * N; ++i) EXPECT_NEAR(twice[i], once[i], kDoubleTolerance) << "order " << N << " index " << i;
+  }
+}
+
+template <int N>
+void check_eval() {
+  std::mt19937_64 rng(500 + N);
+  for (int k = 0; k < 100; ++k) {
+    const Eigen::Vector3d d = sh::random_direction(rng);
+    std::vector<double> expected(N * N), got(N * N);
+    sh::eval_sh(N, d.data(), expected.data());
+    Kernels<N>::eval(d.data(), got.data());
+    for (int i = 0; i < N * N; ++i) EXPECT_NEAR(got[i], expected[i], 1e-14) << "sh_eval order " << N << " index " << i;
+  }
+}
+
+template <int N>
+void check_all() {
+  check_against_reference<N, double>(kDoubleTolerance);
+  check_against_reference<N, float>(kFloatTolerance);
+  check_variants<N>();
+  check_composition<N>();
+  check_eval<N>();
+}
+
+TEST(GeneratedKernels, Order2) { check_all<2>(); }
+TEST(GeneratedKernels, Order3) { check_all<3>(); }
+TEST(GeneratedKernels, Order4) { check_all<4>(); }
+TEST(GeneratedKernels, Order5) { check_all<5>(); }
+TEST(GeneratedKernels, Order6) { check_all<6>(); }
+TEST(GeneratedKernels, Order7) { check_all<7>(); }
+TEST(GeneratedKernels, Order8) { check_all<8>(); }
+
+}  // namespace
+}  // namespace zhf
