@@ -16,6 +16,7 @@ inline constexpr int kExitFailure = 1;      // a check failed (e.g. verify), or 
 inline constexpr int kExitUsage = 2;        // bad command line
 inline constexpr int kExitBadInput = 3;     // an input file is missing or malformed
 inline constexpr int kExitOutput = 4;       // an output could not be written
+inline constexpr int kExitNoDevice = 5;     // verify: no Vulkan device for the shader languages
 inline constexpr int kExitInterrupted = 130;
 
 struct UsageError : std::runtime_error {
@@ -28,5 +29,6 @@ void add_candidates_command(CLI::App& app, Action& action);
 // command_line is how the invocation is recorded in provenance (see main.cc).
 void add_optimize_command(CLI::App& app, Action& action, const std::string& command_line);
 void add_codegen_commands(CLI::App& app, Action& action, const std::string& command_line);
+void add_verify_command(CLI::App& app, Action& action);
 
 }  // namespace zhf::cli

@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
   const std::string command = recorded_command(argc, argv);
   add_optimize_command(app, action, command);
   add_codegen_commands(app, action, command);
+  add_verify_command(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -11,6 +11,7 @@ packages=(
   cmake ninja-build g++ pkg-config
   libeigen3-dev libnlopt-cxx-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
+  glslang-tools spirv-tools libvulkan-dev mesa-vulkan-drivers
 )
 missing=()
 for p in "${packages[@]}"; do

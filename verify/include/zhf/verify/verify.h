@@ -1,0 +1,64 @@
+// zhf verify: compile and run every emitted kernel (C++ with the host compiler, GLSL and HLSL
+// through glslang to SPIR-V on a Vulkan device) on one input set, and compare with the
+// independent double-precision reference in sh/.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace zhf::verify {
+
+// Tolerances, by method and precision (max abs error vs the double reference, unit-norm inputs).
+inline constexpr double kDoubleTolerance = 1e-12;
+inline constexpr double kFloatRotationTolerance = 1e-6;     // rotate, signal-tailored, rgb, batch
+// sh_eval: l-1 recurrence steps of relative error ~4 eps on |y| <= 1.07 (order 8) bound the
+// float error by ~1.7e-6 at l = 7; sh/'s own float evaluation is held to 2e-6 likewise.
+inline constexpr double kFloatEvaluationTolerance = 2e-6;
+inline constexpr double kFloatSparseTolerance = 4e-6;       // Ahat multiplies: entries up to ~10
+// Shader float results vs the C++ float kernel (built with -ffp-contract=off), in ulps at the
+// coefficients' scale (see verify.cc). GLSL reaches the driver as the same operations in the
+// same order: measured 2 ulps on lavapipe. glslang legalises HLSL with SPIRV-Tools passes that
+// fold constant products and regroup sums: measured up to ~100 ulps (2 with -Od).
+inline constexpr double kGlslUlpLimit = 8;
+inline constexpr double kHlslUlpLimit = 256;
+
+struct VerifyOptions {
+  std::string generated_dir = "generated";
+  std::vector<int> orders = {2, 3, 4, 5, 6, 7, 8};
+  std::vector<std::string> languages = {"cpp", "glsl", "hlsl"};
+  int rotations = 1000;
+  std::string compiler;        // C++ compiler; empty: $CXX, else c++
+  std::string work_dir;        // scratch; empty: a fresh temp dir, removed afterwards
+  bool keep_work_dir = false;
+};
+
+struct FunctionResult {
+  int order = 0;
+  std::string language;        // cpp, glsl, hlsl
+  std::string precision;       // float, double
+  std::string function;
+  double max_error = 0;
+  double rms_error = 0;
+  double max_ulps = 0;         // vs the C++ float kernel (shaders only)
+  double tolerance = 0;
+  double ulp_limit = 0;
+  int worst_index = -1;        // coefficient index of the largest error
+  int worst_input = -1;
+  bool pass = false;
+};
+
+struct VerifyReport {
+  std::string device;          // the Vulkan device used, if any
+  std::vector<FunctionResult> results;
+  std::vector<std::string> errors;  // compile or run failures, one line each
+  bool vulkan_missing = false;
+  bool pass() const;
+  nlohmann::ordered_json to_json() const;
+  std::string table() const;   // one row per order x language x precision
+};
+
+VerifyReport run_verify(const VerifyOptions& options);
+
+}  // namespace zhf::verify
