@@ -1,7 +1,13 @@
 #!/usr/bin/env bash
-# The main job on built-in defaults: candidate-direction summaries for orders 3..8.
+# The main job on built-in defaults: emit every kernel (orders 2..8; C++, HLSL, GLSL) from the
+# checked-in lobe tables into a scratch directory, print the summary, then compile and run all
+# of them against the double reference (GLSL/HLSL on Vulkan; lavapipe when there is no GPU).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
-for order in 3 4 5 6 7 8; do
-  "$ZHF_BUILD/cli/zhf" candidates --order "$order"
-done
+cd "$ZHF_ROOT"
+scratch=${ZHF_SCRATCH:-$(mktemp -d "${TMPDIR:-/tmp}/zhf-main-XXXXXX")}
+echo "== zhf generate --out $scratch"
+"$ZHF_BUILD/cli/zhf" generate --out "$scratch"
+echo
+echo "== zhf verify --generated $scratch"
+"$ZHF_BUILD/cli/zhf" verify --generated "$scratch"
