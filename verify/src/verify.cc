@@ -265,22 +265,23 @@ double ulp_distance(float a, float b) {
   return std::abs(static_cast<double>(a) - static_cast<double>(b)) / ulp;
 }
 
-double tolerance_for(Mode mode, const std::string& precision) {
+double tolerance_for(Mode mode, const std::string& precision, int order, double worst_condition) {
   if (precision == "double") return kDoubleTolerance;
   if (mode == kEval) return kFloatEvaluationTolerance;
   if (mode == kTranspose || mode == kMultiply) return kFloatSparseTolerance;
-  return kFloatRotationTolerance;
+  return float_rotation_tolerance(order, worst_condition);
 }
 
-FunctionResult compare(const Inputs& in, Mode mode, const std::vector<double>& got, const std::vector<double>& expected,
-                       const std::string& language, const std::string& precision, const std::vector<double>* cpp_float) {
+FunctionResult compare(const Inputs& in, double worst_condition, Mode mode, const std::vector<double>& got,
+                       const std::vector<double>& expected, const std::string& language, const std::string& precision,
+                       const std::vector<double>* cpp_float) {
   FunctionResult r;
   r.ulp_limit = language == "hlsl" ? kHlslUlpLimit : kGlslUlpLimit;
   r.order = in.order;
   r.language = language;
   r.precision = precision;
   r.function = function_name(mode, in.order);
-  r.tolerance = tolerance_for(mode, precision);
+  r.tolerance = tolerance_for(mode, precision, in.order, worst_condition);
   const int n = in.order * in.order;
   const int lanes = mode == kRgb ? 3 * n : n;
   double sum = 0;
@@ -444,7 +445,7 @@ VerifyReport run_verify(const VerifyOptions& options) {
           if (p == 0) cpp_float[m] = got;
           if (!has_mode(Mode(m), order)) continue;
           if (std::find(options.languages.begin(), options.languages.end(), "cpp") != options.languages.end())
-            report.results.push_back(compare(in, Mode(m), got, expected[m], "cpp", precision, nullptr));
+            report.results.push_back(compare(in, table.worst_condition(), Mode(m), got, expected[m], "cpp", precision, nullptr));
         }
       }
     }
@@ -504,7 +505,7 @@ VerifyReport run_verify(const VerifyOptions& options) {
           std::memcpy(&f, &buffers[2][(m * block + k) * sizeof(float)], sizeof f);
           got[k] = f;
         }
-        report.results.push_back(compare(in, Mode(m), got, expected[m], language, "float",
+        report.results.push_back(compare(in, table.worst_condition(), Mode(m), got, expected[m], language, "float",
                                          cpp_float[m].empty() ? nullptr : &cpp_float[m]));
       }
     }
