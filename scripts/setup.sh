@@ -8,7 +8,7 @@ ZHF_BUILD=${ZHF_BUILD_DIR:-$ZHF_ROOT/build}
 ZHF_JOBS=$(nproc)
 
 packages=(
-  cmake ninja-build g++ pkg-config
+  cmake ninja-build g++ clang libclang-rt-14-dev pkg-config
   libeigen3-dev libnlopt-cxx-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
   glslang-tools spirv-tools libvulkan-dev mesa-vulkan-drivers

@@ -47,18 +47,26 @@ inline LobeTableData parse_lobe_table(const std::string& text, const std::string
     if (it->second.kind != kind) fail(field + "." + key, "wrong type");
     return it->second;
   };
+  // Integers arrive as doubles; anything non-integral or out of int range is rejected before
+  // a cast could overflow.
+  auto integer = [&](const json::Value& v, const std::string& field) -> int {
+    if (v.kind != Kind::kNumber || !v.integral || !(std::abs(v.number) <= 1e9)) fail(field, "expected an integer");
+    return static_cast<int>(v.number);
+  };
   if (member(root, "format", Kind::kString, "table").string != "zhf-lobes-1")
     fail("format", "expected \"zhf-lobes-1\"");
   LobeTableData table;
-  const json::Value& order = member(root, "order", Kind::kNumber, "table");
-  table.order = static_cast<int>(order.number);
-  if (!order.integral || table.order < 2 || table.order > kMaxTableOrder)
+  table.order = integer(member(root, "order", Kind::kNumber, "table"), "order");
+  if (table.order < 2 || table.order > kMaxTableOrder)
     fail("order", "must be an integer in [2, " + std::to_string(kMaxTableOrder) + "]");
   for (const json::Value& lobe : member(root, "lobes", Kind::kArray, "table").array) {
     const json::Value& xyz = member(lobe, "xyz", Kind::kArray, "lobes[" + std::to_string(table.lobes.size()) + "]");
     if (xyz.array.size() != 3) fail("lobes[" + std::to_string(table.lobes.size()) + "].xyz", "expected 3 numbers");
     std::array<double, 3> w{};
-    for (int k = 0; k < 3; ++k) w[k] = xyz.array[k].number;
+    for (int k = 0; k < 3; ++k) {
+      if (xyz.array[k].kind != Kind::kNumber) fail("lobes[" + std::to_string(table.lobes.size()) + "].xyz", "expected numbers");
+      w[k] = xyz.array[k].number;
+    }
     if (std::abs(w[0] * w[0] + w[1] * w[1] + w[2] * w[2] - 1) > 1e-12)
       fail("lobes[" + std::to_string(table.lobes.size()) + "].xyz", "not a unit vector");
     table.lobes.push_back(w);
@@ -72,7 +80,7 @@ inline LobeTableData parse_lobe_table(const std::string& text, const std::string
     band.l = static_cast<int>(b) + 2;
     const int size = 2 * band.l + 1;
     for (const json::Value& i : member(bands.array[b], "lobes", Kind::kArray, field).array) {
-      const int index = static_cast<int>(i.number);
+      const int index = integer(i, field + ".lobes");
       if (index < 0 || index >= static_cast<int>(table.lobes.size())) fail(field + ".lobes", "index out of range");
       band.lobes.push_back(index);
     }
@@ -81,7 +89,10 @@ inline LobeTableData parse_lobe_table(const std::string& text, const std::string
     if (static_cast<int>(rows.array.size()) != size) fail(field + ".inverse", "expected " + std::to_string(size) + " rows");
     for (const json::Value& row : rows.array) {
       if (static_cast<int>(row.array.size()) != size) fail(field + ".inverse", "row of wrong length");
-      for (const json::Value& x : row.array) band.inverse.push_back(x.number);
+      for (const json::Value& x : row.array) {
+        if (x.kind != Kind::kNumber) fail(field + ".inverse", "expected numbers");
+        band.inverse.push_back(x.number);
+      }
     }
     // Y_l A_l = I: the inverse must still belong to the directions.
     const BandEvaluator<double> eval(band.l);
