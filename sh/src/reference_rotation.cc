@@ -61,7 +61,8 @@ BandMatrices ivanic_ruedenberg(const Matrix3& r, int order) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) band1(i, j) = r(axis_of_m[i], axis_of_m[j]);
   bands.push_back(band1);
-  const ConstBandView r1{bands[1], 1};
+  // Views into `bands` would dangle when it grows: band 1 is read from its own copy.
+  const ConstBandView r1{band1, 1};
   for (int l = 2; l < order; ++l) {
     Eigen::MatrixXd band(2 * l + 1, 2 * l + 1);
     BandView out{band, l};
