@@ -2,6 +2,7 @@
 # Regenerates the checked-in lobe tables generated/lobes/order_N.json, each with the command
 # recorded in its provenance. Orders 3..8 take seconds to minutes; 9..12 up to an hour each.
 # Usage: scripts/make_tables.sh [ORDER...]   (default: 3..12); ZHF_THREADS sets the thread count.
+# Seconds on 2 threads: orders 3..8: 0.1, 0.5, 5, 22, 46, 330; 9: 425; 10: 1333.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 cd "$ZHF_ROOT"
@@ -12,8 +13,10 @@ table_command() {
   # Order 6 reaches its zero target with every band's condition <= 8, where float rotations
   # stay within 1e-6; at 7 and 8 that bound costs too many zeros (README, "Numerical limits").
   [ "$order" -eq 6 ] && extra=" --max-condition 8"
-  # Above order 8 a local-search kick costs seconds; stop after fewer fruitless kicks.
-  [ "$order" -gt 8 ] && extra=" --local-search-stall 25"
+  # Above order 8 a local-search kick costs seconds (above 10, most of a minute); stop after
+  # fewer fruitless kicks.
+  [ "$order" -gt 8 ] && [ "$order" -le 10 ] && extra=" --local-search-stall 25"
+  [ "$order" -gt 10 ] && extra=" --local-search-stall 5"
   echo "optimize --order $order --seed 1$extra --out generated/lobes/order_$order.json"
 }
 
