@@ -14,6 +14,15 @@ int Graph::intern(const Node& n) {
   return size() - 1;
 }
 
+int Graph::binary(Op op, int a, int b) {
+  Node n;
+  n.op = op;
+  n.a = a;
+  n.b = b;
+  n.vector = nodes_[a].vector || nodes_[b].vector;
+  return intern(n);
+}
+
 int Graph::input(int param, int element, bool vector) {
   Node n;
   n.op = Op::kInput;
@@ -50,12 +59,7 @@ int Graph::add(int a, int b) {
   if (nodes_[b].op == Op::kNeg) return sub(a, nodes_[b].a);
   if (nodes_[a].op == Op::kNeg) return sub(b, nodes_[a].a);
   if (a > b) std::swap(a, b);  // commutative: one canonical order for sharing
-  Node n;
-  n.op = Op::kAdd;
-  n.a = a;
-  n.b = b;
-  n.vector = nodes_[a].vector || nodes_[b].vector;
-  return intern(n);
+  return binary(Op::kAdd, a, b);
 }
 
 int Graph::sub(int a, int b) {
@@ -64,12 +68,7 @@ int Graph::sub(int a, int b) {
   if (a == b) return constant(0);
   if (nodes_[a].op == Op::kConst && nodes_[b].op == Op::kConst) return constant(nodes_[a].value - nodes_[b].value);
   if (nodes_[b].op == Op::kNeg) return add(a, nodes_[b].a);
-  Node n;
-  n.op = Op::kSub;
-  n.a = a;
-  n.b = b;
-  n.vector = nodes_[a].vector || nodes_[b].vector;
-  return intern(n);
+  return binary(Op::kSub, a, b);
 }
 
 int Graph::mul(int a, int b) {
@@ -88,12 +87,7 @@ int Graph::mul(int a, int b) {
     if (nodes_[b].op == Op::kNeg) return neg(mul(a, nodes_[b].a));
     if (a > b) std::swap(a, b);
   }
-  Node n;
-  n.op = Op::kMul;
-  n.a = a;
-  n.b = b;
-  n.vector = nodes_[a].vector || nodes_[b].vector;
-  return intern(n);
+  return binary(Op::kMul, a, b);
 }
 
 int Graph::linear(const std::vector<std::pair<double, int>>& terms) {

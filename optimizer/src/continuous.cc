@@ -6,7 +6,7 @@
 #include <Eigen/LU>
 #include <nlopt.hpp>
 
-#include "random.h"
+#include "search_support.h"
 #include "zhf/sh/eval.h"
 
 namespace zhf::optimizer {

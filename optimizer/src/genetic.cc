@@ -8,7 +8,7 @@
 #include <random>
 #include <thread>
 
-#include "random.h"
+#include "search_support.h"
 
 namespace zhf::optimizer {
 namespace {
@@ -133,14 +133,7 @@ SearchResult genetic_search(const LobeEvaluator& evaluator, const GeneticOptions
   const int breed = size - options.elite;
   const int crossovers = static_cast<int>(std::lround(options.crossover_fraction * breed));
   for (int generation = 1;; ++generation) {
-    if (options.stop && options.stop->load()) {
-      result.interrupted = true;
-      break;
-    }
-    if (options.time_limit_seconds > 0 && elapsed() >= options.time_limit_seconds) {
-      result.timed_out = true;
-      break;
-    }
+    if (detail::interrupted_or_out_of_time(options.stop, options.time_limit_seconds, elapsed(), result)) break;
     if (options.max_generations > 0 && result.generations >= options.max_generations) break;
     if (stall >= options.stall_generations) break;
 

@@ -4,7 +4,7 @@
 #include <random>
 #include <algorithm>
 
-#include "random.h"
+#include "search_support.h"
 
 namespace zhf::optimizer {
 namespace {
@@ -109,14 +109,7 @@ SearchResult iterated_local_search(const LobeEvaluator& evaluator, const Genome&
   }
   int since_improvement = 0;
   for (int kick = 1; options.stall_kicks > 0; ++kick) {
-    if (options.stop && options.stop->load()) {
-      result.interrupted = true;
-      break;
-    }
-    if (options.time_limit_seconds > 0 && elapsed() >= options.time_limit_seconds) {
-      result.timed_out = true;
-      break;
-    }
+    if (detail::interrupted_or_out_of_time(options.stop, options.time_limit_seconds, elapsed(), result)) break;
     if (options.max_kicks > 0 && kick > options.max_kicks) break;
     if (since_improvement >= options.stall_kicks) break;
     Genome kicked = result.best;

@@ -53,6 +53,7 @@ class Graph {
 
  private:
   int intern(const Node& n);
+  int binary(Op op, int a, int b);
   std::vector<Node> nodes_;
   std::map<std::tuple<int, int, int, double, int, int>, int> index_;
 };
