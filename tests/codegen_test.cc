@@ -123,5 +123,25 @@ TEST(GeneratedFiles, MatchWhatTheGeneratorMakes) {
   fs::remove_all(out);
 }
 
+// An interrupt before the commit leaves the previous tree exactly as it was.
+TEST(Generate, InterruptedRunLeavesThePreviousOutputs) {
+  const fs::path out = test::make_temp_dir();
+  GenerateOptions options;
+  options.tables_dir = (kGenerated / "lobes").string();
+  options.out_dir = out.string();
+  options.orders = {2, 3};
+  generate(options);
+  const std::string before = slurp(out / "cpp/zhf_order3.h");
+  io::write_file_atomically((out / "cpp/zhf_order3.h").string(), before + "// previous run\n");
+  std::atomic<bool> stop{true};
+  options.stop = &stop;
+  const GenerateResult result = generate(options);
+  EXPECT_TRUE(result.interrupted);
+  EXPECT_EQ(slurp(out / "cpp/zhf_order3.h"), before + "// previous run\n");
+  for (const auto& entry : fs::directory_iterator(out))
+    EXPECT_EQ(entry.path().filename().string().find(".zhf-staging"), std::string::npos) << entry.path();
+  fs::remove_all(out);
+}
+
 }  // namespace
 }  // namespace zhf::codegen
