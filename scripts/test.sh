@@ -13,7 +13,7 @@ ctest --test-dir "$ZHF_BUILD" --output-on-failure -j "$ZHF_JOBS"
 
 echo "== stage 2: tests under ASan + UBSan"
 asan_build="${ZHF_BUILD}-asan"
-cmake -S "$ZHF_ROOT" -B "$asan_build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DZHF_SANITIZE=ON >/dev/null
+cmake -S "$ZHF_ROOT" -B "$asan_build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DZHF_SANITIZE=ON -DZHF_BENCH=OFF >/dev/null
 cmake --build "$asan_build" -j "$ZHF_JOBS"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 ctest --test-dir "$asan_build" --output-on-failure -j "$ZHF_JOBS"
