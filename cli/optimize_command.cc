@@ -62,6 +62,19 @@ void write_table(const optimizer::LobeTable& table, const OptimizeOptions& o) {
   std::printf("wrote %s\n", o.out.c_str());
 }
 
+std::string interrupted_path(const OptimizeOptions& o) {
+  return (o.out.empty() ? "zhf-order-" + std::to_string(o.order) + ".json" : o.out) + ".interrupted.json";
+}
+
+// Interrupted: the best table so far goes beside the output, which stays untouched.
+int save_interrupted(const optimizer::LobeTable& table, const OptimizeOptions& o) {
+  const std::string path = interrupted_path(o);
+  io::write_file_atomically(path, io::json_text(optimizer::to_json(table)));
+  std::fprintf(stderr, "zhf: interrupted; the best table so far is in %s (%s untouched)\n", path.c_str(),
+               o.out.empty() ? "no output" : o.out.c_str());
+  return kExitInterrupted;
+}
+
 int run_exhaustive(const optimizer::LobeEvaluator& evaluator, const OptimizeOptions& o, const std::string& command) {
   const optimizer::ExhaustiveResult r =
       optimizer::exhaustive_search(evaluator, o.time_limit, o.threads, &interrupt_requested());
@@ -79,13 +92,9 @@ int run_exhaustive(const optimizer::LobeEvaluator& evaluator, const OptimizeOpti
                 r.sets_evaluated, r.sets_total, 100 * r.sets_evaluated / r.sets_total, r.search.seconds,
                 r.search.fitness.zeros, r.upper_bound);
   }
-  if (r.search.interrupted) return kExitInterrupted;
+  if (r.search.interrupted) return save_interrupted(table, o);
   write_table(table, o);
   return kExitOk;
-}
-
-std::string interrupted_path(const OptimizeOptions& o) {
-  return (o.out.empty() ? "zhf-order-" + std::to_string(o.order) + ".json" : o.out) + ".interrupted.json";
 }
 
 int run_optimize(const OptimizeOptions& o, const std::string& command) {
@@ -162,13 +171,7 @@ int run_optimize(const OptimizeOptions& o, const std::string& command) {
   if (!final_result.fitness.feasible)
     std::printf("  note: no lobe set within --max-condition %.3g was found; this is the best unbounded one\n",
                 o.max_condition);
-  if (interrupted) {
-    const std::string path = interrupted_path(o);
-    io::write_file_atomically(path, io::json_text(optimizer::to_json(table)));
-    std::fprintf(stderr, "zhf: interrupted; the best table so far is in %s (%s untouched)\n", path.c_str(),
-                 o.out.empty() ? "no output" : o.out.c_str());
-    return kExitInterrupted;
-  }
+  if (interrupted) return save_interrupted(table, o);
   write_table(table, o);
   return kExitOk;
 }
