@@ -78,6 +78,12 @@ int save_interrupted(const optimizer::LobeTable& table, const OptimizeOptions& o
 int run_exhaustive(const optimizer::LobeEvaluator& evaluator, const OptimizeOptions& o, const std::string& command) {
   const optimizer::ExhaustiveResult r =
       optimizer::exhaustive_search(evaluator, o.time_limit, o.threads, &interrupt_requested());
+  if (!r.search.fitness.invertible) {
+    // The enumeration starts among repeated and clustered lobes; a singular set is no table.
+    std::printf("exhaustive: no invertible lobe set among the %.0f searched (%.1f s); nothing written\n",
+                r.sets_evaluated, r.search.seconds);
+    return r.search.interrupted ? kExitInterrupted : kExitFailure;
+  }
   const nlohmann::json provenance = {{"zhf_version", ZHF_VERSION},
                                      {"command", command},
                                      {"exhaustive", r.complete ? "complete" : "partial"},
