@@ -181,15 +181,7 @@ class Builder {
     f.batch = batch;
     Graph& g = f.graph;
     const int in = 1, out = 2;
-    put(f, out, 0, g.input(in, 0, rgb));
-    if (order_ > 1) {
-      for (int m = -1; m <= 1; ++m) {
-        std::vector<std::pair<double, int>> terms;
-        for (int n = -1; n <= 1; ++n)
-          terms.push_back({1.0, g.mul(g.input(0, 3 * kAxisOfM[m + 1] + kAxisOfM[n + 1]), g.input(in, sh::index(1, n), rgb))});
-        put(f, out, sh::index(1, m), sum(g, terms));
-      }
-    }
+    copy_band0_rotate_band1(f, in, out, rgb);
     const std::vector<std::vector<int>> h = lobe_polynomials(g, /*transpose=*/false);
     for (const optimizer::TableBand& band : table_.bands) {
       const int l = band.l, base = l * l;
@@ -203,7 +195,7 @@ class Builder {
       for (int m = -l; m <= l; ++m) {
         std::vector<std::pair<double, int>> terms;
         for (int d = 0; d < 2 * l + 1; ++d) terms.push_back({1.0, g.mul(h[band.lobes[d]][sh::index(l, m)], zhat[d])});
-        put(f, out, base + m + l, g.scale(legendre_.output_scale(l, m), sum(g, terms)));
+        put(f, out, base + m + l, g.scale(legendre_.output_scale(l, m), g.linear(terms)));
       }
     }
     return f;
@@ -216,15 +208,7 @@ class Builder {
                       "rotated = A s, s = each band of f sampled at the inverse-rotated lobes R^T w_d",
                       {{"R", 9, false, false}, {"coeffs", count_, false, false}, {"rotated", count_, true, false}});
     Graph& g = f.graph;
-    put(f, 2, 0, g.input(1, 0));
-    if (order_ > 1) {
-      for (int m = -1; m <= 1; ++m) {
-        std::vector<std::pair<double, int>> terms;
-        for (int n = -1; n <= 1; ++n)
-          terms.push_back({1.0, g.mul(g.input(0, 3 * kAxisOfM[m + 1] + kAxisOfM[n + 1]), g.input(1, sh::index(1, n)))});
-        put(f, 2, sh::index(1, m), sum(g, terms));
-      }
-    }
+    copy_band0_rotate_band1(f, 1, 2, false);
     const std::vector<std::vector<int>> h = lobe_polynomials(g, /*transpose=*/true);
     for (const optimizer::TableBand& band : table_.bands) {
       const int l = band.l, base = l * l;
@@ -234,7 +218,7 @@ class Builder {
       for (int d = 0; d < 2 * l + 1; ++d) {
         std::vector<std::pair<double, int>> terms;
         for (int m = -l; m <= l; ++m) terms.push_back({1.0, g.mul(h[band.lobes[d]][sh::index(l, m)], weighted[m + l])});
-        samples[d] = sum(g, terms);
+        samples[d] = g.linear(terms);
       }
       for (int m = -l; m <= l; ++m) {
         std::vector<std::pair<double, int>> terms;
@@ -255,10 +239,17 @@ class Builder {
     return f;
   }
   static void put(Function& f, int param, int element, int node) { f.outputs.push_back({param, element, node}); }
-  static int sum(Graph& g, const std::vector<std::pair<double, int>>& terms) {
-    int total = g.constant(0);
-    for (const auto& t : terms) total = g.add(total, t.second);
-    return total;
+  // Band 0 is invariant; band 1 is c (y, z, x), so its matrix is R on those axes.
+  void copy_band0_rotate_band1(Function& f, int in, int out, bool rgb) const {
+    Graph& g = f.graph;
+    put(f, out, 0, g.input(in, 0, rgb));
+    if (order_ < 2) return;
+    for (int m = -1; m <= 1; ++m) {
+      std::vector<std::pair<double, int>> terms;
+      for (int n = -1; n <= 1; ++n)
+        terms.push_back({1.0, g.mul(g.input(0, 3 * kAxisOfM[m + 1] + kAxisOfM[n + 1]), g.input(in, sh::index(1, n), rgb))});
+      put(f, out, sh::index(1, m), g.linear(terms));
+    }
   }
 
   // Per lobe, the homogeneous polynomials of every band that uses it, at R u_d (or R^T u_d).

@@ -27,20 +27,20 @@ void rotate_order2(in float R[9], in float coeffs[4], out float rotated[4]) {
   float t9 = coeffs[3] * R[3];
   float t11 = t3 + t6;
   float t12 = t9 + t11;
-  float t14 = coeffs[1] * R[7];
-  float t16 = coeffs[2] * R[8];
-  float t18 = coeffs[3] * R[6];
-  float t19 = t14 + t16;
-  float t20 = t18 + t19;
-  float t22 = coeffs[1] * R[1];
-  float t24 = coeffs[2] * R[2];
-  float t26 = coeffs[3] * R[0];
-  float t27 = t22 + t24;
-  float t28 = t26 + t27;
+  float t15 = coeffs[1] * R[7];
+  float t17 = coeffs[2] * R[8];
+  float t19 = coeffs[3] * R[6];
+  float t20 = t15 + t17;
+  float t21 = t19 + t20;
+  float t23 = coeffs[1] * R[1];
+  float t25 = coeffs[2] * R[2];
+  float t27 = coeffs[3] * R[0];
+  float t28 = t23 + t25;
+  float t29 = t27 + t28;
   rotated[0] = coeffs[0];
   rotated[1] = t12;
-  rotated[2] = t20;
-  rotated[3] = t28;
+  rotated[2] = t21;
+  rotated[3] = t29;
 }
 
 // rotate_signal_tailored_order2: rotated = A s, s = each band of f sampled at the inverse-rotated lobes R^T w_d.
@@ -50,20 +50,20 @@ void rotate_signal_tailored_order2(in float R[9], in float coeffs[4], out float 
   float t9 = coeffs[3] * R[3];
   float t11 = t3 + t6;
   float t12 = t9 + t11;
-  float t14 = coeffs[1] * R[7];
-  float t16 = coeffs[2] * R[8];
-  float t18 = coeffs[3] * R[6];
-  float t19 = t14 + t16;
-  float t20 = t18 + t19;
-  float t22 = coeffs[1] * R[1];
-  float t24 = coeffs[2] * R[2];
-  float t26 = coeffs[3] * R[0];
-  float t27 = t22 + t24;
-  float t28 = t26 + t27;
+  float t15 = coeffs[1] * R[7];
+  float t17 = coeffs[2] * R[8];
+  float t19 = coeffs[3] * R[6];
+  float t20 = t15 + t17;
+  float t21 = t19 + t20;
+  float t23 = coeffs[1] * R[1];
+  float t25 = coeffs[2] * R[2];
+  float t27 = coeffs[3] * R[0];
+  float t28 = t23 + t25;
+  float t29 = t27 + t28;
   rotated[0] = coeffs[0];
   rotated[1] = t12;
-  rotated[2] = t20;
-  rotated[3] = t28;
+  rotated[2] = t21;
+  rotated[3] = t29;
 }
 
 // rotate_rgb_order2: rotated = coefficients of f(R^T w), R row-major mapping v to R v, for three channels.
@@ -73,20 +73,20 @@ void rotate_rgb_order2(in float R[9], in vec3 coeffs[4], out vec3 rotated[4]) {
   vec3 t9 = coeffs[3] * R[3];
   vec3 t11 = t3 + t6;
   vec3 t12 = t9 + t11;
-  vec3 t14 = coeffs[1] * R[7];
-  vec3 t16 = coeffs[2] * R[8];
-  vec3 t18 = coeffs[3] * R[6];
-  vec3 t19 = t14 + t16;
-  vec3 t20 = t18 + t19;
-  vec3 t22 = coeffs[1] * R[1];
-  vec3 t24 = coeffs[2] * R[2];
-  vec3 t26 = coeffs[3] * R[0];
-  vec3 t27 = t22 + t24;
-  vec3 t28 = t26 + t27;
+  vec3 t15 = coeffs[1] * R[7];
+  vec3 t17 = coeffs[2] * R[8];
+  vec3 t19 = coeffs[3] * R[6];
+  vec3 t20 = t15 + t17;
+  vec3 t21 = t19 + t20;
+  vec3 t23 = coeffs[1] * R[1];
+  vec3 t25 = coeffs[2] * R[2];
+  vec3 t27 = coeffs[3] * R[0];
+  vec3 t28 = t23 + t25;
+  vec3 t29 = t27 + t28;
   rotated[0] = coeffs[0];
   rotated[1] = t12;
-  rotated[2] = t20;
-  rotated[3] = t28;
+  rotated[2] = t21;
+  rotated[3] = t29;
 }
 
 #endif  // ZHF_ORDER2_GLSL

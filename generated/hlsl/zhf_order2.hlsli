@@ -27,20 +27,20 @@ void rotate_order2(float R[9], float coeffs[4], out float rotated[4]) {
   const float t9 = coeffs[3] * R[3];
   const float t11 = t3 + t6;
   const float t12 = t9 + t11;
-  const float t14 = coeffs[1] * R[7];
-  const float t16 = coeffs[2] * R[8];
-  const float t18 = coeffs[3] * R[6];
-  const float t19 = t14 + t16;
-  const float t20 = t18 + t19;
-  const float t22 = coeffs[1] * R[1];
-  const float t24 = coeffs[2] * R[2];
-  const float t26 = coeffs[3] * R[0];
-  const float t27 = t22 + t24;
-  const float t28 = t26 + t27;
+  const float t15 = coeffs[1] * R[7];
+  const float t17 = coeffs[2] * R[8];
+  const float t19 = coeffs[3] * R[6];
+  const float t20 = t15 + t17;
+  const float t21 = t19 + t20;
+  const float t23 = coeffs[1] * R[1];
+  const float t25 = coeffs[2] * R[2];
+  const float t27 = coeffs[3] * R[0];
+  const float t28 = t23 + t25;
+  const float t29 = t27 + t28;
   rotated[0] = coeffs[0];
   rotated[1] = t12;
-  rotated[2] = t20;
-  rotated[3] = t28;
+  rotated[2] = t21;
+  rotated[3] = t29;
 }
 
 // rotate_signal_tailored_order2: rotated = A s, s = each band of f sampled at the inverse-rotated lobes R^T w_d.
@@ -50,20 +50,20 @@ void rotate_signal_tailored_order2(float R[9], float coeffs[4], out float rotate
   const float t9 = coeffs[3] * R[3];
   const float t11 = t3 + t6;
   const float t12 = t9 + t11;
-  const float t14 = coeffs[1] * R[7];
-  const float t16 = coeffs[2] * R[8];
-  const float t18 = coeffs[3] * R[6];
-  const float t19 = t14 + t16;
-  const float t20 = t18 + t19;
-  const float t22 = coeffs[1] * R[1];
-  const float t24 = coeffs[2] * R[2];
-  const float t26 = coeffs[3] * R[0];
-  const float t27 = t22 + t24;
-  const float t28 = t26 + t27;
+  const float t15 = coeffs[1] * R[7];
+  const float t17 = coeffs[2] * R[8];
+  const float t19 = coeffs[3] * R[6];
+  const float t20 = t15 + t17;
+  const float t21 = t19 + t20;
+  const float t23 = coeffs[1] * R[1];
+  const float t25 = coeffs[2] * R[2];
+  const float t27 = coeffs[3] * R[0];
+  const float t28 = t23 + t25;
+  const float t29 = t27 + t28;
   rotated[0] = coeffs[0];
   rotated[1] = t12;
-  rotated[2] = t20;
-  rotated[3] = t28;
+  rotated[2] = t21;
+  rotated[3] = t29;
 }
 
 // rotate_rgb_order2: rotated = coefficients of f(R^T w), R row-major mapping v to R v, for three channels.
@@ -73,20 +73,20 @@ void rotate_rgb_order2(float R[9], float3 coeffs[4], out float3 rotated[4]) {
   const float3 t9 = coeffs[3] * R[3];
   const float3 t11 = t3 + t6;
   const float3 t12 = t9 + t11;
-  const float3 t14 = coeffs[1] * R[7];
-  const float3 t16 = coeffs[2] * R[8];
-  const float3 t18 = coeffs[3] * R[6];
-  const float3 t19 = t14 + t16;
-  const float3 t20 = t18 + t19;
-  const float3 t22 = coeffs[1] * R[1];
-  const float3 t24 = coeffs[2] * R[2];
-  const float3 t26 = coeffs[3] * R[0];
-  const float3 t27 = t22 + t24;
-  const float3 t28 = t26 + t27;
+  const float3 t15 = coeffs[1] * R[7];
+  const float3 t17 = coeffs[2] * R[8];
+  const float3 t19 = coeffs[3] * R[6];
+  const float3 t20 = t15 + t17;
+  const float3 t21 = t19 + t20;
+  const float3 t23 = coeffs[1] * R[1];
+  const float3 t25 = coeffs[2] * R[2];
+  const float3 t27 = coeffs[3] * R[0];
+  const float3 t28 = t23 + t25;
+  const float3 t29 = t27 + t28;
   rotated[0] = coeffs[0];
   rotated[1] = t12;
-  rotated[2] = t20;
-  rotated[3] = t28;
+  rotated[2] = t21;
+  rotated[3] = t29;
 }
 
 #endif  // ZHF_ORDER2_HLSLI
