@@ -24,9 +24,10 @@ struct EmitCommandOptions {
 
 codegen::ModuleOptions channel_options(int channels) {
   codegen::ModuleOptions m;
-  m.single_channel = channels != 3;
-  m.rgb = channels != 1;
-  m.batch = channels != 3;
+  if (channels == 0) return m;
+  m.standard_channels = {channels};
+  if (channels > 1) m.tailored_channels.clear();
+  m.batch = channels == 1;
   return m;
 }
 
@@ -86,7 +87,7 @@ void add_codegen_commands(CLI::App& app, Action& action, const std::string& comm
   emit->add_option("--lang", e->language, "cpp, hlsl or glsl")->required()->check(CLI::IsMember({"cpp", "hlsl", "glsl"}));
   emit->add_option("--precision", e->precision, "float or double (shaders; C++ kernels are templates)")
       ->check(CLI::IsMember({"float", "double"}));
-  emit->add_option("--channels", e->channels, "1 or 3 (default: both)")->check(CLI::IsMember({1, 3}));
+  emit->add_option("--channels", e->channels, "1, 3 or 4 (default: 1 and 3)")->check(CLI::IsMember({1, 3, 4}));
   emit->add_option("--out", e->out, "Output directory")->required();
   emit->callback([e, &action, command_line] { action = [e, command_line] { return run_emit(*e, command_line); }; });
 

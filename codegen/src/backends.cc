@@ -48,7 +48,7 @@ class CppBackend : public Backend {
     config.function_prefix = "template <class T>\ninline ";
     config.input_array_qualifier = "const ";
     config.batch = true;
-    config.planar_rgb = true;
+    config.planar_channels = true;
     EmittedFile file;
     file.file_name = "zhf_order" + std::to_string(module.order) + ".h";
     const std::string body = print_functions(module, config, Precision::kDouble, file.counts);
@@ -78,7 +78,7 @@ class ShaderBackend : public Backend {
     LanguageConfig config;
     config.name = language();
     config.scalar = f64 ? "double" : "float";
-    config.vector = glsl_ ? (f64 ? "dvec3" : "vec3") : (f64 ? "double3" : "float3");
+    config.vector_stem = glsl_ ? (f64 ? "dvec" : "vec") : (f64 ? "double" : "float");
     config.literal_suffix = f64 ? (glsl_ ? "lf" : "L") : "f";
     config.temp_qualifier = glsl_ ? "" : "const ";  // a GLSL const must be a compile-time constant
     config.input_array_qualifier = glsl_ ? "in " : "";

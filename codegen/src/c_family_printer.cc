@@ -44,7 +44,7 @@ class Printer {
     for (int i : f_.graph.live(outputs)) {
       const Node& n = f_.graph.node(i);
       if (n.op == Op::kInput || n.op == Op::kConst) continue;
-      const int lanes = scalarized(n) ? 3 : 1;
+      const int lanes = scalarized(n) ? n.lanes : 1;
       for (int lane = 0; lane < lanes; ++lane) {
         out << indent << c_.temp_qualifier << type_of(n) << " " << temp(i, scalarized(n) ? lane : -1) << " = "
             << expression(n, scalarized(n) ? lane : -1) << ";\n";
@@ -55,9 +55,9 @@ class Printer {
     for (const Output& o : f_.outputs) {
       const Node& n = f_.graph.node(o.node);
       const Param& param = f_.params[o.param];
-      if (param.rgb && c_.planar_rgb) {
-        for (int lane = 0; lane < 3; ++lane)
-          out << indent << access(o.param, o.element, lane) << " = " << operand(o.node, n.vector ? lane : -1) << ";\n";
+      if (param.channels > 1 && c_.planar_channels) {
+        for (int lane = 0; lane < param.channels; ++lane)
+          out << indent << access(o.param, o.element, lane) << " = " << operand(o.node, n.lanes > 1 ? lane : -1) << ";\n";
       } else {
         out << indent << access(o.param, o.element, -1) << " = " << operand(o.node, -1) << ";\n";
       }
@@ -68,10 +68,11 @@ class Printer {
   }
 
  private:
-  bool scalarized(const Node& n) const { return n.vector && c_.vector.empty(); }
-  std::string type_of(const Node& n) const { return n.vector && !c_.vector.empty() ? c_.vector : c_.scalar; }
+  bool scalarized(const Node& n) const { return n.lanes > 1 && c_.vector_stem.empty(); }
+  std::string vector_type(int lanes) const { return c_.vector_stem + std::to_string(lanes); }
+  std::string type_of(const Node& n) const { return n.lanes > 1 && !c_.vector_stem.empty() ? vector_type(n.lanes) : c_.scalar; }
   static std::string temp(int i, int lane) {
-    return "t" + std::to_string(i) + (lane < 0 ? "" : std::string("_") + "rgb"[lane]);
+    return "t" + std::to_string(i) + (lane < 0 ? "" : std::string("_") + "rgba"[lane]);
   }
 
   std::string signature() const {
@@ -85,10 +86,10 @@ class Printer {
         continue;
       }
       s += p.output ? c_.output_array_qualifier : c_.input_array_qualifier;
-      if (p.rgb && !c_.vector.empty()) {
-        s += c_.vector + " " + p.name + "[" + std::to_string(p.size) + "]";
-      } else if (p.rgb) {
-        s += c_.scalar + " " + p.name + "[3][" + std::to_string(p.size) + "]";
+      if (p.channels > 1 && !c_.vector_stem.empty()) {
+        s += vector_type(p.channels) + " " + p.name + "[" + std::to_string(p.size) + "]";
+      } else if (p.channels > 1) {
+        s += c_.scalar + " " + p.name + "[" + std::to_string(p.channels) + "][" + std::to_string(p.size) + "]";
       } else {
         s += c_.scalar + " " + p.name + "[" + std::to_string(p.size) + "]";
       }
@@ -99,7 +100,7 @@ class Printer {
   std::string access(int param, int element, int lane) const {
     const Param& p = f_.params[param];
     if (f_.batch) return p.name + "[" + std::to_string(element) + " * count + v]";
-    if (p.rgb && c_.planar_rgb) return p.name + "[" + std::to_string(lane) + "][" + std::to_string(element) + "]";
+    if (p.channels > 1 && c_.planar_channels) return p.name + "[" + std::to_string(lane) + "][" + std::to_string(element) + "]";
     return p.name + "[" + std::to_string(element) + "]";
   }
 
@@ -108,7 +109,7 @@ class Printer {
   std::string operand(int i, int lane) const {
     const Node& n = f_.graph.node(i);
     if (n.op == Op::kConst) return literal(n.value);
-    if (n.op == Op::kInput) return access(n.param, n.element, n.vector ? lane : -1);
+    if (n.op == Op::kInput) return access(n.param, n.element, n.lanes > 1 ? lane : -1);
     return temp(i, scalarized(n) ? lane : -1);
   }
 

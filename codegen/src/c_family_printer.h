@@ -12,7 +12,8 @@ struct LanguageConfig {
   std::string name;
   std::string extension;
   std::string scalar;          // "T", "float", "double"
-  std::string vector;          // "float3", "vec3"; empty: RGB is printed as three scalars
+  std::string vector_stem;     // "float", "vec": + lane count names the vector type; empty:
+                               // channels are printed as separate scalars
   std::string literal_suffix;  // "f", "lf", "L"; for C++ literals are wrapped as T(...)
   bool wrap_literals_in_type = false;
   std::string temp_qualifier;  // "const " where a local may be const at run time
@@ -20,7 +21,7 @@ struct LanguageConfig {
   std::string input_array_qualifier;  // "const " in C++, "in " in GLSL, "" in HLSL
   std::string output_array_qualifier; // "" in C++, "out " in shaders
   bool batch = false;          // structure-of-arrays batch entry points
-  bool planar_rgb = false;     // C++: RGB parameters are [3][n]
+  bool planar_channels = false;  // C++: multi-channel parameters are [channels][n]
 };
 
 std::string format_literal(double value, const LanguageConfig& config, Precision precision);

@@ -19,16 +19,16 @@ int Graph::binary(Op op, int a, int b) {
   n.op = op;
   n.a = a;
   n.b = b;
-  n.vector = nodes_[a].vector || nodes_[b].vector;
+  n.lanes = std::max(nodes_[a].lanes, nodes_[b].lanes);
   return intern(n);
 }
 
-int Graph::input(int param, int element, bool vector) {
+int Graph::input(int param, int element, int lanes) {
   Node n;
   n.op = Op::kInput;
   n.param = param;
   n.element = element;
-  n.vector = vector;
+  n.lanes = lanes;
   return intern(n);
 }
 
@@ -48,7 +48,7 @@ int Graph::neg(int a) {
   Node n;
   n.op = Op::kNeg;
   n.a = a;
-  n.vector = x.vector;
+  n.lanes = x.lanes;
   return intern(n);
 }
 

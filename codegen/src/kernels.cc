@@ -1,5 +1,6 @@
 #include "zhf/codegen/kernels.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -127,24 +128,20 @@ Vec3 rotate(Graph& g, const double u[3], bool transpose) {
 
 class Builder {
  public:
-  Builder(const optimizer::LobeTable& table, const std::vector<Lobe>& lobes)
+  Builder(const optimizer::LobeTable& table, const std::vector<Lobe>& lobes, const std::vector<int>& zero_bands)
       : table_(table), lobes_(lobes), order_(table.order), count_(sh::coefficient_count(table.order)),
-        legendre_(std::max(table.order, 1)) {}
+        legendre_(std::max(table.order, 1)), live_(std::max(table.order, 1), true) {
+    for (int l : zero_bands)
+      if (l >= 0 && l < order_) live_[l] = false;
+  }
 
   Function sh_eval() const {
     Function f = make("sh_eval_order" + std::to_string(order_),
                       "y[index(l,m)] = y_l^m(dir) for every band, dir a unit vector",
-                      {{"dir", 3, false, false}, {"y", count_, true, false}});
+                      {{"dir", 3, false, 1}, {"y", count_, true, 1}});
     Graph& g = f.graph;
-    const Vec3 v{{g.input(0, 0), g.input(0, 1), g.input(0, 2)}};
-    put(f, 1, 0, g.constant(kInvSqrt4Pi));
-    if (order_ > 1)
-      for (int m = -1; m <= 1; ++m) put(f, 1, sh::index(1, m), g.scale(kSqrt3Over4Pi, v.c[kAxisOfM[m + 1]]));
-    std::vector<bool> bands(order_, false);
-    for (int l = 2; l < order_; ++l) bands[l] = true;
-    const std::vector<int> h = homogeneous_sh(g, v, 1.0, order_, bands, legendre_);
-    for (int l = 2; l < order_; ++l)
-      for (int m = -l; m <= l; ++m) put(f, 1, sh::index(l, m), g.scale(legendre_.output_scale(l, m), h[sh::index(l, m)]));
+    const std::vector<int> y = unit_sh(g, Vec3{{g.input(0, 0), g.input(0, 1), g.input(0, 2)}}, std::vector<bool>(order_, true));
+    for (int i = 0; i < count_; ++i) put(f, 1, i, y[i]);
     return f;
   }
 
@@ -155,7 +152,7 @@ class Builder {
     const std::string doc = transpose
                                 ? "lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied"
                                 : "coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied";
-    Function f = make(name, doc, {{transpose ? "f" : "s", count_, false, false}, {transpose ? "z" : "f", count_, true, false}});
+    Function f = make(name, doc, {{transpose ? "f" : "s", count_, false, 1}, {transpose ? "z" : "f", count_, true, 1}});
     Graph& g = f.graph;
     for (int i = 0; i < std::min(count_, 4); ++i) put(f, 1, i, g.input(0, i));
     for (const optimizer::TableBand& band : table_.bands) {
@@ -170,26 +167,29 @@ class Builder {
     return f;
   }
 
-  // The standard rotation; rgb shares the per-rotation work across three channels.
-  Function rotation(bool rgb, bool batch) const {
-    std::string name = std::string(rgb ? "rotate_rgb" : batch ? "rotate_batch" : "rotate") + "_order" + std::to_string(order_);
-    std::string doc = "rotated = coefficients of f(R^T w), R row-major mapping v to R v";
-    if (rgb) doc += ", for three channels";
+  // The standard rotation; several channels share the per-rotation work.
+  Function rotation(int channels, bool batch) const {
+    const std::string name = std::string(batch ? "rotate_batch" : "rotate") + channel_suffix(channels) + "_order" +
+                             std::to_string(order_);
+    std::string doc = "rotated = coefficients of f(R^T w), R row-major mapping v to R v" + channel_doc(channels);
     if (batch) doc += ", for count vectors each with its own R (structure of arrays)";
-    Function f = make(name, doc, {{"R", 9, false, false}, {"coeffs", count_, false, rgb}, {"rotated", count_, true, rgb}});
-    f.rgb = rgb;
+    Function f = make(name, doc, {{"R", 9, false, 1}, {"coeffs", count_, false, channels}, {"rotated", count_, true, channels}});
     f.batch = batch;
     Graph& g = f.graph;
     const int in = 1, out = 2;
-    copy_band0_rotate_band1(f, in, out, rgb);
+    copy_band0_rotate_band1(f, in, out, channels);
     const std::vector<std::vector<int>> h = lobe_polynomials(g, /*transpose=*/false);
     for (const optimizer::TableBand& band : table_.bands) {
       const int l = band.l, base = l * l;
+      if (!live_[l]) {
+        put_zeros(f, out, l);
+        continue;
+      }
       std::vector<int> zhat(2 * l + 1);
       for (int d = 0; d < 2 * l + 1; ++d) {
-        const double scale = std::pow(norm2(lobes_[band.lobes[d]].scaled), -0.5 * l);
         std::vector<std::pair<double, int>> terms;
-        for (int k = 0; k < 2 * l + 1; ++k) terms.push_back({band.inverse(k, d) * scale, g.input(in, base + k, rgb)});
+        for (int k = 0; k < 2 * l + 1; ++k)
+          terms.push_back({band.inverse(k, d) * lobe_scale(band, d), g.input(in, base + k, channels)});
         zhat[d] = g.linear(terms);
       }
       for (int m = -l; m <= l; ++m) {
@@ -203,17 +203,22 @@ class Builder {
 
   // rotated = A s with s the band's function sampled at R^T w_d: same result, the work
   // arranged as a renderer sampling a texture would.
-  Function signal_tailored() const {
-    Function f = make("rotate_signal_tailored_order" + std::to_string(order_),
-                      "rotated = A s, s = each band of f sampled at the inverse-rotated lobes R^T w_d",
-                      {{"R", 9, false, false}, {"coeffs", count_, false, false}, {"rotated", count_, true, false}});
+  Function signal_tailored(int channels) const {
+    Function f = make("rotate_signal_tailored" + channel_suffix(channels) + "_order" + std::to_string(order_),
+                      "rotated = A s, s = each band of f sampled at the inverse-rotated lobes R^T w_d" + channel_doc(channels),
+                      {{"R", 9, false, 1}, {"coeffs", count_, false, channels}, {"rotated", count_, true, channels}});
     Graph& g = f.graph;
-    copy_band0_rotate_band1(f, 1, 2, false);
+    copy_band0_rotate_band1(f, 1, 2, channels);
     const std::vector<std::vector<int>> h = lobe_polynomials(g, /*transpose=*/true);
     for (const optimizer::TableBand& band : table_.bands) {
       const int l = band.l, base = l * l;
+      if (!live_[l]) {
+        put_zeros(f, 2, l);
+        continue;
+      }
       std::vector<int> weighted(2 * l + 1);
-      for (int m = -l; m <= l; ++m) weighted[m + l] = g.scale(legendre_.output_scale(l, m), g.input(1, base + m + l));
+      for (int m = -l; m <= l; ++m)
+        weighted[m + l] = g.scale(legendre_.output_scale(l, m), g.input(1, base + m + l, channels));
       std::vector<int> samples(2 * l + 1);
       for (int d = 0; d < 2 * l + 1; ++d) {
         std::vector<std::pair<double, int>> terms;
@@ -222,15 +227,90 @@ class Builder {
       }
       for (int m = -l; m <= l; ++m) {
         std::vector<std::pair<double, int>> terms;
-        for (int d = 0; d < 2 * l + 1; ++d)
-          terms.push_back({band.inverse(m + l, d) * std::pow(norm2(lobes_[band.lobes[d]].scaled), -0.5 * l), samples[d]});
+        for (int d = 0; d < 2 * l + 1; ++d) terms.push_back({band.inverse(m + l, d) * lobe_scale(band, d), samples[d]});
         put(f, 2, base + m + l, g.linear(terms));
       }
     }
     return f;
   }
 
+  // The dense band matrices of R through the lobes: D_l[m][m'] = sum_d y_l^m(R w_d) A_l[m'][d]
+  // (the standard rotation with f the unit vectors), packed as dense_matrix_offset says.
+  Function rotation_matrices() const {
+    const int size = dense_matrix_offset(order_);
+    Function f = make("rotation_matrices_order" + std::to_string(order_),
+                      "M = the dense band matrices of R (band l at l(2l-1)(2l+1)/3, row-major): build once, apply many",
+                      {{"R", 9, false, 1}, {"M", size, true, 1}});
+    Graph& g = f.graph;
+    for (int l = 0; l < std::min(order_, 2); ++l) {
+      const int side = 2 * l + 1;
+      for (int m = 0; m < side; ++m)
+        for (int n = 0; n < side; ++n) {
+          int value = g.constant(0);
+          if (live_[l]) value = l == 0 ? g.constant(1) : g.input(0, 3 * kAxisOfM[m] + kAxisOfM[n]);
+          put(f, 1, dense_matrix_offset(l) + side * m + n, value);
+        }
+    }
+    const std::vector<std::vector<int>> h = lobe_polynomials(g, /*transpose=*/false);
+    for (const optimizer::TableBand& band : table_.bands) {
+      const int l = band.l, side = 2 * l + 1;
+      for (int m = -l; m <= l; ++m)
+        for (int n = 0; n < side; ++n) {
+          std::vector<std::pair<double, int>> terms;
+          if (live_[l])
+            for (int d = 0; d < side; ++d)
+              terms.push_back({band.inverse(n, d) * lobe_scale(band, d), h[band.lobes[d]][sh::index(l, m)]});
+          put(f, 1, dense_matrix_offset(l) + side * (m + l) + n, g.scale(legendre_.output_scale(l, m), g.linear(terms)));
+        }
+    }
+    return f;
+  }
+
+  Function apply_rotation_matrices(int channels) const {
+    Function f = make("apply_rotation_matrices" + channel_suffix(channels) + "_order" + std::to_string(order_),
+                      "rotated = M coeffs, band by band, M from rotation_matrices" + channel_doc(channels),
+                      {{"M", dense_matrix_offset(order_), false, 1},
+                       {"coeffs", count_, false, channels},
+                       {"rotated", count_, true, channels}});
+    Graph& g = f.graph;
+    for (int l = 0; l < order_; ++l) {
+      const int side = 2 * l + 1;
+      for (int m = 0; m < side; ++m) {
+        std::vector<std::pair<double, int>> terms;
+        if (live_[l])
+          for (int n = 0; n < side; ++n)
+            terms.push_back({1.0, g.mul(g.input(0, dense_matrix_offset(l) + side * m + n), g.input(1, l * l + n, channels))});
+        put(f, 2, l * l + m, g.linear(terms));
+      }
+    }
+    return f;
+  }
+
+  // A zonal function about a unit axis a, with zonal[l] its band-l coefficient when a = +z,
+  // has f_{l,m} = sqrt(4 pi / (2l+1)) zonal[l] y_l^m(a): rotating it is evaluating the SH at
+  // R a, N^2 work and no lobes.
+  Function zonal_rotation(int channels) const {
+    Function f = make("rotate_zonal" + channel_suffix(channels) + "_order" + std::to_string(order_),
+                      "rotated = coefficients of the zonal function (axis, zonal[l] = its y_l^0 weight about +z) turned by R" +
+                          channel_doc(channels),
+                      {{"R", 9, false, 1}, {"axis", 3, false, 1}, {"zonal", order_, false, channels},
+                       {"rotated", count_, true, channels}});
+    Graph& g = f.graph;
+    Vec3 v;
+    for (int i = 0; i < 3; ++i)
+      v.c[i] = g.linear({{1.0, g.mul(g.input(0, 3 * i), g.input(1, 0))},
+                         {1.0, g.mul(g.input(0, 3 * i + 1), g.input(1, 1))},
+                         {1.0, g.mul(g.input(0, 3 * i + 2), g.input(1, 2))}});
+    const std::vector<int> y = unit_sh(g, v, live_, /*fold=*/[](int l) { return std::sqrt(4 * kPi / (2 * l + 1)); });
+    for (int l = 0; l < order_; ++l)
+      for (int m = -l; m <= l; ++m)
+        put(f, 3, sh::index(l, m), live_[l] ? g.mul(y[sh::index(l, m)], g.input(2, l, channels)) : g.constant(0));
+    return f;
+  }
+
  private:
+  static constexpr double kPi = 3.14159265358979323846;
+
   Function make(const std::string& name, const std::string& doc, std::vector<Param> params) const {
     Function f;
     f.name = name;
@@ -238,25 +318,60 @@ class Builder {
     f.params = std::move(params);
     return f;
   }
+  static std::string channel_doc(int channels) {
+    return channels == 1 ? "" : channels == 3 ? ", for three channels" : ", for four channels";
+  }
   static void put(Function& f, int param, int element, int node) { f.outputs.push_back({param, element, node}); }
+  void put_zeros(Function& f, int param, int l) const {
+    for (int m = -l; m <= l; ++m) put(f, param, sh::index(l, m), f.graph.constant(0));
+  }
+  // |u_d|^-l: band l's polynomials are homogeneous of degree l in the rescaled lobe u_d.
+  double lobe_scale(const optimizer::TableBand& band, int d) const {
+    return std::pow(norm2(lobes_[band.lobes[d]].scaled), -0.5 * band.l);
+  }
+
+  // y_l^m at the unit vector v for the bands marked, each times fold(l) (folded into the
+  // constants); -1 elsewhere.
+  template <class Fold = double (*)(int)>
+  std::vector<int> unit_sh(Graph& g, const Vec3& v, const std::vector<bool>& bands,
+                           Fold fold = [](int) { return 1.0; }) const {
+    std::vector<int> y(count_, -1);
+    if (bands[0]) y[0] = g.constant(fold(0) * kInvSqrt4Pi);
+    if (order_ > 1 && bands[1])
+      for (int m = -1; m <= 1; ++m) y[sh::index(1, m)] = g.scale(fold(1) * kSqrt3Over4Pi, v.c[kAxisOfM[m + 1]]);
+    std::vector<bool> high = bands;
+    for (int l = 0; l < std::min(order_, 2); ++l) high[l] = false;
+    const std::vector<int> h = homogeneous_sh(g, v, 1.0, order_, high, legendre_);
+    for (int l = 2; l < order_; ++l)
+      if (high[l])
+        for (int m = -l; m <= l; ++m)
+          y[sh::index(l, m)] = g.scale(fold(l) * legendre_.output_scale(l, m), h[sh::index(l, m)]);
+    return y;
+  }
+
   // Band 0 is invariant; band 1 is c (y, z, x), so its matrix is R on those axes.
-  void copy_band0_rotate_band1(Function& f, int in, int out, bool rgb) const {
+  void copy_band0_rotate_band1(Function& f, int in, int out, int channels) const {
     Graph& g = f.graph;
-    put(f, out, 0, g.input(in, 0, rgb));
+    put(f, out, 0, live_[0] ? g.input(in, 0, channels) : g.constant(0));
     if (order_ < 2) return;
+    if (!live_[1]) {
+      put_zeros(f, out, 1);
+      return;
+    }
     for (int m = -1; m <= 1; ++m) {
       std::vector<std::pair<double, int>> terms;
       for (int n = -1; n <= 1; ++n)
-        terms.push_back({1.0, g.mul(g.input(0, 3 * kAxisOfM[m + 1] + kAxisOfM[n + 1]), g.input(in, sh::index(1, n), rgb))});
+        terms.push_back({1.0, g.mul(g.input(0, 3 * kAxisOfM[m + 1] + kAxisOfM[n + 1]), g.input(in, sh::index(1, n), channels))});
       put(f, out, sh::index(1, m), g.linear(terms));
     }
   }
 
-  // Per lobe, the homogeneous polynomials of every band that uses it, at R u_d (or R^T u_d).
+  // Per lobe, the homogeneous polynomials of every live band that uses it, at R u_d (or R^T u_d).
   std::vector<std::vector<int>> lobe_polynomials(Graph& g, bool transpose) const {
     std::vector<std::vector<bool>> bands_of_lobe(lobes_.size(), std::vector<bool>(order_, false));
     for (const optimizer::TableBand& band : table_.bands)
-      for (int d : band.lobes) bands_of_lobe[d][band.l] = true;
+      if (live_[band.l])
+        for (int d : band.lobes) bands_of_lobe[d][band.l] = true;
     std::vector<std::vector<int>> h;
     for (size_t d = 0; d < lobes_.size(); ++d) {
       const Vec3 v = rotate(g, lobes_[d].scaled, transpose);
@@ -270,6 +385,7 @@ class Builder {
   int order_;
   int count_;
   Legendre legendre_;
+  std::vector<bool> live_;  // bands not known to be zero
 };
 
 }  // namespace
@@ -287,6 +403,10 @@ optimizer::LobeTable order2_table() {
   return table;
 }
 
+std::string channel_suffix(int channels) { return channels == 3 ? "_rgb" : channels == 4 ? "_rgba" : ""; }
+
+int dense_matrix_offset(int band) { return band * (2 * band - 1) * (2 * band + 1) / 3; }
+
 Module build_module(const optimizer::LobeTable& table, const ModuleOptions& options) {
   Module module;
   module.order = table.order;
@@ -298,18 +418,25 @@ Module build_module(const optimizer::LobeTable& table, const ModuleOptions& opti
     lobe.source = t.source;
     module.lobes.push_back(lobe);
   }
-  const Builder builder(module.table, module.lobes);
-  module.functions.push_back(builder.sh_eval());
-  if (table.order > 2) {
+  const Builder builder(module.table, module.lobes, options.zero_bands);
+  auto wants = [](const std::vector<int>& list, int channels) {
+    return std::find(list.begin(), list.end(), channels) != list.end();
+  };
+  if (options.sh_eval) module.functions.push_back(builder.sh_eval());
+  if (options.lobe_multiplies && table.order > 2) {
     module.functions.push_back(builder.sparse_multiply(true));
     module.functions.push_back(builder.sparse_multiply(false));
   }
-  if (options.single_channel) {
-    module.functions.push_back(builder.rotation(false, false));
-    module.functions.push_back(builder.signal_tailored());
+  for (int channels : {1, 3, 4}) {
+    if (wants(options.standard_channels, channels)) module.functions.push_back(builder.rotation(channels, false));
+    if (wants(options.tailored_channels, channels)) module.functions.push_back(builder.signal_tailored(channels));
   }
-  if (options.rgb) module.functions.push_back(builder.rotation(true, false));
-  if (options.batch) module.functions.push_back(builder.rotation(false, true));
+  if (options.batch) module.functions.push_back(builder.rotation(1, true));
+  if (!options.dense_channels.empty()) module.functions.push_back(builder.rotation_matrices());
+  for (int channels : {1, 3, 4})
+    if (wants(options.dense_channels, channels)) module.functions.push_back(builder.apply_rotation_matrices(channels));
+  for (int channels : {1, 3, 4})
+    if (wants(options.zonal_channels, channels)) module.functions.push_back(builder.zonal_rotation(channels));
   return module;
 }
 

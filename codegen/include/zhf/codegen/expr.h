@@ -1,4 +1,4 @@
-// The one expression model every backend prints: a DAG of scalar (or RGB-vector) additions,
+// The one expression model every backend prints: a DAG of scalar (or channel-vector) additions,
 // subtractions, negations and multiplications over inputs and constants. Construction folds
 // constants and signs and shares identical subexpressions, so the three languages get the
 // same algorithm and the same operation counts by construction.
@@ -20,7 +20,7 @@ struct Node {
   double value = 0;     // kConst
   int param = -1;       // kInput: parameter and element
   int element = -1;
-  bool vector = false;  // an RGB value (float3/vec3) in the shader backends
+  int lanes = 1;        // channels: 1 scalar, 3 (RGB) or 4 (RGBA) per value
 };
 
 struct OpCount {
@@ -30,7 +30,7 @@ struct OpCount {
 
 class Graph {
  public:
-  int input(int param, int element, bool vector = false);
+  int input(int param, int element, int lanes = 1);
   int constant(double value);
   int add(int a, int b);
   int sub(int a, int b);

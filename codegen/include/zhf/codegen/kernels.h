@@ -23,7 +23,7 @@ struct Param {
   std::string name;
   int size = 0;            // elements per channel
   bool output = false;
-  bool rgb = false;        // three channels (planar [3][size] in C++, float3[size] in shaders)
+  int channels = 1;        // 3 or 4: planar [channels][size] in C++, float3/float4[size] in shaders
 };
 
 struct Output {
@@ -38,7 +38,6 @@ struct Function {
   std::vector<Param> params;
   Graph graph;
   std::vector<Output> outputs;
-  bool rgb = false;
   bool batch = false;      // C++ only: loop over count vectors in structure-of-arrays layout
 
   std::vector<int> output_nodes() const;
@@ -57,11 +56,25 @@ struct Module {
   std::vector<Function> functions;
 };
 
+// Which functions a module holds. The defaults are generated/'s; a scene spec narrows them.
+// Channel counts are 1, 3 (suffix _rgb) or 4 (_rgba); multi-channel functions share the
+// per-rotation work across channels.
 struct ModuleOptions {
-  bool single_channel = true;
-  bool rgb = true;
-  bool batch = true;       // emitted by backends that support it
+  bool sh_eval = true;
+  bool lobe_multiplies = true;                   // AhatTransposeMultiply / AhatMultiply (orders >= 3)
+  std::vector<int> standard_channels = {1, 3};   // rotate[_rgb|_rgba]
+  std::vector<int> tailored_channels = {1};      // rotate_signal_tailored[_rgb|_rgba]
+  bool batch = true;                             // rotate_batch, emitted by backends that support it
+  std::vector<int> dense_channels;               // rotation_matrices + apply_rotation_matrices[_rgb|_rgba]
+  std::vector<int> zonal_channels;               // rotate_zonal[_rgb|_rgba]
+  std::vector<int> zero_bands;                   // known zero: their outputs are 0 and cost nothing
 };
+
+// "", "_rgb" or "_rgba".
+std::string channel_suffix(int channels);
+// Packed dense band matrices for bands 0..order-1: band l's (2l+1)^2 block, row-major, starts at
+// l(2l-1)(2l+1)/3.
+int dense_matrix_offset(int band);
 
 // Order 2 needs no table: pass a table with order 2 and no lobes.
 Module build_module(const optimizer::LobeTable& table, const ModuleOptions& options);
