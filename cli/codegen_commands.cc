@@ -5,6 +5,7 @@
 #include "commands.h"
 #include "interrupt.h"
 #include "zhf/codegen/generate.h"
+#include "zhf/codegen/scene.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 
@@ -54,26 +55,48 @@ int run_emit(const EmitCommandOptions& o, const std::string& command) {
   return kExitOk;
 }
 
+// generated/lobes here, else the checked-in tables of the source tree zhf was built from.
+std::string default_tables() {
+  const std::string here = "generated/lobes";
+  return fs::is_directory(here) ? here : std::string(ZHF_SOURCE_DIR) + "/generated/lobes";
+}
+
 struct GenerateCommandOptions {
-  std::string tables = "generated/lobes";
+  std::string tables = default_tables();
   std::string out = "generated";
+  std::string scene;
 };
 
-int run_generate(const GenerateCommandOptions& o) {
+int run_generate(const GenerateCommandOptions& o, bool out_given) {
   const InterruptGuard interrupts;
   codegen::GenerateOptions options;
   options.tables_dir = o.tables;
   options.out_dir = o.out;
   options.stop = &interrupt_requested();
+  if (!o.scene.empty()) {
+    if (!out_given) throw UsageError("--out: is required with --scene (generated/ holds the full set)");
+    const codegen::Scene scene = codegen::read_scene(o.scene);
+    options.orders = scene.orders();
+    options.languages = scene.targets;
+    options.precision = scene.precision;
+    options.module_per_order = scene.module_options();
+    options.scene = scene.to_json();
+    options.command = "zhf generate --scene " + fs::path(o.scene).filename().string();
+  }
   const codegen::GenerateResult result = codegen::generate(options);
   if (result.interrupted) {
     std::fprintf(stderr, "zhf: interrupted; %s left as it was\n", o.out.c_str());
     return kExitInterrupted;
   }
-  std::printf("order  lobes  zeros/entries  worst cond  rotate mults  rotate adds  files\n");
-  for (const codegen::OrderSummary& s : result.orders)
-    std::printf("%5d  %5d  %5d/%-7d  %10.2f  %12d  %11d  %5d\n", s.order, s.lobes, s.zeros, s.entries,
-                s.worst_condition, s.rotate_ops.multiplies, s.rotate_ops.adds, s.files);
+  if (o.scene.empty()) {
+    std::printf("order  lobes  zeros/entries  worst cond  rotate mults  rotate adds  files\n");
+    for (const codegen::OrderSummary& s : result.orders)
+      std::printf("%5d  %5d  %5d/%-7d  %10.2f  %12d  %11d  %5d\n", s.order, s.lobes, s.zeros, s.entries,
+                  s.worst_condition, s.rotate_ops.multiplies, s.rotate_ops.adds, s.files);
+  } else {
+    for (const std::string& file : result.files) std::printf("  %s\n", file.c_str());
+    std::printf("functions and operation counts: %s/manifest.json\n", o.out.c_str());
+  }
   std::printf("wrote %zu files under %s\n", result.files.size(), o.out.c_str());
   return kExitOk;
 }
@@ -93,9 +116,13 @@ void add_codegen_commands(CLI::App& app, Action& action, const std::string& comm
 
   auto g = std::make_shared<GenerateCommandOptions>();
   CLI::App* generate = app.add_subcommand("generate", "Re-emit generated/ (orders 2..8, all languages) from the lobe tables");
-  generate->add_option("--tables", g->tables, "Directory of order_N.json tables (default generated/lobes)");
-  generate->add_option("--out", g->out, "Output directory (default generated)");
-  generate->callback([g, &action] { action = [g] { return run_generate(*g); }; });
+  generate->add_option("--tables", g->tables, "Directory of order_N.json tables (default generated/lobes, else the source tree's)");
+  CLI::Option* out = generate->add_option("--out", g->out, "Output directory (default generated)");
+  generate->add_option("--scene", g->scene, "Scene spec (zhf-scene-1 JSON): emit only what it lists (needs --out)");
+  generate->callback([g, out, &action] {
+    const bool out_given = out->count() > 0;
+    action = [g, out_given] { return run_generate(*g, out_given); };
+  });
 }
 
 }  // namespace zhf::cli

@@ -70,6 +70,7 @@ GenerateResult generate(const GenerateOptions& options) {
   manifest["format"] = "zhf-manifest-1";
   manifest["generator"] = std::string("zhf ") + ZHF_VERSION;
   manifest["command"] = options.command;
+  if (!options.scene.is_null()) manifest["scene"] = options.scene;
   nlohmann::ordered_json files = nlohmann::ordered_json::array();
   auto stage = [&](const std::string& relative, const std::string& text) {
     fs::create_directories((staging / relative).parent_path());
@@ -97,7 +98,9 @@ GenerateResult generate(const GenerateOptions& options) {
     summary.entries = table.entries;
     summary.worst_condition = table.worst_condition();
     summary.files = 1;
-    const Module module = build_module(table, options.module);
+    const auto custom = options.module_per_order.find(order);
+    const ModuleOptions& module_options = custom != options.module_per_order.end() ? custom->second : options.module;
+    const Module module = build_module(table, module_options);
     EmitOptions emit;
     emit.precision = options.precision;
     emit.command = options.command;
@@ -113,12 +116,14 @@ GenerateResult generate(const GenerateOptions& options) {
         functions.push_back({{"name", c.name}, {"multiplies", c.ops.multiplies}, {"adds", c.ops.adds}});
         if (language == "cpp" && c.name == "rotate_order" + std::to_string(order)) summary.rotate_ops = c.ops;
       }
-      files.push_back({{"path", relative},
-                       {"order", order},
-                       {"language", language},
-                       {"precision", language == "cpp" ? "template" : precision_name(options.precision)},
-                       {"functions", functions},
-                       {"fnv1a64", content_hash(file.text)}});
+      nlohmann::ordered_json entry = {{"path", relative},
+                                      {"order", order},
+                                      {"language", language},
+                                      {"precision", language == "cpp" ? "template" : precision_name(options.precision)},
+                                      {"functions", functions}};
+      if (!module_options.zero_bands.empty()) entry["zero_bands"] = module_options.zero_bands;
+      entry["fnv1a64"] = content_hash(file.text);
+      files.push_back(entry);
     }
     result.orders.push_back(summary);
   }

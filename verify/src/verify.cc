@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
+#include <set>
 #include <random>
 #include <sstream>
 
@@ -17,6 +19,7 @@
 #include "zhf/io/files.h"
 #include "zhf/optimizer/lobe_table.h"
 #include "zhf/sh/eval.h"
+#include "zhf/sh/index.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/verify/vulkan_runner.h"
 
@@ -24,27 +27,121 @@ namespace zhf::verify {
 namespace fs = std::filesystem;
 namespace {
 
-// What each emitted function is asked to do, in the order the harnesses run them.
-enum Mode { kRotate, kTailored, kRgb, kEval, kTranspose, kMultiply, kBatch, kModeCount };
-const char* kModeName[kModeCount] = {"rotate", "rotate_signal_tailored", "rotate_rgb", "sh_eval",
-                                     "AhatTransposeMultiply", "AhatMultiply", "rotate_batch"};
-constexpr int kShaderModes = 6;  // no batch entry point in the shader languages
+// What each emitted function is asked to do. A mode is one function (dense: the build and
+// apply pair) with a channel count; the manifest says which a file holds.
+enum class Kind { kRotate, kTailored, kBatch, kEval, kTranspose, kMultiply, kDense, kZonal };
 
-std::string function_name(Mode mode, int order) { return std::string(kModeName[mode]) + "_order" + std::to_string(order); }
-bool has_mode(Mode mode, int order) { return order > 2 || (mode != kTranspose && mode != kMultiply); }
+struct Mode {
+  Kind kind = Kind::kRotate;
+  int channels = 1;
+  std::string function;  // the function checked (for dense: the apply function)
+};
+
+std::string suffix_of(int channels) { return channels == 3 ? "_rgb" : channels == 4 ? "_rgba" : ""; }
+
+// The modes of one file from its function names; unknown names are errors, not silence.
+std::vector<Mode> modes_of(const std::vector<std::string>& functions, int order, std::vector<std::string>& errors,
+                           const std::string& tag) {
+  const std::string tail = "_order" + std::to_string(order);
+  const bool has_matrices =
+      std::find(functions.begin(), functions.end(), "rotation_matrices" + tail) != functions.end();
+  std::vector<Mode> modes;
+  for (const std::string& name : functions) {
+    if (name.size() <= tail.size() || name.compare(name.size() - tail.size(), tail.size(), tail) != 0) {
+      errors.push_back(tag + ": function " + name + " does not end in " + tail);
+      continue;
+    }
+    const std::string base = name.substr(0, name.size() - tail.size());
+    if (base == "rotation_matrices") continue;
+    Mode m;
+    m.function = name;
+    bool known = false;
+    for (int channels : {1, 3, 4}) {
+      const std::string sfx = suffix_of(channels);
+      const std::pair<std::string, Kind> kinds[] = {{"rotate" + sfx, Kind::kRotate},
+                                                    {"rotate_signal_tailored" + sfx, Kind::kTailored},
+                                                    {"apply_rotation_matrices" + sfx, Kind::kDense},
+                                                    {"rotate_zonal" + sfx, Kind::kZonal}};
+      for (const auto& [prefix, kind] : kinds)
+        if (base == prefix) {
+          m.kind = kind;
+          m.channels = channels;
+          known = true;
+        }
+    }
+    if (base == "rotate_batch") m.kind = Kind::kBatch, known = true;
+    if (base == "sh_eval") m.kind = Kind::kEval, known = true;
+    if (base == "AhatTransposeMultiply") m.kind = Kind::kTranspose, known = true;
+    if (base == "AhatMultiply") m.kind = Kind::kMultiply, known = true;
+    if (!known) {
+      errors.push_back(tag + ": verify does not know how to run " + name);
+      continue;
+    }
+    if (m.kind == Kind::kDense && !has_matrices) {
+      errors.push_back(tag + ": " + name + " without rotation_matrices" + tail);
+      continue;
+    }
+    modes.push_back(m);
+  }
+  return modes;
+}
+
+// What generated/ holds when there is no manifest: the default module.
+std::vector<std::string> default_functions(int order, const std::string& language) {
+  const std::string o = "_order" + std::to_string(order);
+  std::vector<std::string> f = {"sh_eval" + o};
+  if (order > 2) f.insert(f.end(), {"AhatTransposeMultiply" + o, "AhatMultiply" + o});
+  f.insert(f.end(), {"rotate" + o, "rotate_signal_tailored" + o, "rotate_rgb" + o});
+  if (language == "cpp") f.push_back("rotate_batch" + o);
+  return f;
+}
+
+// One file of the generated tree, as the manifest describes it.
+struct FileEntry {
+  std::string path;  // relative to the generated dir
+  std::vector<std::string> functions;
+  std::vector<int> zero_bands;
+};
+
+std::map<std::pair<int, std::string>, FileEntry> read_manifest(const fs::path& generated, std::vector<int>& orders) {
+  std::map<std::pair<int, std::string>, FileEntry> files;
+  const fs::path manifest = generated / "manifest.json";
+  if (!fs::exists(manifest)) return files;
+  const nlohmann::json j = io::read_json_file(manifest.string());
+  std::set<int> seen;
+  for (const nlohmann::json& f : j.value("files", nlohmann::json::array())) {
+    const std::string language = f.value("language", "");
+    const std::string precision = f.value("precision", "");
+    if (precision == "double") continue;  // shaders are run in float; C++ in both
+    FileEntry entry;
+    entry.path = f.value("path", "");
+    for (const nlohmann::json& fn : f.value("functions", nlohmann::json::array())) entry.functions.push_back(fn.value("name", ""));
+    entry.zero_bands = f.value("zero_bands", std::vector<int>{});
+    const int order = f.value("order", 0);
+    seen.insert(order);
+    files[{order, language}] = entry;
+  }
+  orders.assign(seen.begin(), seen.end());
+  return files;
+}
 
 struct Inputs {
   int order = 0;
   int count = 0;
   std::vector<double> rotations;  // 9 per input, row-major
-  std::vector<double> coeffs;     // N^2 per input, unit norm
+  std::vector<double> axes;       // 3 per input: the zonal functions' axes
+  std::vector<double> coeffs;     // N^2 per input, unit norm, zero on known-zero bands
   std::vector<std::string> names; // the extreme inputs' names
+  std::vector<bool> live;         // per band: not known to be zero
 };
 
 // The fixed extreme set, then random rotations; the same for every language.
-Inputs make_inputs(int order, int random_count, const optimizer::LobeTable& table) {
+Inputs make_inputs(int order, int random_count, const optimizer::LobeTable& table, const std::vector<int>& zero_bands) {
   Inputs in;
   in.order = order;
+  in.live.assign(order, true);
+  for (int l : zero_bands)
+    if (l >= 0 && l < order) in.live[l] = false;
   const double pi = 3.14159265358979323846;
   std::vector<std::pair<std::string, sh::Matrix3>> rotations = {
       {"identity", sh::Matrix3::Identity()},
@@ -69,44 +166,86 @@ Inputs make_inputs(int order, int random_count, const optimizer::LobeTable& tabl
   for (const auto& [name, r] : rotations) {
     for (int i = 0; i < 9; ++i) in.rotations.push_back(r(i / 3, i % 3));
     Eigen::VectorXd f(order * order);
-    for (int i = 0; i < f.size(); ++i) f[i] = normal(rng);
+    for (int i = 0; i < f.size(); ++i) f[i] = in.live[sh::band_of(i)] ? normal(rng) : 0.0;
     f.normalize();
     in.coeffs.insert(in.coeffs.end(), f.data(), f.data() + f.size());
+    // The first zonal axis is +z (zonal coefficients then equal the weights); the rest random.
+    Eigen::Vector3d a = in.names.empty() ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
+    in.axes.insert(in.axes.end(), a.data(), a.data() + 3);
     in.names.push_back(name);
   }
   in.count = static_cast<int>(rotations.size());
   return in;
 }
 
-// reference[mode][v * 3n + k]; RGB channel c of input v is rotation v applied to the
-// coefficients of input (v + c) % count.
-std::vector<std::vector<double>> reference_outputs(const Inputs& in, const optimizer::LobeTable& table) {
+constexpr int kMaxChannels = 4;
+// Floats in the packed dense band matrices of an order (codegen's dense_matrix_offset(order)).
+int dense_size(int order) { return order * (2 * order - 1) * (2 * order + 1) / 3; }
+
+// The zonal weights channel c of input v rotates: the first N coefficients of input
+// (v + c) % count, zero on known-zero bands.
+double zonal_weight(const Inputs& in, int v, int c, int l) {
   const int n = in.order * in.order;
-  std::vector<std::vector<double>> ref(kModeCount, std::vector<double>(size_t(3) * n * in.count, 0.0));
+  return in.live[l] ? in.coeffs[size_t(n) * ((v + c) % in.count) + l] : 0.0;
+}
+
+// reference[mode][v * 4n + c * n + k]; channel c of input v is rotation v applied to the
+// coefficients of input (v + c) % count.
+std::vector<std::vector<double>> reference_outputs(const Inputs& in, const optimizer::LobeTable& table,
+                                                   const std::vector<Mode>& modes) {
+  const int n = in.order * in.order;
+  const size_t block = size_t(kMaxChannels) * n;
+  std::vector<std::vector<double>> ref(modes.size(), std::vector<double>(block * in.count, 0.0));
   for (int v = 0; v < in.count; ++v) {
     sh::Matrix3 r;
     for (int i = 0; i < 9; ++i) r(i / 3, i % 3) = in.rotations[9 * v + i];
     const sh::BandMatrices bands = sh::ivanic_ruedenberg(r, in.order);
-    const size_t base = size_t(3) * n * v;
-    for (int c = 0; c < 3; ++c) {
+    std::vector<Eigen::VectorXd> rotated(kMaxChannels), zonal(kMaxChannels);
+    std::vector<double> y(n);
+    sh::eval_sh(in.order, &in.axes[3 * v], y.data());
+    for (int c = 0; c < kMaxChannels; ++c) {
       const Eigen::Map<const Eigen::VectorXd> f(&in.coeffs[size_t(n) * ((v + c) % in.count)], n);
-      const Eigen::VectorXd g = sh::apply_band_matrices(bands, f);
+      rotated[c] = sh::apply_band_matrices(bands, f);
+      // The zonal function's coefficients in the unrotated frame, then the reference rotation.
+      Eigen::VectorXd z(n);
       for (int i = 0; i < n; ++i) {
-        ref[kRgb][base + c * n + i] = g[i];
-        if (c == 0) ref[kRotate][base + i] = ref[kTailored][base + i] = ref[kBatch][base + i] = g[i];
+        const int l = sh::band_of(i);
+        z[i] = std::sqrt(4 * 3.14159265358979323846 / (2 * l + 1)) * zonal_weight(in, v, c, l) * y[i];
       }
+      zonal[c] = sh::apply_band_matrices(bands, z);
     }
     const double* f = &in.coeffs[size_t(n) * v];
-    const double dir[3] = {in.rotations[9 * v], in.rotations[9 * v + 1], in.rotations[9 * v + 2]};
-    sh::eval_sh(in.order, dir, &ref[kEval][base]);
-    for (int i = 0; i < std::min(n, 4); ++i) ref[kTranspose][base + i] = ref[kMultiply][base + i] = f[i];
-    for (const optimizer::TableBand& band : table.bands) {
-      const int size = 2 * band.l + 1, b0 = band.l * band.l;
-      for (int i = 0; i < size; ++i)
-        for (int k = 0; k < size; ++k) {
-          ref[kTranspose][base + b0 + i] += band.inverse(k, i) * f[b0 + k];
-          ref[kMultiply][base + b0 + i] += band.inverse(i, k) * f[b0 + k];
+    for (size_t k = 0; k < modes.size(); ++k) {
+      double* out = &ref[k][block * v];
+      const Mode& m = modes[k];
+      switch (m.kind) {
+        case Kind::kRotate:
+        case Kind::kTailored:
+        case Kind::kBatch:
+        case Kind::kDense:
+          for (int c = 0; c < m.channels; ++c)
+            for (int i = 0; i < n; ++i) out[c * n + i] = rotated[c][i];
+          break;
+        case Kind::kZonal:
+          for (int c = 0; c < m.channels; ++c)
+            for (int i = 0; i < n; ++i) out[c * n + i] = zonal[c][i];
+          break;
+        case Kind::kEval: {
+          const double dir[3] = {in.rotations[9 * v], in.rotations[9 * v + 1], in.rotations[9 * v + 2]};
+          sh::eval_sh(in.order, dir, out);
+          break;
         }
+        case Kind::kTranspose:
+        case Kind::kMultiply:
+          for (int i = 0; i < std::min(n, 4); ++i) out[i] = f[i];
+          for (const optimizer::TableBand& band : table.bands) {
+            const int size = 2 * band.l + 1, b0 = band.l * band.l;
+            for (int i = 0; i < size; ++i)
+              for (int j = 0; j < size; ++j)
+                out[b0 + i] += (m.kind == Kind::kTranspose ? band.inverse(j, i) : band.inverse(i, j)) * f[b0 + j];
+          }
+          break;
+      }
     }
   }
   return ref;
@@ -137,54 +276,87 @@ std::vector<double> read_doubles(const std::string& path, size_t count) {
   return values;
 }
 
-// The C++ harness zhf writes for one order: runs every function in float and double.
-std::string cpp_harness(int order) {
+// Input stride per input in the rotations stream: R (9) and the zonal axis (3).
+constexpr int kRotationStride = 12;
+
+// The call a harness makes for one mode, in C++ (shader = false) or a shader language. The
+// harness holds r[9], axis[3], c[4][n] / c1 (channel 0), z[4][N] / z1, o[4][n] / o1 and, for
+// shaders, cv/zv/ov arrays of vectors for multi-channel calls.
+std::string call(const Mode& m, int order, bool cpp) {
+  const std::string o = "_order" + std::to_string(order);
+  const std::string t = cpp ? "<T>" : "";
+  const std::string ns = cpp ? "zhf::gen::" : "";
+  const bool multi = m.channels > 1;
+  const std::string cv = multi ? (cpp ? "c" : "cv") : "c1";
+  const std::string ov = multi ? (cpp ? "o" : "ov") : "o1";
+  const std::string zv = multi ? (cpp ? "z" : "zv") : "z1";
+  switch (m.kind) {
+    case Kind::kRotate:
+    case Kind::kTailored:
+      return ns + m.function + t + "(r, " + cv + ", " + ov + ");";
+    case Kind::kEval:
+      return cpp ? ns + m.function + t + "(r, o1);" : "{ float d[3]; d[0] = r[0]; d[1] = r[1]; d[2] = r[2]; " + m.function + "(d, o1); }";
+    case Kind::kTranspose:
+    case Kind::kMultiply:
+      return ns + m.function + t + "(c1, o1);";
+    case Kind::kDense:
+      return ns + "rotation_matrices" + o + t + "(r, mats); " + ns + m.function + t + "(mats, " + cv + ", " + ov + ");";
+    case Kind::kZonal:
+      return ns + m.function + t + "(r, axis, " + zv + ", " + ov + ");";
+    case Kind::kBatch:
+      break;
+  }
+  return "";
+}
+
+// The C++ harness zhf writes for one file: runs every function in float and double.
+std::string cpp_harness(int order, const std::vector<Mode>& modes) {
   const std::string o = std::to_string(order);
+  const int n = order * order;
   std::ostringstream s;
   s << "// Generated by zhf verify: runs the emitted order-" << o << " kernels on inputs.bin.\n"
     << "#include <cstdio>\n#include <vector>\n#include \"zhf_order" << o << ".h\"\n\n"
-    << "constexpr int kN = " << order * order << ";\n"
+    << "constexpr int kN = " << n << ", kOrder = " << order << ", kBlock = " << kMaxChannels * n << ";\n"
     << "template <class T>\nvoid run(int count, const std::vector<double>& rot, const std::vector<double>& co, std::FILE* out) {\n"
-    << "  std::vector<double> res(3 * kN * size_t(count));\n"
-    << "  T r[9], c[kN], o[kN], c3[3][kN], o3[3][kN];\n"
-    << "  for (int mode = 0; mode < 6; ++mode) {\n"
-    << "    for (int v = 0; v < count; ++v) {\n"
-    << "      for (int i = 0; i < 9; ++i) r[i] = T(rot[9 * v + i]);\n"
-    << "      for (int i = 0; i < kN; ++i) c[i] = T(co[kN * v + i]);\n"
-    << "      for (int ch = 0; ch < 3; ++ch) for (int i = 0; i < kN; ++i) c3[ch][i] = T(co[kN * ((v + ch) % count) + i]);\n"
-    << "      for (int i = 0; i < kN; ++i) o[i] = T(0);\n"
-    << "      switch (mode) {\n"
-    << "        case 0: zhf::gen::rotate_order" << o << "<T>(r, c, o); break;\n"
-    << "        case 1: zhf::gen::rotate_signal_tailored_order" << o << "<T>(r, c, o); break;\n"
-    << "        case 2: zhf::gen::rotate_rgb_order" << o << "<T>(r, c3, o3); break;\n"
-    << "        case 3: zhf::gen::sh_eval_order" << o << "<T>(r, o); break;\n";
-  if (order > 2) {
-    s << "        case 4: zhf::gen::AhatTransposeMultiply_order" << o << "<T>(c, o); break;\n"
-      << "        case 5: zhf::gen::AhatMultiply_order" << o << "<T>(c, o); break;\n";
+    << "  std::vector<double> res(kBlock * size_t(count));\n"
+    << "  T r[9], axis[3], c[4][kN], z[4][kOrder], o[4][kN], mats[" << std::max(1, dense_size(order)) << "];\n"
+    << "  T* c1 = c[0]; T* z1 = z[0]; T* o1 = o[0];\n"
+    << "  (void)c1; (void)z1; (void)axis; (void)mats;\n";
+  for (size_t k = 0; k < modes.size(); ++k) {
+    const Mode& m = modes[k];
+    s << "  // " << m.function << "\n";
+    if (m.kind == Kind::kBatch) {
+      s << "  {\n"
+        << "    std::vector<T> br(9 * size_t(count)), bc(kN * size_t(count)), bo(kN * size_t(count));\n"
+        << "    for (int v = 0; v < count; ++v) {\n"
+        << "      for (int i = 0; i < 9; ++i) br[i * size_t(count) + v] = T(rot[" << kRotationStride << " * v + i]);\n"
+        << "      for (int i = 0; i < kN; ++i) bc[i * size_t(count) + v] = T(co[kN * v + i]);\n"
+        << "    }\n"
+        << "    zhf::gen::" << m.function << "<T>(count, br.data(), bc.data(), bo.data());\n"
+        << "    for (int v = 0; v < count; ++v) for (int i = 0; i < kN; ++i) res[kBlock * size_t(v) + i] = double(bo[i * size_t(count) + v]);\n"
+        << "  }\n";
+    } else {
+      s << "  for (int v = 0; v < count; ++v) {\n"
+        << "    for (int i = 0; i < 9; ++i) r[i] = T(rot[" << kRotationStride << " * v + i]);\n"
+        << "    for (int i = 0; i < 3; ++i) axis[i] = T(rot[" << kRotationStride << " * v + 9 + i]);\n"
+        << "    for (int ch = 0; ch < 4; ++ch) {\n"
+        << "      for (int i = 0; i < kN; ++i) { c[ch][i] = T(co[kN * ((v + ch) % count) + i]); o[ch][i] = T(0); }\n"
+        << "      for (int l = 0; l < kOrder; ++l) z[ch][l] = c[ch][l];\n"
+        << "    }\n"
+        << "    " << call(m, order, true) << "\n"
+        << "    for (int ch = 0; ch < 4; ++ch) for (int i = 0; i < kN; ++i) res[kBlock * size_t(v) + ch * kN + i] = double(o[ch][i]);\n"
+        << "  }\n";
+    }
+    s << "  std::fwrite(res.data(), sizeof(double), res.size(), out);\n";
   }
-  s << "      }\n"
-    << "      for (int i = 0; i < kN; ++i) res[3 * kN * size_t(v) + i] = double(o[i]);\n"
-    << "      if (mode == 2) for (int ch = 0; ch < 3; ++ch) for (int i = 0; i < kN; ++i) res[3 * kN * size_t(v) + ch * kN + i] = double(o3[ch][i]);\n"
-    << "    }\n"
-    << "    std::fwrite(res.data(), sizeof(double), res.size(), out);\n"
-    << "  }\n"
-    << "  // Batch: structure of arrays over all inputs.\n"
-    << "  std::vector<T> br(9 * size_t(count)), bc(kN * size_t(count)), bo(kN * size_t(count));\n"
-    << "  for (int v = 0; v < count; ++v) {\n"
-    << "    for (int i = 0; i < 9; ++i) br[i * size_t(count) + v] = T(rot[9 * v + i]);\n"
-    << "    for (int i = 0; i < kN; ++i) bc[i * size_t(count) + v] = T(co[kN * v + i]);\n"
-    << "  }\n"
-    << "  zhf::gen::rotate_batch_order" << o << "<T>(count, br.data(), bc.data(), bo.data());\n"
-    << "  for (int v = 0; v < count; ++v) for (int i = 0; i < kN; ++i) res[3 * kN * size_t(v) + i] = double(bo[i * size_t(count) + v]);\n"
-    << "  std::fwrite(res.data(), sizeof(double), res.size(), out);\n"
-    << "}\n\n"
+  s << "}\n\n"
     << "int main(int argc, char** argv) {\n"
     << "  if (argc != 3) return 2;\n"
     << "  std::FILE* in = std::fopen(argv[1], \"rb\");\n"
     << "  double header = 0;\n"
     << "  if (!in || std::fread(&header, sizeof header, 1, in) != 1) return 3;\n"
     << "  const int count = int(header);\n"
-    << "  std::vector<double> rot(9 * size_t(count)), co(kN * size_t(count));\n"
+    << "  std::vector<double> rot(" << kRotationStride << " * size_t(count)), co(kN * size_t(count));\n"
     << "  if (std::fread(rot.data(), sizeof(double), rot.size(), in) != rot.size()) return 3;\n"
     << "  if (std::fread(co.data(), sizeof(double), co.size(), in) != co.size()) return 3;\n"
     << "  std::FILE* out = std::fopen(argv[2], \"wb\");\n"
@@ -196,9 +368,11 @@ std::string cpp_harness(int order) {
   return s.str();
 }
 
-// Compute-shader wrappers: invocation i runs function (i / count) on input (i % count).
-std::string shader_source(const std::string& language, int order, const std::string& kernels) {
-  const std::string o = std::to_string(order), n = std::to_string(order * order);
+// Compute-shader wrappers: invocation i runs mode (i / count) on input (i % count).
+std::string shader_source(const std::string& language, int order, const std::string& kernels,
+                          const std::vector<Mode>& modes) {
+  const int n = order * order;
+  const std::string ns = std::to_string(n), block = std::to_string(kMaxChannels * n);
   std::ostringstream s;
   const bool glsl = language == "glsl";
   if (glsl) {
@@ -216,39 +390,68 @@ std::string shader_source(const std::string& language, int order, const std::str
       << "[[vk::binding(2, 0)]] RWStructuredBuffer<float> results;\n\n";
   }
   s << kernels << "\n";
-  const std::string vec3 = glsl ? "vec3" : "float3";
+  // Multi-channel calls of one channel count share vector arrays; at most one count per file
+  // is common, but every count present gets its own.
+  std::set<int> widths;
+  for (const Mode& m : modes)
+    if (m.channels > 1) widths.insert(m.channels);
+  auto vec = [&](int w) { return (glsl ? std::string("vec") : std::string("float")) + std::to_string(w); };
   if (glsl) {
     s << "void main() {\n  uint i = gl_GlobalInvocationID.x;\n";
   } else {
     s << "[numthreads(64, 1, 1)]\nvoid main(uint3 id : SV_DispatchThreadID) {\n  uint i = id.x;\n";
   }
-  s << "  if (i >= " << kShaderModes << "u * params.count) return;\n"
+  s << "  if (i >= " << modes.size() << "u * params.count) return;\n"
     << "  uint v = i % params.count;\n  uint mode = i / params.count;\n"
-    << "  float r[9];\n  float c[" << n << "];\n  float o[" << n << "];\n"
-    << "  " << vec3 << " c3[" << n << "];\n  " << vec3 << " o3[" << n << "];\n"
-    << "  for (int k = 0; k < 9; ++k) r[k] = rotations[9u * v + uint(k)];\n"
-    << "  for (int k = 0; k < " << n << "; ++k) {\n"
-    << "    c[k] = coefficients[" << n << "u * v + uint(k)];\n"
-    << "    c3[k] = " << vec3 << "(c[k], coefficients[" << n << "u * ((v + 1u) % params.count) + uint(k)], coefficients["
-    << n << "u * ((v + 2u) % params.count) + uint(k)]);\n"
-    << "    o[k] = 0.0;\n    o3[k] = " << vec3 << "(0.0, 0.0, 0.0);\n  }\n"
-    << "  if (mode == 0u) rotate_order" << o << "(r, c, o);\n"
-    << "  if (mode == 1u) rotate_signal_tailored_order" << o << "(r, c, o);\n"
-    << "  if (mode == 2u) rotate_rgb_order" << o << "(r, c3, o3);\n"
-    << "  if (mode == 3u) { float d[3]; d[0] = r[0]; d[1] = r[1]; d[2] = r[2]; sh_eval_order" << o << "(d, o); }\n";
-  if (order > 2) {
-    s << "  if (mode == 4u) AhatTransposeMultiply_order" << o << "(c, o);\n"
-      << "  if (mode == 5u) AhatMultiply_order" << o << "(c, o);\n";
+    << "  float r[9];\n  float axis[3];\n  float c[4][" << ns << "];\n  float z[4][" << order << "];\n"
+    << "  float c1[" << ns << "];\n  float z1[" << order << "];\n  float o1[" << ns << "];\n"
+    << "  float mats[" << std::max(1, dense_size(order)) << "];\n";
+  for (int w : widths)
+    s << "  " << vec(w) << " cv" << w << "[" << ns << "];\n  " << vec(w) << " zv" << w << "[" << order << "];\n  " << vec(w)
+      << " ov" << w << "[" << ns << "];\n";
+  s << "  for (int k = 0; k < 9; ++k) r[k] = rotations[" << kRotationStride << "u * v + uint(k)];\n"
+    << "  for (int k = 0; k < 3; ++k) axis[k] = rotations[" << kRotationStride << "u * v + 9u + uint(k)];\n"
+    << "  for (int ch = 0; ch < 4; ++ch) {\n"
+    << "    for (int k = 0; k < " << ns << "; ++k) c[ch][k] = coefficients[" << ns << "u * ((v + uint(ch)) % params.count) + uint(k)];\n"
+    << "    for (int k = 0; k < " << order << "; ++k) z[ch][k] = c[ch][k];\n"
+    << "  }\n"
+    << "  for (int k = 0; k < " << ns << "; ++k) { c1[k] = c[0][k]; o1[k] = 0.0; }\n"
+    << "  for (int k = 0; k < " << order << "; ++k) z1[k] = z[0][k];\n";
+  for (int w : widths) {
+    const std::string args3 = "c[0][k], c[1][k], c[2][k]" + std::string(w == 4 ? ", c[3][k]" : "");
+    const std::string zargs = "z[0][k], z[1][k], z[2][k]" + std::string(w == 4 ? ", z[3][k]" : "");
+    s << "  for (int k = 0; k < " << ns << "; ++k) { cv" << w << "[k] = " << vec(w) << "(" << args3 << "); ov" << w << "[k] = "
+      << vec(w) << "(0.0" << std::string(w == 4 ? ", 0.0, 0.0, 0.0" : ", 0.0, 0.0") << "); }\n"
+      << "  for (int k = 0; k < " << order << "; ++k) zv" << w << "[k] = " << vec(w) << "(" << zargs << ");\n";
   }
-  s << "  uint base = (mode * params.count + v) * " << 3 * order * order << "u;\n"
-    << "  for (int k = 0; k < " << n << "; ++k) {\n"
-    << "    if (mode == 2u) {\n"
-    << "      results[base + uint(k)] = o3[k].x;\n"
-    << "      results[base + " << n << "u + uint(k)] = o3[k].y;\n"
-    << "      results[base + " << 2 * order * order << "u + uint(k)] = o3[k].z;\n"
-    << "    } else {\n"
-    << "      results[base + uint(k)] = o[k];\n"
-    << "    }\n  }\n}\n";
+  for (size_t k = 0; k < modes.size(); ++k) {
+    std::string c = call(modes[k], order, false);
+    if (modes[k].channels > 1) {
+      const std::string w = std::to_string(modes[k].channels);
+      for (const std::string name : {"cv", "ov", "zv"}) {
+        for (size_t at = c.find(name + ")"); at != std::string::npos; at = c.find(name + ")", at)) c.insert(at + 2, w);
+        for (size_t at = c.find(name + ","); at != std::string::npos; at = c.find(name + ",", at)) c.insert(at + 2, w);
+      }
+    }
+    s << "  if (mode == " << k << "u) { " << c << " }\n";
+  }
+  s << "  uint base = (mode * params.count + v) * " << block << "u;\n"
+    << "  for (int k = 0; k < " << ns << "; ++k) {\n"
+    << "    results[base + uint(k)] = o1[k];\n";
+  for (int w : widths) {
+    s << "    if (";
+    bool first = true;
+    for (size_t k = 0; k < modes.size(); ++k)
+      if (modes[k].channels == w) {
+        s << (first ? "" : " || ") << "mode == " << k << "u";
+        first = false;
+      }
+    s << ") {\n";
+    for (int ch = 0; ch < w; ++ch)
+      s << "      results[base + " << ch * n << "u + uint(k)] = ov" << w << "[k]." << "xyzw"[ch] << ";\n";
+    s << "    }\n";
+  }
+  s << "  }\n}\n";
   return s.str();
 }
 
@@ -265,30 +468,30 @@ double ulp_distance(float a, float b) {
   return std::abs(static_cast<double>(a) - static_cast<double>(b)) / ulp;
 }
 
-double tolerance_for(Mode mode, const std::string& precision, int order, double worst_condition) {
+double tolerance_for(Kind kind, const std::string& precision, int order, double worst_condition) {
   if (precision == "double") return kDoubleTolerance;
-  if (mode == kEval) return kFloatEvaluationTolerance;
-  if (mode == kTranspose || mode == kMultiply) return kFloatSparseTolerance;
+  if (kind == Kind::kEval || kind == Kind::kZonal) return kFloatEvaluationTolerance;
+  if (kind == Kind::kTranspose || kind == Kind::kMultiply) return kFloatSparseTolerance;
   return float_rotation_tolerance(order, worst_condition);
 }
 
-FunctionResult compare(const Inputs& in, double worst_condition, Mode mode, const std::vector<double>& got,
+FunctionResult compare(const Inputs& in, double worst_condition, const Mode& mode, const std::vector<double>& got,
                        const std::vector<double>& expected, const std::string& language, const std::string& precision,
                        const std::vector<double>* cpp_float) {
   FunctionResult r;
-  r.ulp_limit = language == "hlsl" ? hlsl_ulp_limit(in.order, worst_condition) : kGlslUlpLimit;
+  r.ulp_limit = language == "hlsl" || mode.kind == Kind::kDense ? hlsl_ulp_limit(in.order, worst_condition) : kGlslUlpLimit;
   r.order = in.order;
   r.language = language;
   r.precision = precision;
-  r.function = function_name(mode, in.order);
-  r.tolerance = tolerance_for(mode, precision, in.order, worst_condition);
+  r.function = mode.function;
+  r.tolerance = tolerance_for(mode.kind, precision, in.order, worst_condition);
   const int n = in.order * in.order;
-  const int lanes = mode == kRgb ? 3 * n : n;
+  const int lanes = mode.channels * n;
   double sum = 0;
   size_t terms = 0;
   for (int v = 0; v < in.count; ++v)
     for (int k = 0; k < lanes; ++k) {
-      const size_t at = size_t(3) * n * v + k;
+      const size_t at = size_t(kMaxChannels) * n * v + k;
       const double e = std::abs(got[at] - expected[at]);
       if (!(e <= r.max_error)) {
         r.max_error = std::isnan(e) ? INFINITY : e;
@@ -411,60 +614,101 @@ VerifyReport run_verify(const VerifyOptions& options) {
   std::string compiler = options.compiler;
   if (compiler.empty()) compiler = std::getenv("CXX") ? std::getenv("CXX") : "c++";
 
-  for (int order : options.orders) {
+  std::vector<int> manifest_orders;
+  const auto files = read_manifest(generated, manifest_orders);
+  std::vector<int> orders = options.orders;
+  if (orders.empty()) orders = files.empty() ? std::vector<int>{2, 3, 4, 5, 6, 7, 8} : manifest_orders;
+  auto wanted = [&](const std::string& language) {
+    return std::find(options.languages.begin(), options.languages.end(), language) != options.languages.end();
+  };
+  // The file's functions and zero bands, from the manifest (or generated/'s defaults without one).
+  auto entry_for = [&](int order, const std::string& language) -> std::optional<FileEntry> {
+    if (files.empty()) {
+      FileEntry e;
+      e.path = language + "/zhf_order" + std::to_string(order) + (language == "cpp" ? ".h" : language == "glsl" ? ".glsl" : ".hlsli");
+      e.functions = default_functions(order, language);
+      return e;
+    }
+    const auto it = files.find({order, language});
+    if (it == files.end()) return std::nullopt;
+    return it->second;
+  };
+
+  for (int order : orders) {
+    const std::string o = "order " + std::to_string(order);
+    const auto cpp_entry = entry_for(order, "cpp");
+    std::optional<FileEntry> any = cpp_entry;
+    for (const std::string language : {"glsl", "hlsl"})
+      if (!any) any = entry_for(order, language);
+    if (!any) {
+      report.errors.push_back(o + ": not in " + (generated / "manifest.json").string());
+      continue;
+    }
     const optimizer::LobeTable table =
         order == 2 ? optimizer::LobeTable{} : optimizer::read_table((generated / "lobes" / ("order_" + std::to_string(order) + ".json")).string());
-    const Inputs in = make_inputs(order, options.rotations, table);
-    const auto expected = reference_outputs(in, table);
+    const Inputs in = make_inputs(order, options.rotations, table, any->zero_bands);
     const int n = order * order;
-    const size_t block = size_t(3) * n * in.count;
+    const size_t block = size_t(kMaxChannels) * n * in.count;
     const fs::path dir = work / ("order_" + std::to_string(order));
     fs::create_directories(dir);
+    std::vector<double> stream = {double(in.count)};
+    for (int v = 0; v < in.count; ++v) {
+      stream.insert(stream.end(), in.rotations.begin() + 9 * v, in.rotations.begin() + 9 * v + 9);
+      stream.insert(stream.end(), in.axes.begin() + 3 * v, in.axes.begin() + 3 * v + 3);
+    }
+    const std::vector<double> rotation_stream(stream.begin() + 1, stream.end());
+    stream.insert(stream.end(), in.coeffs.begin(), in.coeffs.end());
 
-    // C++: always run, the shaders are compared with its float results.
-    std::vector<double> header = {double(in.count)};
-    header.insert(header.end(), in.rotations.begin(), in.rotations.end());
-    header.insert(header.end(), in.coeffs.begin(), in.coeffs.end());
-    write_doubles((dir / "inputs.bin").string(), header);
-    io::write_file_atomically((dir / "harness.cc").string(), cpp_harness(order));
-    const std::string compile = compiler + " -std=c++17 -O1 -ffp-contract=off -I'" + (generated / "cpp").string() + "' '" +
-                                (dir / "harness.cc").string() + "' -o '" + (dir / "harness").string() + "' > '" +
-                                (dir / "compile.log").string() + "' 2>&1";
-    std::vector<std::vector<double>> cpp_float(kModeCount);
-    if (run_command(compile) != 0) {
-      report.errors.push_back("order " + std::to_string(order) + ", cpp: compile failed: " + first_lines((dir / "compile.log").string(), 3));
-    } else if (run_command("'" + (dir / "harness").string() + "' '" + (dir / "inputs.bin").string() + "' '" +
-                           (dir / "outputs.bin").string() + "'") != 0) {
-      report.errors.push_back("order " + std::to_string(order) + ", cpp: harness failed to run");
-    } else {
-      const std::vector<double> all = read_doubles((dir / "outputs.bin").string(), 2 * kModeCount * block);
-      for (int p = 0; p < 2; ++p) {
-        const std::string precision = p == 0 ? "float" : "double";
-        for (int m = 0; m < kModeCount; ++m) {
-          const std::vector<double> got(all.begin() + (p * kModeCount + m) * block, all.begin() + (p * kModeCount + m + 1) * block);
-          if (p == 0) cpp_float[m] = got;
-          if (!has_mode(Mode(m), order)) continue;
-          if (std::find(options.languages.begin(), options.languages.end(), "cpp") != options.languages.end())
-            report.results.push_back(compare(in, table.worst_condition(), Mode(m), got, expected[m], "cpp", precision, nullptr));
+    // C++: run whenever the file exists; the shaders are compared with its float results.
+    std::map<std::string, std::vector<double>> cpp_float;  // by function name
+    if (cpp_entry) {
+      const std::string tag = o + ", cpp";
+      const std::vector<Mode> modes = modes_of(cpp_entry->functions, order, report.errors, tag);
+      const auto expected = reference_outputs(in, table, modes);
+      write_doubles((dir / "inputs.bin").string(), stream);
+      io::write_file_atomically((dir / "harness.cc").string(), cpp_harness(order, modes));
+      const fs::path include_dir = (generated / cpp_entry->path).parent_path();
+      const std::string compile = compiler + " -std=c++17 -O1 -ffp-contract=off -I'" + include_dir.string() + "' '" +
+                                  (dir / "harness.cc").string() + "' -o '" + (dir / "harness").string() + "' > '" +
+                                  (dir / "compile.log").string() + "' 2>&1";
+      if (run_command(compile) != 0) {
+        report.errors.push_back(tag + ": compile failed: " + first_lines((dir / "compile.log").string(), 3));
+      } else if (run_command("'" + (dir / "harness").string() + "' '" + (dir / "inputs.bin").string() + "' '" +
+                             (dir / "outputs.bin").string() + "'") != 0) {
+        report.errors.push_back(tag + ": harness failed to run");
+      } else {
+        const std::vector<double> all = read_doubles((dir / "outputs.bin").string(), 2 * modes.size() * block);
+        for (int p = 0; p < 2; ++p) {
+          const std::string precision = p == 0 ? "float" : "double";
+          for (size_t m = 0; m < modes.size(); ++m) {
+            const std::vector<double> got(all.begin() + (p * modes.size() + m) * block, all.begin() + (p * modes.size() + m + 1) * block);
+            if (p == 0) cpp_float[modes[m].function] = got;
+            if (wanted("cpp"))
+              report.results.push_back(compare(in, table.worst_condition(), modes[m], got, expected[m], "cpp", precision, nullptr));
+          }
         }
       }
     }
 
     for (const std::string& language : {std::string("glsl"), std::string("hlsl")}) {
-      if (std::find(options.languages.begin(), options.languages.end(), language) == options.languages.end() || !device)
-        continue;
-      const std::string tag = "order " + std::to_string(order) + ", " + language;
-      const fs::path kernel_file = generated / language / ("zhf_order" + std::to_string(order) + (language == "glsl" ? ".glsl" : ".hlsli"));
+      if (!wanted(language) || !device) continue;
+      const auto entry = entry_for(order, language);
+      if (!entry) continue;
+      const std::string tag = o + ", " + language;
+      std::vector<Mode> modes = modes_of(entry->functions, order, report.errors, tag);
+      modes.erase(std::remove_if(modes.begin(), modes.end(), [](const Mode& m) { return m.kind == Kind::kBatch; }), modes.end());
+      if (modes.empty()) continue;
+      const auto expected = reference_outputs(in, table, modes);
       std::string kernels;
       try {
-        kernels = io::read_text_file(kernel_file.string());
+        kernels = io::read_text_file((generated / entry->path).string());
       } catch (const std::exception& e) {
         report.errors.push_back(tag + ": " + e.what());
         continue;
       }
       const fs::path source = dir / (language == "glsl" ? "verify.comp" : "verify.hlsl");
       const fs::path spv = dir / (language + ".spv");
-      io::write_file_atomically(source.string(), shader_source(language, order, kernels));
+      io::write_file_atomically(source.string(), shader_source(language, order, kernels, modes));
       const std::string flags = language == "glsl" ? "-V -S comp" : "-D -e main -S comp -V";
       if (run_command("glslangValidator " + flags + " -o '" + spv.string() + "' '" + source.string() + "' > '" +
                       (dir / (language + "_compile.log")).string() + "' 2>&1") != 0) {
@@ -487,26 +731,26 @@ VerifyReport run_verify(const VerifyOptions& options) {
         }
         return out;
       };
-      buffers[0] = pack(in.rotations);
+      buffers[0] = pack(rotation_stream);
       buffers[1] = pack(in.coeffs);
-      buffers[2].assign(kShaderModes * block * sizeof(float), 0);
+      buffers[2].assign(modes.size() * block * sizeof(float), 0);
       const std::uint32_t count = static_cast<std::uint32_t>(in.count);
       try {
-        device->run(words, buffers, &count, sizeof count, (kShaderModes * count + 63) / 64);
+        device->run(words, buffers, &count, sizeof count, (static_cast<std::uint32_t>(modes.size()) * count + 63) / 64);
       } catch (const std::exception& e) {
         report.errors.push_back(tag + ": " + e.what());
         continue;
       }
-      for (int m = 0; m < kShaderModes; ++m) {
-        if (!has_mode(Mode(m), order)) continue;
+      for (size_t m = 0; m < modes.size(); ++m) {
         std::vector<double> got(block);
         for (size_t k = 0; k < block; ++k) {
           float f;
           std::memcpy(&f, &buffers[2][(m * block + k) * sizeof(float)], sizeof f);
           got[k] = f;
         }
-        report.results.push_back(compare(in, table.worst_condition(), Mode(m), got, expected[m], language, "float",
-                                         cpp_float[m].empty() ? nullptr : &cpp_float[m]));
+        const auto reference = cpp_float.find(modes[m].function);
+        report.results.push_back(compare(in, table.worst_condition(), modes[m], got, expected[m], language, "float",
+                                         reference == cpp_float.end() ? nullptr : &reference->second));
       }
     }
   }

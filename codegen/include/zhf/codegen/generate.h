@@ -2,8 +2,11 @@
 #pragma once
 
 #include <atomic>
+#include <map>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "zhf/codegen/emitter.h"
 
@@ -16,6 +19,8 @@ struct GenerateOptions {
   std::vector<std::string> languages = {"cpp", "hlsl", "glsl"};
   Precision precision = Precision::kFloat;
   ModuleOptions module;
+  std::map<int, ModuleOptions> module_per_order;  // overrides module where present (scene specs)
+  nlohmann::ordered_json scene;                   // recorded in the manifest when not null
   std::string command = "zhf generate";  // recorded in banners and the manifest
   const std::atomic<bool>* stop = nullptr;
 };
