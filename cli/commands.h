@@ -30,5 +30,6 @@ void add_candidates_command(CLI::App& app, Action& action);
 void add_optimize_command(CLI::App& app, Action& action, const std::string& command_line);
 void add_codegen_commands(CLI::App& app, Action& action, const std::string& command_line);
 void add_verify_command(CLI::App& app, Action& action);
+void add_analyze_command(CLI::App& app, Action& action);
 
 }  // namespace zhf::cli

@@ -61,8 +61,9 @@ std::string read_text_file(const std::string& path) {
   return buffer.str();
 }
 
-nlohmann::json read_json_file(const std::string& path) {
-  const std::string text = read_text_file(path);
+nlohmann::json read_json_file(const std::string& path) { return parse_json_text(read_text_file(path), path); }
+
+nlohmann::json parse_json_text(const std::string& text, const std::string& path) {
   if (text.find_first_not_of(" \t\r\n") == std::string::npos) throw InputError(path + ": file is empty");
   try {
     return nlohmann::json::parse(text);

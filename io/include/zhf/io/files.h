@@ -16,6 +16,8 @@ std::string read_text_file(const std::string& path);
 
 // Throws InputError naming the path (and line/column) when it is empty or not valid JSON.
 nlohmann::json read_json_file(const std::string& path);
+// The same for text already in memory; path only names it in errors.
+nlohmann::json parse_json_text(const std::string& text, const std::string& path);
 
 // JSON text as zhf writes it everywhere: two-space indent, arrays of numbers on one line
 // (matrix rows stay readable), keys in insertion order, numbers round-trip exact, trailing
