@@ -307,6 +307,7 @@ TEST(Analyze, BadCoefficientFilesGetOneLine) {
       {"1 0 0 0\n1 0 x 0\n", "line 2: 'x' is not a number"},
       {"[[1, 0, 0, 0]", "not valid JSON"},
       {"{\"a\": 1}", "must be an array of coefficient vectors"},
+      {"[[0.5e3333333333, 0, 0, 0]]", "not valid JSON: number overflow"},  // found by fuzz_coefficients
   };
   for (const auto& [content, message] : cases) {
     const std::string in = (dir / "c.txt").string();

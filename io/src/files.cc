@@ -67,8 +67,9 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& path)
   if (text.find_first_not_of(" \t\r\n") == std::string::npos) throw InputError(path + ": file is empty");
   try {
     return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    // e.what() is "[json.exception.parse_error.101] parse error at line 3, column 5: ..."
+  } catch (const nlohmann::json::exception& e) {
+    // e.what() is "[json.exception.parse_error.101] parse error at line 3, column 5: ...";
+    // out_of_range.406 is a number too large for a double ("1e400").
     std::string what = e.what();
     const auto pos = what.find("] ");
     if (pos != std::string::npos) what = what.substr(pos + 2);
