@@ -502,6 +502,7 @@ FunctionResult compare(const Inputs& in, double worst_condition, const Mode& mod
       ++terms;
       if (cpp_float) r.max_ulps = std::max(r.max_ulps, ulp_distance(float(got[at]), float((*cpp_float)[at])));
     }
+  if (!cpp_float) r.max_ulps = -1;
   r.rms_error = std::sqrt(sum / std::max<size_t>(1, terms));
   r.pass = r.max_error <= r.tolerance && r.max_ulps <= r.ulp_limit;
   return r;
@@ -553,10 +554,11 @@ std::string VerifyReport::table() const {
   };
   std::map<std::tuple<int, std::string, std::string>, Row> rows;
   for (const FunctionResult& r : results) {
+    const bool first = !rows.count({r.order, r.language, r.precision});
     Row& row = rows[{r.order, r.language, r.precision}];
     row.max_error = std::max(row.max_error, r.max_error);
     row.rms = std::max(row.rms, r.rms_error);
-    row.ulps = std::max(row.ulps, r.max_ulps);
+    row.ulps = first ? r.max_ulps : std::max(row.ulps, r.max_ulps);
     row.pass = row.pass && r.pass;
     ++row.functions;
   }
@@ -567,7 +569,7 @@ std::string VerifyReport::table() const {
   out << line;
   for (const auto& [key, row] : rows) {
     const auto& [order, language, precision] = key;
-    const std::string ulps = language == "cpp" ? "-" : std::to_string(static_cast<long long>(row.ulps));
+    const std::string ulps = row.ulps < 0 ? "-" : std::to_string(static_cast<long long>(row.ulps));
     std::snprintf(line, sizeof line, "%5d  %-5s  %-9s  %9d  %9.2e  %9.2e  %9s  %s\n", order, language.c_str(),
                   precision.c_str(), row.functions, row.max_error, row.rms, ulps.c_str(), row.pass ? "pass" : "FAIL");
     out << line;

@@ -60,7 +60,8 @@ struct FunctionResult {
   std::string function;
   double max_error = 0;
   double rms_error = 0;
-  double max_ulps = 0;         // vs the C++ float kernel (shaders only)
+  double max_ulps = 0;         // vs the C++ float kernel (shaders); -1: not measured (C++ itself,
+                               // or a tree without the C++ file, e.g. a GLSL-only scene)
   double tolerance = 0;
   double ulp_limit = 0;
   int worst_index = -1;        // coefficient index of the largest error
