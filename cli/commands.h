@@ -31,5 +31,6 @@ void add_optimize_command(CLI::App& app, Action& action, const std::string& comm
 void add_codegen_commands(CLI::App& app, Action& action, const std::string& command_line);
 void add_verify_command(CLI::App& app, Action& action);
 void add_analyze_command(CLI::App& app, Action& action);
+void add_bench_command(CLI::App& app, Action& action);
 
 }  // namespace zhf::cli

@@ -86,7 +86,15 @@ class Rotator {
     Rotator r;
     r.order_ = table.order;
     r.table_ = table;
-    for (const RuntimeBand& band : table.bands) r.evaluators_.emplace_back(band.l);
+    for (const RuntimeBand& band : table.bands) {
+      r.evaluators_.emplace_back(band.l);
+      // A's structural zeros cost nothing here either (and pruned tables run faster).
+      const int size = 2 * band.l + 1;
+      r.nonzeros_.emplace_back();
+      for (int m = 0; m < size; ++m)
+        for (int d = 0; d < size; ++d)
+          if (band.inverse[m * size + d] != 0) r.nonzeros_.back().push_back({m, d, T(band.inverse[m * size + d])});
+    }
     return r;
   }
 
@@ -213,8 +221,7 @@ class Rotator {
         const RuntimeBand& band = table_.bands[b];
         const int size = 2 * band.l + 1, base = band.l * band.l;
         z.assign(size, T(0));
-        for (int m = 0; m < size; ++m)
-          for (int d = 0; d < size; ++d) z[d] += T(band.inverse[m * size + d]) * f[base + m];
+        for (const Nonzero& a : nonzeros_[b]) z[a.d] += a.value * f[base + a.m];
         for (int m = 0; m < size; ++m) {
           T sum = 0;
           for (int d = 0; d < size; ++d) sum += y_rotated[b][d * size + m] * z[d];
@@ -227,8 +234,13 @@ class Rotator {
   int order_ = 0;
   Kernel kernel_ = nullptr;
   void (*rgb_kernel_)(const T*, const T*, T*) = nullptr;
+  struct Nonzero {
+    int m, d;
+    T value;  // A_l[m][d]
+  };
   LobeTableData table_;
   std::vector<BandEvaluator<T>> evaluators_;
+  std::vector<std::vector<Nonzero>> nonzeros_;  // per band, row-major order
 };
 
 }  // namespace zhf::runtime

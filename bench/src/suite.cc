@@ -1,0 +1,599 @@
+#include "zhf/bench/suite.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "healpix_method.h"
+#include "zhf/io/files.h"
+#include "zhf/runtime/lobe_table.h"
+#include "zhf/runtime/rotator.h"
+#include "zhf/sh/reference_rotation.h"
+#include "zhf/sh/zxzxz.h"
+
+namespace zhf::bench {
+namespace fs = std::filesystem;
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Scale of one run.
+struct Scale {
+  int pool;           // distinct inputs per order (errors are measured on all of them)
+  int repeats;        // timed repeats; median, min and max are reported
+  double seconds;     // target time of one repeat
+  size_t batch;       // vectors in the batch and shared scenarios
+};
+
+// Random rotations and unit-norm coefficient vectors (three channels each), with the double
+// reference rotation of every channel.
+struct Pool {
+  int order = 0, n = 0, size = 0;
+  std::vector<sh::Matrix3> r;
+  std::vector<double> rd, fd;   // 9 and 3 N^2 per input
+  std::vector<float> rf, ff;
+  std::vector<double> reference;  // 3 N^2 per input
+
+  Pool(int order_, int count) : order(order_), n(order_ * order_), size(count) {
+    std::mt19937_64 rng(1000 + order);
+    std::normal_distribution<double> normal;
+    for (int k = 0; k < count; ++k) {
+      r.push_back(sh::random_rotation(rng));
+      for (int i = 0; i < 9; ++i) rd.push_back(r.back()(i / 3, i % 3));
+      const sh::BandMatrices bands = sh::ivanic_ruedenberg(r.back(), order);
+      for (int c = 0; c < 3; ++c) {
+        Eigen::VectorXd f(n);
+        for (int i = 0; i < n; ++i) f[i] = normal(rng);
+        f.normalize();
+        fd.insert(fd.end(), f.data(), f.data() + n);
+        const Eigen::VectorXd g = sh::apply_band_matrices(bands, f);
+        reference.insert(reference.end(), g.data(), g.data() + n);
+      }
+    }
+    rf.assign(rd.begin(), rd.end());
+    ff.assign(fd.begin(), fd.end());
+  }
+  template <class T>
+  const T* rot(int k) const {
+    if constexpr (std::is_same_v<T, float>) return &rf[9 * size_t(k)];
+    else return &rd[9 * size_t(k)];
+  }
+  template <class T>
+  const T* coeffs(int k) const {
+    if constexpr (std::is_same_v<T, float>) return &ff[3 * size_t(n) * k];
+    else return &fd[3 * size_t(n) * k];
+  }
+};
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+// Times `call(k)` over the pool until a repeat lasts scale.seconds; ns per call.
+template <class F>
+void time_calls(const Scale& scale, int pool, F&& call, Row& row) {
+  auto run = [&](long calls) {
+    const auto t0 = Clock::now();
+    for (long i = 0; i < calls; ++i) call(static_cast<int>(i % pool));
+    return std::chrono::duration<double, std::nano>(Clock::now() - t0).count();
+  };
+  const double first = run(pool);  // warm-up and calibration
+  const long calls = std::max<long>(pool, static_cast<long>(scale.seconds * 1e9 / std::max(1.0, first / pool)));
+  std::vector<double> ns;
+  for (int rep = 0; rep < scale.repeats; ++rep) ns.push_back(run(calls) / calls);
+  row.ns_median = median(ns);
+  row.ns_min = *std::min_element(ns.begin(), ns.end());
+  row.ns_max = *std::max_element(ns.begin(), ns.end());
+}
+
+// Error of outputs out[k * stride + c * n + i] against the pool's reference, channels c.
+template <class T>
+void measure_error(const Pool& pool, const std::vector<T>& out, int channels, int count, Row& row) {
+  double worst = 0, sum = 0;
+  size_t terms = 0;
+  for (int k = 0; k < count; ++k)
+    for (int c = 0; c < channels; ++c)
+      for (int i = 0; i < pool.n; ++i) {
+        const double e = std::abs(double(out[(size_t(k) * channels + c) * pool.n + i]) - pool.reference[(3 * size_t(k) + c) * pool.n + i]);
+        worst = std::isnan(e) ? INFINITY : std::max(worst, e);
+        sum += e * e;
+        ++terms;
+      }
+  row.max_error = worst;
+  row.rms_error = std::sqrt(sum / std::max<size_t>(1, terms));
+}
+
+Row make_row(const std::string& method, const std::string& scenario, const std::string& precision, int order,
+             const std::string& variant = "") {
+  Row r;
+  r.method = method;
+  r.scenario = scenario;
+  r.precision = precision;
+  r.order = order;
+  r.variant = variant;
+  return r;
+}
+
+// One vector (channels = 1) or planar RGB (3) per call, a new rotation each time:
+// rotate(R, in, out) on T.
+template <class T, class F>
+Row single(const Scale& scale, const Pool& pool, const std::string& method, const std::string& scenario, int channels,
+           F&& rotate, const std::string& variant = "") {
+  Row row = make_row(method, scenario, std::is_same_v<T, float> ? "float" : "double", pool.order, variant);
+  std::vector<T> out(size_t(pool.size) * channels * pool.n);
+  // Channel c of input k is the pool's channel c: the coefficients are contiguous per input.
+  time_calls(scale, pool.size, [&](int k) { rotate(pool.rot<T>(k), pool.coeffs<T>(k), &out[size_t(k) * channels * pool.n]); }, row);
+  measure_error(pool, out, channels, pool.size, row);
+  return row;
+}
+
+// Operation counts through a counting scalar (zxzxz), as implemented.
+struct Counted {
+  double v = 0;
+  static inline long multiplies = 0, adds = 0, calls = 0;
+  Counted() = default;
+  Counted(double x) : v(x) {}  // NOLINT: constants convert implicitly, as T(x) does
+  friend Counted operator*(Counted a, Counted b) { return ++multiplies, Counted(a.v * b.v); }
+  friend Counted operator+(Counted a, Counted b) { return ++adds, Counted(a.v + b.v); }
+  friend Counted operator-(Counted a, Counted b) { return ++adds, Counted(a.v - b.v); }
+  friend Counted operator-(Counted a) { return ++adds, Counted(-a.v); }
+  friend bool operator>=(Counted a, Counted b) { return a.v >= b.v; }
+  friend Counted atan2(Counted a, Counted b) { return ++calls, Counted(std::atan2(a.v, b.v)); }
+  friend Counted hypot(Counted a, Counted b) { return ++calls, Counted(std::hypot(a.v, b.v)); }
+  friend Counted sin(Counted a) { return ++calls, Counted(std::sin(a.v)); }
+  friend Counted cos(Counted a) { return ++calls, Counted(std::cos(a.v)); }
+};
+
+void count_zxzxz(int order, Row& row) {
+  const sh::ZxzxzRotator<Counted> z(order);
+  const sh::Matrix3 m = sh::rotation_from_zyz(0.3, 1.1, -0.4);
+  std::vector<Counted> r(9), in(order * order), out(order * order);
+  for (int i = 0; i < 9; ++i) r[i] = m(i / 3, i % 3);
+  Counted::multiplies = Counted::adds = Counted::calls = 0;
+  z.rotate(r.data(), in.data(), out.data());
+  row.multiplies = Counted::multiplies;
+  row.adds = Counted::adds;
+}
+
+// Op counts of the generated C++ kernels, from the manifest.
+std::map<std::string, std::pair<long, long>> manifest_counts(const fs::path& manifest) {
+  std::map<std::string, std::pair<long, long>> out;
+  if (!fs::exists(manifest)) return out;
+  const nlohmann::json j = io::read_json_file(manifest.string());
+  for (const auto& f : j["files"])
+    if (f["language"] == "cpp")
+      for (const auto& fn : f["functions"]) out[fn["name"]] = {fn["multiplies"].get<long>(), fn["adds"].get<long>()};
+  return out;
+}
+
+// A table with every entry of A below threshold * max |A| set to zero.
+runtime::LobeTableData pruned(runtime::LobeTableData table, double threshold) {
+  for (runtime::RuntimeBand& band : table.bands) {
+    double largest = 0;
+    for (double a : band.inverse) largest = std::max(largest, std::abs(a));
+    for (double& a : band.inverse)
+      if (std::abs(a) < threshold * largest) a = 0;
+  }
+  return table;
+}
+
+long nonzeros(const runtime::LobeTableData& table) {
+  long count = 0;
+  for (const runtime::RuntimeBand& band : table.bands)
+    for (double a : band.inverse) count += a != 0;
+  return count;
+}
+
+// count vectors, each its own rotation (taken round-robin from the pool), over threads.
+template <class F>
+Row batch(const Scale& scale, const Pool& pool, const std::string& method, int threads, F&& rotate_range,
+          size_t count) {
+  Row row = make_row(method, "batch", "float", pool.order, "threads " + std::to_string(threads));
+  const size_t n = pool.n;
+  std::vector<float> r(9 * count), in(n * count), out(n * count);
+  for (size_t v = 0; v < count; ++v) {
+    const int k = static_cast<int>(v % pool.size);
+    std::copy(pool.rot<float>(k), pool.rot<float>(k) + 9, &r[9 * v]);
+    std::copy(pool.coeffs<float>(k), pool.coeffs<float>(k) + n, &in[n * v]);
+  }
+  std::vector<double> ns;
+  for (int rep = 0; rep < std::max(1, scale.repeats / 2); ++rep) {
+    const auto t0 = Clock::now();
+    std::vector<std::thread> pool_threads;
+    const size_t chunk = (count + threads - 1) / threads;
+    for (int t = 1; t < threads; ++t)
+      pool_threads.emplace_back([&, t] { rotate_range(std::min(count, t * chunk), std::min(count, (t + 1) * chunk), r.data(), in.data(), out.data()); });
+    rotate_range(0, std::min(count, chunk), r.data(), in.data(), out.data());
+    for (std::thread& t : pool_threads) t.join();
+    ns.push_back(std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / count);
+  }
+  row.ns_median = median(ns);
+  row.ns_min = *std::min_element(ns.begin(), ns.end());
+  row.ns_max = *std::max_element(ns.begin(), ns.end());
+  // Errors on the first pool entries (input v is pool entry v % pool, channel 0).
+  std::vector<float> first(size_t(pool.size) * n);
+  std::copy(out.begin(), out.begin() + std::min(out.size(), first.size()), first.begin());
+  measure_error(pool, first, 1, static_cast<int>(std::min<size_t>(pool.size, count)), row);
+  return row;
+}
+
+// The same over structure-of-arrays slices, one per thread: element i of vector v of a
+// slice of m vectors at [i * m + v].
+template <class F>
+Row batch_soa(const Scale& scale, const Pool& pool, int threads, size_t count, F&& kernel) {
+  Row row = make_row("zhf_batch_soa", "batch", "float", pool.order, "threads " + std::to_string(threads));
+  const size_t n = pool.n, chunk = (count + threads - 1) / threads;
+  struct Slice {
+    size_t m;
+    std::vector<float> r, in, out;
+  };
+  std::vector<Slice> slices;
+  for (int t = 0; t < threads; ++t) {
+    Slice s;
+    s.m = std::min(count, (t + 1) * chunk) - std::min(count, t * chunk);
+    s.r.resize(9 * s.m), s.in.resize(n * s.m), s.out.resize(n * s.m);
+    for (size_t v = 0; v < s.m; ++v) {
+      const int k = static_cast<int>((t * chunk + v) % pool.size);
+      for (int i = 0; i < 9; ++i) s.r[i * s.m + v] = pool.rot<float>(k)[i];
+      for (size_t i = 0; i < n; ++i) s.in[i * s.m + v] = pool.coeffs<float>(k)[i];
+    }
+    slices.push_back(std::move(s));
+  }
+  std::vector<double> ns;
+  for (int rep = 0; rep < std::max(1, scale.repeats / 2); ++rep) {
+    const auto t0 = Clock::now();
+    std::vector<std::thread> workers;
+    for (int t = 1; t < threads; ++t)
+      workers.emplace_back([&, t] { kernel(slices[t].m, slices[t].r.data(), slices[t].in.data(), slices[t].out.data()); });
+    kernel(slices[0].m, slices[0].r.data(), slices[0].in.data(), slices[0].out.data());
+    for (std::thread& w : workers) w.join();
+    ns.push_back(std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / count);
+  }
+  row.ns_median = median(ns);
+  row.ns_min = *std::min_element(ns.begin(), ns.end());
+  row.ns_max = *std::max_element(ns.begin(), ns.end());
+  const int checked = static_cast<int>(std::min<size_t>(pool.size, slices[0].m));
+  std::vector<float> first(size_t(checked) * n);
+  for (int v = 0; v < checked; ++v)
+    for (size_t i = 0; i < n; ++i) first[v * n + i] = slices[0].out[i * slices[0].m + v];
+  measure_error(pool, first, 1, checked, row);
+  return row;
+}
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+  return "unknown";
+}
+
+std::string today() {
+  const std::time_t t = std::time(nullptr);
+  char buffer[32];
+  std::strftime(buffer, sizeof buffer, "%Y-%m-%d", std::gmtime(&t));
+  return buffer;
+}
+
+}  // namespace
+
+SuiteReport run_suite(const SuiteOptions& o) {
+  const Scale scale = o.quick ? Scale{64, 3, 0.002, 1 << 14} : Scale{512, 7, 0.05, 1 << 20};
+  std::vector<int> orders = o.orders;
+  if (orders.empty()) orders = {2, 3, 4, 5, 6, 7, 8, 10, 12, 16};
+  const fs::path root = o.source_dir;
+  const auto counts = manifest_counts(root / "generated" / "manifest.json");
+  SuiteReport report;
+  report.cpu = cpu_model();
+  report.compiler = std::string("g++/clang ") + __VERSION__;
+  report.flags = ZHF_BENCH_FLAGS;
+  report.date = today();
+  auto say = [&](const Row& r) {
+    report.rows.push_back(r);
+    if (o.progress) {
+      char line[200];
+      std::snprintf(line, sizeof line, "N=%-2d %-7s %-22s %-16s %9.1f ns  max err %.2e", r.order, r.scenario.c_str(),
+                    r.method.c_str(), r.variant.c_str(), r.ns_median, r.max_error);
+      o.progress(line);
+    }
+  };
+  auto with_counts = [&](Row r, const std::string& function) {
+    const auto it = counts.find(function);
+    if (it != counts.end()) r.multiplies = it->second.first, r.adds = it->second.second;
+    return r;
+  };
+  if (!healpix_available()) report.notes.push_back("healpix: not built (libhealpix-cxx-dev was not found at configure time)");
+
+  for (int order : orders) {
+    const Pool pool(order, scale.pool);
+    const std::string on = "_order" + std::to_string(order);
+    const bool generated = order >= 2 && order <= runtime::kMaxGeneratedOrder;
+    const fs::path table_path = root / "generated" / "lobes" / ("order_" + std::to_string(order) + ".json");
+    const bool have_table = order >= 3 && fs::exists(table_path) && order <= 16;
+
+    // Scenario 1: one vector, a new rotation per call.
+    if (generated) {
+      const auto f = runtime::Rotator<float>::generated(order);
+      const auto d = runtime::Rotator<double>::generated(order);
+      say(with_counts(single<float>(scale, pool, "zhf", "single", 1, [&](auto r, auto in, auto out) { f.rotate(r, in, out); }), "rotate" + on));
+      say(with_counts(single<double>(scale, pool, "zhf", "single", 1, [&](auto r, auto in, auto out) { d.rotate(r, in, out); }), "rotate" + on));
+      auto tailored = [&](const float* r, const float* in, float* out) {
+        switch (order) {
+          case 2: gen::rotate_signal_tailored_order2<float>(r, in, out); break;
+          case 3: gen::rotate_signal_tailored_order3<float>(r, in, out); break;
+          case 4: gen::rotate_signal_tailored_order4<float>(r, in, out); break;
+          case 5: gen::rotate_signal_tailored_order5<float>(r, in, out); break;
+          case 6: gen::rotate_signal_tailored_order6<float>(r, in, out); break;
+          case 7: gen::rotate_signal_tailored_order7<float>(r, in, out); break;
+          default: gen::rotate_signal_tailored_order8<float>(r, in, out); break;
+        }
+      };
+      say(with_counts(single<float>(scale, pool, "zhf_signal_tailored", "single", 1, tailored), "rotate_signal_tailored" + on));
+      say(with_counts(single<float>(scale, pool, "zhf", "rgb", 3, [&](auto r, auto in, auto out) { f.rotate_rgb(r, in, out); }), "rotate_rgb" + on));
+    }
+    if (have_table) {
+      const runtime::LobeTableData table = runtime::read_lobe_table(table_path.string());
+      const auto t = runtime::Rotator<float>::from_table(table);
+      say(single<float>(scale, pool, "zhf_runtime", "single", 1, [&](auto r, auto in, auto out) { t.rotate(r, in, out); }));
+      say(single<float>(scale, pool, "zhf_runtime", "rgb", 3, [&](auto r, auto in, auto out) { t.rotate_rgb(r, in, out); }));
+      if (generated) {
+        // Knob: pruned tables, through the runtime path (which skips A's zeros).
+        for (double threshold : {1e-3, 1e-2}) {
+          const runtime::LobeTableData p = pruned(table, threshold);
+          const auto pr = runtime::Rotator<float>::from_table(p);
+          char variant[96];
+          std::snprintf(variant, sizeof variant, "pruned %.0e (%ld of %ld nonzeros)", threshold, nonzeros(p), nonzeros(table));
+          say(single<float>(scale, pool, "zhf_runtime", "single", 1, [&](auto r, auto in, auto out) { pr.rotate(r, in, out); }, variant));
+        }
+      }
+    }
+    // Knobs: lobe sets from other searches (bench/tables): condition bound, no sharing.
+    for (const auto& [file, variant] : std::vector<std::pair<std::string, std::string>>{
+             {"order_6_cond50.json", "table cond<=50"}, {"order_5_no_sharing.json", "no sharing"},
+             {"order_4_no_sharing.json", "no sharing"}}) {
+      const fs::path path = root / "bench" / "tables" / file;
+      if (!fs::exists(path)) continue;
+      const runtime::LobeTableData table = runtime::read_lobe_table(path.string());
+      if (table.order != order) continue;
+      const auto t = runtime::Rotator<float>::from_table(table);
+      say(single<float>(scale, pool, "zhf_runtime", "single", 1, [&](auto r, auto in, auto out) { t.rotate(r, in, out); }, variant));
+    }
+    {
+      const sh::ZxzxzRotator<float> z(order);
+      Row row = single<float>(scale, pool, "zxzxz", "single", 1, [&](auto r, auto in, auto out) { z.rotate(r, in, out); });
+      count_zxzxz(order, row);
+      say(row);
+      say(single<float>(scale, pool, "zxzxz", "rgb", 3, [&](auto r, auto in, auto out) { z.rotate_channels(r, in, out, 3); }));
+    }
+    {
+      // The usual general method: band matrices per rotation (double, Eigen), then applied.
+      auto ir = [&](const double* r, const double* in, double* out, int channels) {
+        const sh::BandMatrices bands = sh::ivanic_ruedenberg(Eigen::Map<const sh::Matrix3>(r), order);
+        for (int c = 0; c < channels; ++c) {
+          const Eigen::Map<const Eigen::VectorXd> f(in + c * pool.n, pool.n);
+          Eigen::Map<Eigen::VectorXd>(out + c * pool.n, pool.n) = sh::apply_band_matrices(bands, f);
+        }
+      };
+      say(single<double>(scale, pool, "ivanic_ruedenberg", "single", 1, [&](auto r, auto in, auto out) { ir(r, in, out, 1); }));
+      say(single<double>(scale, pool, "ivanic_ruedenberg", "rgb", 3, [&](auto r, auto in, auto out) { ir(r, in, out, 3); }));
+    }
+    if (healpix_available()) {
+      const HealpixRotator h(order);
+      say(single<double>(scale, pool, "healpix", "single", 1, [&](auto r, auto in, auto out) { h.rotate(r, in, out); }, "incl. real<->complex"));
+      // The conversions' share of that time, alone (no rotation, so no error to report).
+      Row convert = single<double>(scale, pool, "healpix", "single", 1, [&](auto r, auto in, auto out) { h.convert_only(r, in, out); }, "conversion only");
+      convert.max_error = convert.rms_error = NAN;
+      say(convert);
+    }
+
+    // Scenarios 3 and 4 at the generated orders.
+    if (!generated) continue;
+    const size_t count = scale.batch;
+    const auto f = runtime::Rotator<float>::generated(order);
+    const sh::ZxzxzRotator<float> z(order);
+    const size_t n = pool.n;
+    for (int threads : {1, 2}) {
+      say(batch(scale, pool, "zhf", threads, [&](size_t b, size_t e, const float* r, const float* in, float* out) {
+        f.rotate_batch(e - b, r + 9 * b, in + n * b, out + n * b, 1);
+      }, count));
+      // The generated structure-of-arrays kernel, each thread on its own SoA slice (laid out
+      // before timing, as a caller keeping SoA data would).
+      say(batch_soa(scale, pool, threads, count, [&](size_t m, const float* r, const float* in, float* out) {
+        switch (order) {
+          case 2: gen::rotate_batch_order2<float>(m, r, in, out); break;
+          case 3: gen::rotate_batch_order3<float>(m, r, in, out); break;
+          case 4: gen::rotate_batch_order4<float>(m, r, in, out); break;
+          case 5: gen::rotate_batch_order5<float>(m, r, in, out); break;
+          case 6: gen::rotate_batch_order6<float>(m, r, in, out); break;
+          case 7: gen::rotate_batch_order7<float>(m, r, in, out); break;
+          default: gen::rotate_batch_order8<float>(m, r, in, out); break;
+        }
+      }));
+      say(batch(scale, pool, "zxzxz", threads, [&](size_t b, size_t e, const float* r, const float* in, float* out) {
+        for (size_t v = b; v < e; ++v) z.rotate(r + 9 * v, in + n * v, out + n * v);
+      }, count));
+    }
+    {
+      // Scenario 4: one rotation for every vector. Dense band matrices built once (through
+      // the zhf kernel), then a small product per vector; zhf per vector for comparison.
+      Row dense_row = make_row("dense_apply", "shared", "float", order, "build once");
+      Row zhf_row = make_row("zhf", "shared", "float", order, "per vector");
+      std::vector<float> in(n * count), out(n * count);
+      for (size_t v = 0; v < count; ++v)
+        std::copy(pool.coeffs<float>(0), pool.coeffs<float>(0) + n, &in[n * v]);
+      std::vector<double> dense_ns, zhf_ns;
+      for (int rep = 0; rep < std::max(1, scale.repeats / 2); ++rep) {
+        auto t0 = Clock::now();
+        const runtime::DenseRotation<float> dense = f.dense(pool.rot<float>(0));
+        for (size_t v = 0; v < count; ++v) dense.apply(&in[n * v], &out[n * v]);
+        dense_ns.push_back(std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / count);
+        t0 = Clock::now();
+        for (size_t v = 0; v < count; ++v) f.rotate(pool.rot<float>(0), &in[n * v], &out[n * v]);
+        zhf_ns.push_back(std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / count);
+      }
+      const runtime::DenseRotation<float> dense = f.dense(pool.rot<float>(0));
+      std::vector<float> one(n);
+      dense.apply(pool.coeffs<float>(0), one.data());
+      measure_error(pool, one, 1, 1, dense_row);
+      f.rotate(pool.rot<float>(0), pool.coeffs<float>(0), one.data());
+      measure_error(pool, one, 1, 1, zhf_row);
+      for (auto [row, ns] : {std::pair<Row*, std::vector<double>*>{&dense_row, &dense_ns}, {&zhf_row, &zhf_ns}}) {
+        row->ns_median = median(*ns);
+        row->ns_min = *std::min_element(ns->begin(), ns->end());
+        row->ns_max = *std::max_element(ns->begin(), ns->end());
+        say(*row);
+      }
+    }
+  }
+  return report;
+}
+
+nlohmann::ordered_json SuiteReport::to_json() const {
+  nlohmann::ordered_json j;
+  j["format"] = "zhf-bench-1";
+  j["cpu"] = cpu;
+  j["compiler"] = compiler;
+  j["flags"] = flags;
+  j["date"] = date;
+  j["notes"] = notes;
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  for (const Row& r : rows) {
+    nlohmann::ordered_json x = {{"method", r.method},       {"scenario", r.scenario},   {"precision", r.precision},
+                                {"variant", r.variant},     {"order", r.order},         {"ns_median", r.ns_median},
+                                {"ns_min", r.ns_min},       {"ns_max", r.ns_max},       {"max_error", r.max_error},
+                                {"rms_error", r.rms_error}};
+    if (r.multiplies >= 0) x["multiplies"] = r.multiplies, x["adds"] = r.adds;
+    list.push_back(x);
+  }
+  j["rows"] = list;
+  return j;
+}
+
+std::string SuiteReport::table() const {
+  std::ostringstream out;
+  char line[300];
+  std::snprintf(line, sizeof line, "%-7s %5s  %-20s %-6s %-36s %10s %21s %10s %10s %13s\n", "scenario", "order", "method",
+                "prec", "variant", "ns/vector", "[min, max]", "max err", "RMS err", "mults/adds");
+  out << line;
+  std::vector<Row> sorted = rows;
+  std::stable_sort(sorted.begin(), sorted.end(), [](const Row& a, const Row& b) {
+    return std::tie(a.scenario, a.order) < std::tie(b.scenario, b.order);
+  });
+  for (const Row& r : sorted) {
+    const std::string ops = r.multiplies >= 0 ? std::to_string(r.multiplies) + "/" + std::to_string(r.adds) : "-";
+    char range[64];
+    std::snprintf(range, sizeof range, "[%.1f, %.1f]", r.ns_min, r.ns_max);
+    std::snprintf(line, sizeof line, "%-8s %5d  %-20s %-6s %-36s %10.1f %21s %10.2e %10.2e %13s\n", r.scenario.c_str(),
+                  r.order, r.method.c_str(), r.precision.c_str(), r.variant.c_str(), r.ns_median, range, r.max_error,
+                  r.rms_error, ops.c_str());
+    out << line;
+  }
+  // Per scenario and order: the fastest float method, and its lead over the next method.
+  out << "\nfastest per scenario and order (float methods; ratio = runner-up time / winner time):\n";
+  std::map<std::pair<std::string, int>, std::vector<const Row*>> groups;
+  for (const Row& r : rows)
+    if (r.precision == "float" && r.variant.rfind("pruned", 0) != 0) groups[{r.scenario, r.order}].push_back(&r);
+  for (auto& [key, group] : groups) {
+    std::sort(group.begin(), group.end(), [](const Row* a, const Row* b) { return a->ns_median < b->ns_median; });
+    const Row* best = group.front();
+    const Row* next = nullptr;
+    for (const Row* r : group)
+      if (r->method != best->method) {
+        next = r;
+        break;
+      }
+    std::snprintf(line, sizeof line, "  %-7s N=%-2d %s%s%s %.1f ns", key.first.c_str(), key.second, best->method.c_str(),
+                  best->variant.empty() ? "" : " (", best->variant.empty() ? "" : (best->variant + ")").c_str(), best->ns_median);
+    out << line;
+    if (next) {
+      std::snprintf(line, sizeof line, ", %.2fx ahead of %s%s", next->ns_median / best->ns_median, next->method.c_str(),
+                    next->variant.empty() ? "" : (" (" + next->variant + ")").c_str());
+      out << line;
+    }
+    out << "\n";
+  }
+  for (const std::string& n : notes) out << "note: " << n << "\n";
+  return out.str();
+}
+
+double scaling_exponent(const SuiteReport& report, const std::string& method, const std::string& scenario,
+                        const std::string& variant) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  int k = 0;
+  for (const Row& r : report.rows) {
+    if (r.method != method || r.scenario != scenario || r.variant != variant || r.order < 3 || r.ns_median <= 0) continue;
+    if (method == "zhf" && r.precision != "float") continue;
+    const double x = std::log(double(r.order)), y = std::log(r.ns_median);
+    sx += x, sy += y, sxx += x * x, sxy += x * y, ++k;
+  }
+  if (k < 2) return NAN;
+  return (k * sxy - sx * sy) / (k * sxx - sx * sx);
+}
+
+std::string write_plots(const SuiteReport& report, const std::string& svg_path) {
+  const fs::path svg(svg_path);
+  const fs::path scaling = svg.parent_path() / (svg.stem().string() + "_scaling.svg");
+  // One series per method (and precision/variant), single-vector scenario.
+  std::map<std::string, std::vector<const Row*>> series;
+  for (const Row& r : report.rows) {
+    if (r.scenario != "single") continue;
+    std::string name = r.method + (r.precision == "double" && r.method == "zhf" ? " (double)" : "");
+    if (!r.variant.empty()) name += " [" + r.variant.substr(0, r.variant.find(" (")) + "]";
+    series[name].push_back(&r);
+  }
+  std::ostringstream csv;
+  csv << "# series, order, ns_median, max_error\n";
+  std::ostringstream pareto, time;
+  const std::string csv_path = (svg.parent_path() / (svg.stem().string() + ".csv")).string();
+  // gnuplot draws into temporary files, renamed into place only when it succeeds.
+  const std::string svg_tmp = svg.string() + ".tmp", scaling_tmp = scaling.string() + ".tmp";
+  pareto << "set terminal svg size 1000,700 dynamic background rgb 'white'\nset output '" << svg_tmp << "'\n"
+         << "set title 'zhf bench: max error vs time per rotated vector (one vector, new rotation each call; labels: order N)'\n"
+         << "set logscale xy\nset xlabel 'ns per rotated vector (median)'\nset ylabel 'max abs error vs double reference'\n"
+         << "set key outside right\nset datafile separator ','\nplot ";
+  time << "set terminal svg size 1000,700 dynamic background rgb 'white'\nset output '" << scaling_tmp << "'\n"
+       << "set title 'zhf bench: time vs order (log-log; fitted exponent in the key)'\n"
+       << "set logscale xy\nset xlabel 'order N'\nset ylabel 'ns per rotated vector (median)'\nset xtics (2,3,4,5,6,8,10,12,16)\n"
+       << "set key outside right\nset datafile separator ','\nplot ";
+  int index = 0;
+  for (const auto& [name, rows] : series) {
+    for (const Row* r : rows) csv << name << "," << r->order << "," << r->ns_median << "," << r->max_error << "\n";
+    csv << "\n\n";
+    const std::string sel = "'" + csv_path + "' index " + std::to_string(index);
+    pareto << (index ? ", \\\n  " : "") << sel << " using 3:4 with linespoints title '" << name << "', " << sel
+           << " using 3:4:2 with labels offset 0.8,0.4 notitle";
+    const Row* first = rows.front();
+    const double e = scaling_exponent(report, first->method, "single", first->variant);
+    char title[160];
+    std::snprintf(title, sizeof title, "%s (N^%.2f)", name.c_str(), e);
+    time << (index ? ", \\\n  " : "") << sel << " using 2:3 with linespoints title '" << title << "'";
+    ++index;
+  }
+  pareto << "\n";
+  time << "\n";
+  const std::string gp = (svg.parent_path() / (svg.stem().string() + ".gp")).string();
+  io::write_file_atomically(csv_path, csv.str());
+  io::write_file_atomically(gp, pareto.str() + time.str());
+  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
+    return "gnuplot is not installed: wrote " + csv_path + " and " + gp + " (run: gnuplot " + gp + ")";
+  if (std::system(("gnuplot '" + gp + "'").c_str()) != 0) {
+    fs::remove(svg_tmp);
+    fs::remove(scaling_tmp);
+    return "gnuplot failed on " + gp;
+  }
+  fs::rename(svg_tmp, svg);
+  fs::rename(scaling_tmp, scaling);
+  return "wrote " + svg.string() + " and " + scaling.string() + " (data " + csv_path + ", script " + gp + ")";
+}
+
+}  // namespace zhf::bench
