@@ -12,6 +12,7 @@ packages=(
   libeigen3-dev libnlopt-cxx-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
   glslang-tools spirv-tools libvulkan-dev mesa-vulkan-drivers
+  libhealpix-cxx-dev gnuplot-nox
 )
 missing=()
 for p in "${packages[@]}"; do

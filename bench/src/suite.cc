@@ -288,7 +288,7 @@ std::string today() {
 }  // namespace
 
 SuiteReport run_suite(const SuiteOptions& o) {
-  const Scale scale = o.quick ? Scale{64, 3, 0.002, 1 << 14} : Scale{512, 7, 0.05, 1 << 20};
+  const Scale scale = o.quick ? Scale{128, 3, 0.01, 1 << 15} : Scale{512, 7, 0.05, 1 << 20};
   std::vector<int> orders = o.orders;
   if (orders.empty()) orders = {2, 3, 4, 5, 6, 7, 8, 10, 12, 16};
   const fs::path root = o.source_dir;

@@ -1,0 +1,76 @@
+// zhf bench --quick, as CI runs it: every method ran at every order it covers, and every
+// error is within the method's named tolerance. No timing is asserted.
+#include <filesystem>
+#include <map>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "cli_runner.h"
+#include "zhf/io/files.h"
+#include "zhf/optimizer/lobe_table.h"
+#include "zhf/verify/verify.h"
+
+namespace zhf {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Double-precision methods (zhf double, Ivanic-Ruedenberg, HEALPix) against the reference.
+constexpr double kDoubleTolerance = 1e-12;
+// zxzxz in float: five stages of O(eps) rounding per coefficient, and the Euler angles'
+// rounding turns band l by ~l eps: 4 N eps_f (measured at most 0.6 of it).
+double zxzxz_float_tolerance(int order) { return 4 * order * verify::kFloatEpsilon; }
+
+double condition_of(const fs::path& table) { return optimizer::read_table(table.string()).worst_condition(); }
+
+TEST(Bench, QuickRunMeasuresEveryMethodWithinItsTolerance) {
+  const fs::path dir = test::make_temp_dir();
+  const std::string json = (dir / "bench.json").string();
+  const test::RunResult r = test::run_zhf("bench --quick --json '" + json + "' --plot '" + (dir / "bench.svg").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json report = io::read_json_file(json);
+  const fs::path root(ZHF_SOURCE_DIR);
+  std::map<std::pair<std::string, std::string>, std::set<int>> ran;
+  for (const auto& row : report["rows"]) {
+    const std::string method = row["method"], scenario = row["scenario"], precision = row["precision"];
+    const std::string variant = row["variant"];
+    const int order = row["order"];
+    const std::string where = method + " " + scenario + " " + precision + " [" + variant + "] order " + std::to_string(order);
+    EXPECT_GT(row["ns_median"].get<double>(), 0.0) << where;
+    ran[{method, scenario}].insert(order);
+    if (variant.rfind("pruned", 0) == 0 || variant == "conversion only") continue;  // knobs that trade accuracy away
+    const double error = row["max_error"];
+    double tolerance = kDoubleTolerance;
+    if (precision == "float") {
+      if (method == "zxzxz") {
+        tolerance = zxzxz_float_tolerance(order);
+      } else {
+        fs::path table = root / "generated" / "lobes" / ("order_" + std::to_string(order) + ".json");
+        if (variant == "table cond<=50") table = root / "bench" / "tables" / "order_6_cond50.json";
+        if (variant == "no sharing") table = root / "bench" / "tables" / ("order_" + std::to_string(order) + "_no_sharing.json");
+        tolerance = order < 3 ? verify::kFloatRotationTolerance : verify::float_rotation_tolerance(order, condition_of(table));
+      }
+    }
+    EXPECT_LE(error, tolerance) << where;
+  }
+  const std::set<int> generated = {2, 3, 4, 5, 6, 7, 8};
+  const std::set<int> all = {2, 3, 4, 5, 6, 7, 8, 10, 12, 16};
+  const std::set<int> tables = {3, 4, 5, 6, 7, 8, 10, 12};
+  EXPECT_EQ((ran[{"zhf", "single"}]), generated);
+  EXPECT_EQ((ran[{"zhf_signal_tailored", "single"}]), generated);
+  EXPECT_EQ((ran[{"zhf", "rgb"}]), generated);
+  EXPECT_EQ((ran[{"zhf", "batch"}]), generated);
+  EXPECT_EQ((ran[{"zhf_batch_soa", "batch"}]), generated);
+  EXPECT_EQ((ran[{"dense_apply", "shared"}]), generated);
+  EXPECT_EQ((ran[{"zhf_runtime", "single"}]), tables);
+  EXPECT_EQ((ran[{"zxzxz", "single"}]), all);
+  EXPECT_EQ((ran[{"zxzxz", "batch"}]), generated);
+  EXPECT_EQ((ran[{"ivanic_ruedenberg", "single"}]), all);
+  if (report["notes"].empty()) EXPECT_EQ((ran[{"healpix", "single"}]), all);
+  else std::cout << "[ SKIPPED  ] HEALPix part: " << report["notes"][0] << "\n";
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace zhf
