@@ -49,7 +49,8 @@ struct Pool {
     for (int k = 0; k < count; ++k) {
       r.push_back(sh::random_rotation(rng));
       for (int i = 0; i < 9; ++i) rd.push_back(r.back()(i / 3, i % 3));
-      const sh::BandMatrices bands = sh::ivanic_ruedenberg(r.back(), order);
+      // The quadrature projection: independent of every method measured, Ivanic-Ruedenberg included.
+      const sh::BandMatrices bands = sh::quadrature_rotation(r.back(), order);
       for (int c = 0; c < 3; ++c) {
         Eigen::VectorXd f(n);
         for (int i = 0; i < n; ++i) f[i] = normal(rng);
@@ -295,7 +296,11 @@ SuiteReport run_suite(const SuiteOptions& o) {
   const auto counts = manifest_counts(root / "generated" / "manifest.json");
   SuiteReport report;
   report.cpu = cpu_model();
-  report.compiler = std::string("g++/clang ") + __VERSION__;
+#ifdef __clang__
+  report.compiler = std::string("clang ") + __clang_version__;
+#else
+  report.compiler = std::string("g++ ") + __VERSION__;
+#endif
   report.flags = ZHF_BENCH_FLAGS;
   report.date = today();
   auto say = [&](const Row& r) {
@@ -526,18 +531,30 @@ std::string SuiteReport::table() const {
   return out.str();
 }
 
-double scaling_exponent(const SuiteReport& report, const std::string& method, const std::string& scenario,
-                        const std::string& variant) {
+namespace {
+
+// Least-squares slope of log(ns) on log(N) over the rows with N >= 3.
+double fit_exponent(const std::vector<const Row*>& rows) {
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   int k = 0;
-  for (const Row& r : report.rows) {
-    if (r.method != method || r.scenario != scenario || r.variant != variant || r.order < 3 || r.ns_median <= 0) continue;
-    if (method == "zhf" && r.precision != "float") continue;
-    const double x = std::log(double(r.order)), y = std::log(r.ns_median);
+  for (const Row* r : rows) {
+    if (r->order < 3 || r->ns_median <= 0) continue;
+    const double x = std::log(double(r->order)), y = std::log(r->ns_median);
     sx += x, sy += y, sxx += x * x, sxy += x * y, ++k;
   }
   if (k < 2) return NAN;
   return (k * sxy - sx * sy) / (k * sxx - sx * sx);
+}
+
+}  // namespace
+
+double scaling_exponent(const SuiteReport& report, const std::string& method, const std::string& scenario,
+                        const std::string& variant) {
+  std::vector<const Row*> rows;
+  for (const Row& r : report.rows)
+    if (r.method == method && r.scenario == scenario && r.variant == variant && (method != "zhf" || r.precision == "float"))
+      rows.push_back(&r);
+  return fit_exponent(rows);
 }
 
 std::string write_plots(const SuiteReport& report, const std::string& svg_path) {
@@ -546,7 +563,7 @@ std::string write_plots(const SuiteReport& report, const std::string& svg_path) 
   // One series per method (and precision/variant), single-vector scenario.
   std::map<std::string, std::vector<const Row*>> series;
   for (const Row& r : report.rows) {
-    if (r.scenario != "single") continue;
+    if (r.scenario != "single" || r.variant == "conversion only") continue;
     std::string name = r.method + (r.precision == "double" && r.method == "zhf" ? " (double)" : "");
     if (!r.variant.empty()) name += " [" + r.variant.substr(0, r.variant.find(" (")) + "]";
     series[name].push_back(&r);
@@ -558,25 +575,27 @@ std::string write_plots(const SuiteReport& report, const std::string& svg_path) 
   // gnuplot draws into temporary files, renamed into place only when it succeeds.
   const std::string svg_tmp = svg.string() + ".tmp", scaling_tmp = scaling.string() + ".tmp";
   pareto << "set terminal svg size 1000,700 dynamic background rgb 'white'\nset output '" << svg_tmp << "'\n"
-         << "set title 'zhf bench: max error vs time per rotated vector (one vector, new rotation each call; labels: order N)'\n"
+         << "set title 'zhf bench: max error vs time per rotated vector (one vector, new rotation each call; labels: order N)' noenhanced\n"
          << "set logscale xy\nset xlabel 'ns per rotated vector (median)'\nset ylabel 'max abs error vs double reference'\n"
-         << "set key outside right\nset datafile separator ','\nplot ";
+         << "set key outside right noenhanced\nset datafile separator ','\nplot ";
   time << "set terminal svg size 1000,700 dynamic background rgb 'white'\nset output '" << scaling_tmp << "'\n"
        << "set title 'zhf bench: time vs order (log-log; fitted exponent in the key)'\n"
        << "set logscale xy\nset xlabel 'order N'\nset ylabel 'ns per rotated vector (median)'\nset xtics (2,3,4,5,6,8,10,12,16)\n"
-       << "set key outside right\nset datafile separator ','\nplot ";
-  int index = 0;
+       << "set key outside right noenhanced\nset datafile separator ','\nplot ";
+  int index = 0, scaling_series = 0;
   for (const auto& [name, rows] : series) {
-    for (const Row* r : rows) csv << name << "," << r->order << "," << r->ns_median << "," << r->max_error << "\n";
+    // An exact zero would vanish from a log axis: plotted at 1e-17, below every measured error.
+    for (const Row* r : rows) csv << name << "," << r->order << "," << r->ns_median << "," << std::max(r->max_error, 1e-17) << "\n";
     csv << "\n\n";
     const std::string sel = "'" + csv_path + "' index " + std::to_string(index);
     pareto << (index ? ", \\\n  " : "") << sel << " using 3:4 with linespoints title '" << name << "', " << sel
            << " using 3:4:2 with labels offset 0.8,0.4 notitle";
-    const Row* first = rows.front();
-    const double e = scaling_exponent(report, first->method, "single", first->variant);
-    char title[160];
-    std::snprintf(title, sizeof title, "%s (N^%.2f)", name.c_str(), e);
-    time << (index ? ", \\\n  " : "") << sel << " using 2:3 with linespoints title '" << title << "'";
+    // The scaling plot shows the methods, not the knobs (pruned tables, other lobe sets).
+    if (rows.front()->variant.empty() || rows.front()->method == "healpix") {
+      char title[160];
+      std::snprintf(title, sizeof title, "%s (N^%.2f)", name.c_str(), fit_exponent(rows));
+      time << (scaling_series++ ? ", \\\n  " : "") << sel << " using 2:3 with linespoints title '" << title << "'";
+    }
     ++index;
   }
   pareto << "\n";
