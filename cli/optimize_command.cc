@@ -16,7 +16,7 @@
 namespace zhf::cli {
 namespace {
 
-inline constexpr int kMaxOptimizeOrder = 16;
+inline constexpr int kMaxOptimizeOrder = 32;
 
 struct OptimizeOptions {
   int order = 0;
@@ -187,7 +187,7 @@ int run_optimize(const OptimizeOptions& o, const std::string& command) {
 void add_optimize_command(CLI::App& app, Action& action, const std::string& command_line) {
   auto o = std::make_shared<OptimizeOptions>();
   CLI::App* c = app.add_subcommand("optimize", "Search for sparse lobe directions of an order");
-  c->add_option("--order", o->order, "Order N (bands 0..N-1), 3..16")->required();
+  c->add_option("--order", o->order, "Order N (bands 0..N-1), 3..32")->required();
   c->add_option("--seed", o->seed, "Random seed (default 1)");
   c->add_option("--time-limit", o->time_limit, "Stop after this many seconds (0: none; results then depend on speed)")
       ->check(CLI::NonNegativeNumber);

@@ -14,7 +14,7 @@
 
 namespace zhf::runtime {
 
-inline constexpr int kMaxTableOrder = 16;
+inline constexpr int kMaxTableOrder = 32;
 
 struct RuntimeBand {
   int l = 0;

@@ -7,7 +7,7 @@
 //   rotate_batch many vectors, each with its own rotation; spread over threads when large.
 //   dense        one rotation shared by many vectors: build the band matrices once
 //                (~the cost of N^2/3 rotations), then each apply is a small dense product.
-// A rotator from a lobe table (from_table) handles any order up to 16 at a few times the cost
+// A rotator from a lobe table (from_table) handles any order up to 32 at a few times the cost
 // of the generated kernels; use it when the order is only known at run time.
 #pragma once
 
@@ -81,7 +81,7 @@ class Rotator {
     return r;
   }
 
-  // Any order 2..16 from a parsed lobe table.
+  // Any order 2..32 from a parsed lobe table.
   static Rotator from_table(const LobeTableData& table) {
     Rotator r;
     r.order_ = table.order;
