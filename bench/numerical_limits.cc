@@ -40,7 +40,8 @@ int main(int argc, char** argv) {
   const int trials = argc > 1 ? std::atoi(argv[1]) : 10000;
   const std::string lobes = std::string(ZHF_SOURCE_DIR) + "/generated/lobes/";
   std::printf("| order | path | worst condition | float max error | double max error |\n| --- | --- | --- | --- | --- |\n");
-  for (int order = 2; order <= 16; ++order) {
+  int highest_float = 0, highest_double = 0;
+  for (int order = 2; order <= zhf::runtime::kMaxTableOrder; ++order) {
     const std::string path = lobes + "order_" + std::to_string(order) + ".json";
     if (order > 2 && !std::filesystem::exists(path)) continue;
     const double condition = order == 2 ? 1.0 : zhf::optimizer::read_table(path).worst_condition();
@@ -55,5 +56,9 @@ int main(int argc, char** argv) {
     std::printf("| %d | %s | %.2f | %.2e | %.2e |\n", order, generated ? "generated" : "runtime table", condition, e_float,
                 e_double);
     std::fflush(stdout);
+    if (e_float < 1e-5) highest_float = order;
+    if (e_double < 1e-12) highest_double = order;
   }
+  std::printf("\nhighest order with float error < 1e-5: %d; with double error < 1e-12: %d (of the orders above)\n",
+              highest_float, highest_double);
 }

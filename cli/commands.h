@@ -32,5 +32,6 @@ void add_codegen_commands(CLI::App& app, Action& action, const std::string& comm
 void add_verify_command(CLI::App& app, Action& action);
 void add_analyze_command(CLI::App& app, Action& action);
 void add_bench_command(CLI::App& app, Action& action);
+void add_rotate_command(CLI::App& app, Action& action);
 
 }  // namespace zhf::cli

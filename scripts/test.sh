@@ -22,11 +22,12 @@ echo "== stage 3: fuzzing"
 fuzz_build="${ZHF_BUILD}-fuzz"
 CC=clang CXX=clang++ cmake -S "$ZHF_ROOT" -B "$fuzz_build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DZHF_FUZZ=ON >/dev/null
 cmake --build "$fuzz_build" -j "$ZHF_JOBS"
-for target in fuzz_lobe_table fuzz_runtime_table fuzz_coefficients fuzz_scene; do
+for target in fuzz_lobe_table fuzz_runtime_table fuzz_coefficients fuzz_scene fuzz_rotation_text; do
   work=$(mktemp -d)
   corpus=lobe_table
   [ "$target" = fuzz_coefficients ] && corpus=coefficients
   [ "$target" = fuzz_scene ] && corpus=scene
+  [ "$target" = fuzz_rotation_text ] && corpus=rotation_text
   cp "$ZHF_ROOT"/tests/fuzz_corpus/$corpus/* "$work/"
   echo "-- $target for ${ZHF_FUZZ_SECONDS:-60} s"
   "$fuzz_build/fuzz/$target" -max_total_time="${ZHF_FUZZ_SECONDS:-60}" -artifact_prefix="$work/" -print_final_stats=1 "$work" 2>&1 \

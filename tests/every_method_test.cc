@@ -2,6 +2,7 @@
 // Ivanic-Ruedenberg reference within its named tolerance; the reference itself against the
 // independent quadrature projection. Failure messages name method, order, rotation, index.
 #include <cmath>
+#include <fstream>
 #include <functional>
 #include <random>
 #include <string>
@@ -104,7 +105,8 @@ std::string table_path(int order) {
 }
 
 TEST(EveryMethod, ExtremeRotationsStayWithinEachMethodsTolerance) {
-  for (int order = 2; order <= 12; ++order) {
+  for (int order : {2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 16, 32}) {
+    if (order >= 3 && !std::ifstream(table_path(order))) continue;  // no table for this order
     const bool generated = order <= runtime::kMaxGeneratedOrder;
     runtime::LobeTableData table;
     double condition = 1;
@@ -114,8 +116,9 @@ TEST(EveryMethod, ExtremeRotationsStayWithinEachMethodsTolerance) {
     }
     const std::vector<Extreme> rotations = extremes(table_lobes(table));
     const double float_tolerance = order < 3 ? verify::kFloatRotationTolerance : verify::float_rotation_tolerance(order, condition);
-    // The reference against the independent projection.
-    for (const Extreme& e : rotations) {
+    // The reference against the independent projection (up to 16: the projection's cost grows
+    // as N^6).
+    for (const Extreme& e : order <= 16 ? rotations : std::vector<Extreme>{}) {
       const sh::BandMatrices a = sh::ivanic_ruedenberg(e.r, order), b = sh::quadrature_rotation(e.r, order);
       for (int l = 0; l < order; ++l)
         EXPECT_LE((a[l] - b[l]).cwiseAbs().maxCoeff(), kReferenceAgreement) << "reference, order " << order << ", '" << e.name << "', band " << l;
