@@ -91,6 +91,23 @@ TEST(Objective, RepeatedLobeIsSingular) {
   EXPECT_FALSE(f.feasible);
 }
 
+// Orders above 16 evaluate candidates' SH on demand instead of tabulating them: same fitness.
+TEST(Objective, OnDemandEvaluationMatchesTheTable) {
+  const candidates::CandidateSet& set = candidate_set(6);
+  const LobeEvaluator tabulated(set, true, kDefaultMaxCondition);
+  const LobeEvaluator on_demand(set, true, kDefaultMaxCondition, /*max_tabulated_values=*/0);
+  std::mt19937_64 rng(6);
+  std::uniform_int_distribution<int> pick(0, static_cast<int>(set.directions.size()) - 1);
+  for (int trial = 0; trial < 50; ++trial) {
+    Genome genome(tabulated.genes());
+    for (int& g : genome) g = pick(rng);
+    const Fitness a = tabulated.evaluate(genome), b = on_demand.evaluate(genome);
+    EXPECT_EQ(a.zeros, b.zeros) << "trial " << trial;
+    EXPECT_EQ(a.invertible, b.invertible) << "trial " << trial;
+    EXPECT_EQ(a.worst_condition, b.worst_condition) << "trial " << trial;
+  }
+}
+
 TEST(Objective, PaperLobeSetsGiveThePublishedFigures) {
   const nlohmann::json reference = io::read_json_file(std::string(ZHF_SHARED_DIR) + "/reference/paper_lobes.json");
   for (const auto& entry : reference.at("orders")) {

@@ -52,9 +52,13 @@ int multiply_cost(const Eigen::MatrixXd& inverse) {
   return cost;
 }
 
-LobeEvaluator::LobeEvaluator(const candidates::CandidateSet& set, bool lobe_sharing, double max_condition)
+LobeEvaluator::LobeEvaluator(const candidates::CandidateSet& set, bool lobe_sharing, double max_condition,
+                             size_t max_tabulated_values)
     : candidates_(set), order_(set.order), lobe_sharing_(lobe_sharing), max_condition_(max_condition) {
   const int count = sh::coefficient_count(order_);
+  // The default bound tabulates every order up to 16; order 32 has 6.4 million candidates (52 GB
+  // of values) and evaluates on demand.
+  if (set.directions.size() * count > max_tabulated_values) return;
   sh_.resize(set.directions.size() * count);
   for (size_t c = 0; c < set.directions.size(); ++c) sh::eval_sh(order_, set.directions[c].xyz, &sh_[c * count]);
 }
@@ -63,8 +67,16 @@ Eigen::MatrixXd LobeEvaluator::band_matrix(const Genome& genes, int l) const {
   const int size = 2 * l + 1;
   const int count = sh::coefficient_count(order_);
   Eigen::MatrixXd y(size, size);
+  std::vector<double> values(sh_.empty() ? sh::coefficient_count(l + 1) : 0);
   for (int d = 0; d < size; ++d) {
-    const double* row = &sh_[size_t(genes[lobe_index(l, d, lobe_sharing_)]) * count + l * l];
+    const int candidate = genes[lobe_index(l, d, lobe_sharing_)];
+    const double* row = nullptr;
+    if (sh_.empty()) {
+      sh::eval_sh(l + 1, candidates_.directions[candidate].xyz, values.data());
+      row = &values[l * l];
+    } else {
+      row = &sh_[size_t(candidate) * count + l * l];
+    }
     for (int k = 0; k < size; ++k) y(d, k) = row[k];
   }
   return y;

@@ -53,7 +53,11 @@ struct BandAnalysis {
 
 class LobeEvaluator {
  public:
-  LobeEvaluator(const candidates::CandidateSet& set, bool lobe_sharing, double max_condition);
+  // Candidates' SH values are tabulated up front when they fit in max_tabulated_values doubles,
+  // else evaluated on demand (same results, slower).
+  static constexpr size_t kMaxTabulatedValues = size_t(1) << 27;  // 1 GiB
+  LobeEvaluator(const candidates::CandidateSet& set, bool lobe_sharing, double max_condition,
+                size_t max_tabulated_values = kMaxTabulatedValues);
 
   int order() const { return order_; }
   bool lobe_sharing() const { return lobe_sharing_; }
@@ -74,7 +78,7 @@ class LobeEvaluator {
   int order_;
   bool lobe_sharing_;
   double max_condition_;
-  std::vector<double> sh_;  // y at every candidate: sh_[c * N^2 + index(l, m)]
+  std::vector<double> sh_;  // y at every candidate: sh_[c * N^2 + index(l, m)]; empty: on demand
 };
 
 // Exact zeros: entries at or below kZeroRelative * max|A| set to 0; returns their count.
