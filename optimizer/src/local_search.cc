@@ -89,15 +89,27 @@ SearchResult iterated_local_search(const LobeEvaluator& evaluator, const Genome&
           batch.push_back(genome);
           std::swap(batch.back()[i], batch.back()[j]);
         }
-      std::vector<Fitness> fitness_of_batch;
-      evaluate_all(evaluator, batch, fitness_of_batch, options.threads);
-      result.evaluations += static_cast<long>(batch.size());
+      // In chunks, so an interrupt or the time limit stops even one step of a large order
+      // (order 32 has thousands of moves per gene); the best of what was evaluated is kept.
+      constexpr size_t kChunk = 4096;
+      std::vector<Fitness> fitness_of_batch, chunk_fitness;
+      bool stopped = false;
+      for (size_t begin = 0; begin < batch.size() && !stopped; begin += kChunk) {
+        stopped = detail::interrupted_or_out_of_time(options.stop, options.time_limit_seconds, elapsed(), result);
+        if (stopped) break;
+        const std::vector<Genome> chunk(batch.begin() + begin, batch.begin() + std::min(batch.size(), begin + kChunk));
+        evaluate_all(evaluator, chunk, chunk_fitness, options.threads);
+        fitness_of_batch.insert(fitness_of_batch.end(), chunk_fitness.begin(), chunk_fitness.end());
+      }
+      result.evaluations += static_cast<long>(fitness_of_batch.size());
       int best = -1;
-      for (size_t k = 0; k < batch.size(); ++k)
+      for (size_t k = 0; k < fitness_of_batch.size(); ++k)
         if (better(fitness_of_batch[k], best < 0 ? fitness : fitness_of_batch[best])) best = static_cast<int>(k);
-      if (best < 0) return std::make_pair(genome, fitness);
-      genome = batch[best];
-      fitness = fitness_of_batch[best];
+      if (best >= 0) {
+        genome = batch[best];
+        fitness = fitness_of_batch[best];
+      }
+      if (best < 0 || stopped) return std::make_pair(genome, fitness);
     }
   };
 
