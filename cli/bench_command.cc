@@ -40,7 +40,8 @@ int run_bench(const BenchOptions& o) {
   bench::SuiteOptions options;
   options.quick = o.quick;
   if (!o.orders.empty()) options.orders = parse_bench_orders(o.orders);
-  options.source_dir = std::filesystem::is_directory("generated") ? "." : ZHF_SOURCE_DIR;
+  options.source_dir = std::filesystem::path(project_path("generated")).parent_path().string();
+  if (options.source_dir.empty()) options.source_dir = ".";
   options.progress = [](const std::string& line) { std::fprintf(stderr, "  %s\n", line.c_str()); };
   std::fprintf(stderr, "zhf bench%s: measuring (one line per method, order and scenario)\n", o.quick ? " --quick" : "");
   const bench::SuiteReport report = bench::run_suite(options);

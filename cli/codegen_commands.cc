@@ -55,14 +55,8 @@ int run_emit(const EmitCommandOptions& o, const std::string& command) {
   return kExitOk;
 }
 
-// generated/lobes here, else the checked-in tables of the source tree zhf was built from.
-std::string default_tables() {
-  const std::string here = "generated/lobes";
-  return fs::is_directory(here) ? here : std::string(ZHF_SOURCE_DIR) + "/generated/lobes";
-}
-
 struct GenerateCommandOptions {
-  std::string tables = default_tables();
+  std::string tables = project_path("generated/lobes");
   std::string out = "generated";
   std::string scene;
 };

@@ -2,6 +2,7 @@
 // succeeded. Actions throw zhf::io errors or UsageError; main maps them to exit codes.
 #pragma once
 
+#include <filesystem>
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -24,6 +25,12 @@ struct UsageError : std::runtime_error {
 };
 
 using Action = std::function<int()>;
+
+// A project path (e.g. "generated/lobes") as found here, in the working directory, or else in
+// the source tree zhf was built from: zhf works from the checkout and from anywhere else.
+inline std::string project_path(const std::string& relative) {
+  return std::filesystem::exists(relative) ? relative : std::string(ZHF_SOURCE_DIR) + "/" + relative;
+}
 
 void add_candidates_command(CLI::App& app, Action& action);
 // command_line is how the invocation is recorded in provenance (see main.cc).

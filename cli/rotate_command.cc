@@ -22,12 +22,6 @@ struct RotateOptions {
   std::string out;
 };
 
-// generated/lobes here, else the source tree's.
-std::string tables_dir(const std::string& given) {
-  if (!given.empty()) return given;
-  return std::filesystem::is_directory("generated/lobes") ? "generated/lobes" : std::string(ZHF_SOURCE_DIR) + "/generated/lobes";
-}
-
 int run_rotate(const RotateOptions& o) {
   const int forms = !o.matrix.empty() + !o.zyz.empty() + !o.axis_angle.empty();
   if (forms != 1) throw UsageError("give exactly one of --matrix, --zyz, --axis-angle");
@@ -51,7 +45,7 @@ int run_rotate(const RotateOptions& o) {
   const runtime::Rotator<double> rotator = [&] {
     if (order == 1) return runtime::Rotator<double>();
     if (order <= runtime::kMaxGeneratedOrder) return runtime::Rotator<double>::generated(order);
-    const std::string table = tables_dir(o.tables) + "/order_" + std::to_string(order) + ".json";
+    const std::string table = (o.tables.empty() ? project_path("generated/lobes") : o.tables) + "/order_" + std::to_string(order) + ".json";
     if (!std::filesystem::exists(table))
       throw io::InputError(o.coeffs + ": order " + std::to_string(order) + " has no lobe table (" + table + ")");
     return runtime::Rotator<double>::from_table(runtime::read_lobe_table(table));

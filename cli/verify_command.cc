@@ -10,13 +10,8 @@
 namespace zhf::cli {
 namespace {
 
-// generated/ here, else the source tree's zhf was built from.
-std::string default_generated() {
-  return std::filesystem::is_directory("generated") ? "generated" : std::string(ZHF_SOURCE_DIR) + "/generated";
-}
-
 struct VerifyCommandOptions {
-  std::string generated = default_generated();
+  std::string generated = project_path("generated");
   std::string orders;  // empty: every order in the manifest
   std::string languages = "cpp,glsl,hlsl";
   std::string json;
