@@ -59,6 +59,11 @@ TEST_F(BadInput, OptionsOutOfRangeOrNotNumbers) {
   expect_one_line(run_zhf("emit --table " + kTable3.string() + " --lang cpp --channels 2 --out " + dir_), 2, "--channels", "channels");
   expect_one_line(run_zhf("verify --langs cpp,cuda"), 2, "--langs", "langs");
   expect_one_line(run_zhf("verify --orders two"), 2, "--orders", "orders");
+  expect_one_line(run_zhf("bench --orders 1"), 2, "--orders: 1 is outside [2, 16]", "bench order 1");
+  expect_one_line(run_zhf("bench --orders 3,x"), 2, "--orders: expected a list", "bench orders x");
+  expect_one_line(run_zhf("analyze --coeffs x.json --tolerance 2"), 2, "--tolerance", "tolerance 2");
+  expect_one_line(run_zhf("analyze --coeffs x.json --channels 5"), 2, "--channels", "analyze channels 5");
+  expect_one_line(run_zhf("rotate --coeffs x.json --zyz '1 2 3' --channels 0 --out y.json"), 2, "--channels", "rotate channels 0");
   expect_one_line(run_zhf("frobnicate"), 2, "frobnicate", "unknown subcommand");
   EXPECT_TRUE(fs::is_empty(dir_));
 }
