@@ -28,8 +28,12 @@ using Action = std::function<int()>;
 
 // A project path (e.g. "generated/lobes") as found here, in the working directory, or else in
 // the source tree zhf was built from: zhf works from the checkout and from anywhere else.
+// An empty directory of that name does not count.
 inline std::string project_path(const std::string& relative) {
-  return std::filesystem::exists(relative) ? relative : std::string(ZHF_SOURCE_DIR) + "/" + relative;
+  std::error_code ec;
+  const bool here = std::filesystem::is_directory(relative, ec) ? !std::filesystem::is_empty(relative, ec)
+                                                               : std::filesystem::exists(relative, ec);
+  return here ? relative : std::string(ZHF_SOURCE_DIR) + "/" + relative;
 }
 
 void add_candidates_command(CLI::App& app, Action& action);

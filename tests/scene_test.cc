@@ -126,6 +126,11 @@ TEST(Scene, BadSpecsGetOneLineNamingTheField) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_FALSE(fs::exists(out)) << json;
   }
+  // A failure after the output directory was made (here: no tables) removes it again.
+  const fs::path fresh = dir / "fresh";
+  const test::RunResult no_tables = test::run_zhf("generate --tables '" + (dir / "nowhere").string() + "' --out '" + fresh.string() + "'");
+  EXPECT_EQ(no_tables.exit_code, 3) << no_tables.err;
+  EXPECT_FALSE(fs::exists(fresh));
   const test::RunResult no_out = test::run_zhf("generate --scene '" + write_scene(dir, "{}") + "'");
   EXPECT_EQ(no_out.exit_code, 2);
   EXPECT_NE(no_out.err.find("--out: is required with --scene"), std::string::npos) << no_out.err;

@@ -49,8 +49,20 @@ GenerateResult generate(const GenerateOptions& options) {
   const fs::path out(options.out_dir);
   check_output_dir(out);
   std::error_code ec;
+  const bool created = !fs::exists(out, ec);
   fs::create_directories(out, ec);
   if (ec) throw io::OutputError(out.string() + ": cannot create: " + ec.message());
+  // A run that fails or is interrupted before the commit leaves no trace: not even the output
+  // directory, when this run made it.
+  struct RemoveIfUnused {
+    fs::path path;
+    bool created;
+    bool committed = false;
+    ~RemoveIfUnused() {
+      std::error_code ignored;
+      if (created && !committed && fs::is_empty(path, ignored)) fs::remove(path, ignored);
+    }
+  } out_guard{out, created};
   // Staging inside out_dir keeps the final renames on one file system.
   std::string pattern = (out / ".zhf-staging-XXXXXX").string();
   std::vector<char> name(pattern.begin(), pattern.end());
@@ -134,6 +146,7 @@ GenerateResult generate(const GenerateOptions& options) {
     result.interrupted = true;
     return result;
   }
+  out_guard.committed = true;
   // Commit: every file is complete in staging; each rename replaces one old file whole.
   for (const std::string& relative : result.files) {
     fs::create_directories((out / relative).parent_path(), ec);
