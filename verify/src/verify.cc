@@ -286,10 +286,12 @@ std::string call(const Mode& m, int order, bool cpp) {
   const std::string o = "_order" + std::to_string(order);
   const std::string t = cpp ? "<T>" : "";
   const std::string ns = cpp ? "zhf::gen::" : "";
+  // C++ passes the planar [4][n] arrays; shaders the vector arrays of the channel count.
   const bool multi = m.channels > 1;
-  const std::string cv = multi ? (cpp ? "c" : "cv") : "c1";
-  const std::string ov = multi ? (cpp ? "o" : "ov") : "o1";
-  const std::string zv = multi ? (cpp ? "z" : "zv") : "z1";
+  const std::string width = cpp ? "" : std::to_string(m.channels);
+  const std::string cv = multi ? (cpp ? "c" : "cv") + width : "c1";
+  const std::string ov = multi ? (cpp ? "o" : "ov") + width : "o1";
+  const std::string zv = multi ? (cpp ? "z" : "zv") + width : "z1";
   switch (m.kind) {
     case Kind::kRotate:
     case Kind::kTailored:
@@ -424,17 +426,7 @@ std::string shader_source(const std::string& language, int order, const std::str
       << vec(w) << "(0.0" << std::string(w == 4 ? ", 0.0, 0.0, 0.0" : ", 0.0, 0.0") << "); }\n"
       << "  for (int k = 0; k < " << order << "; ++k) zv" << w << "[k] = " << vec(w) << "(" << zargs << ");\n";
   }
-  for (size_t k = 0; k < modes.size(); ++k) {
-    std::string c = call(modes[k], order, false);
-    if (modes[k].channels > 1) {
-      const std::string w = std::to_string(modes[k].channels);
-      for (const std::string name : {"cv", "ov", "zv"}) {
-        for (size_t at = c.find(name + ")"); at != std::string::npos; at = c.find(name + ")", at)) c.insert(at + 2, w);
-        for (size_t at = c.find(name + ","); at != std::string::npos; at = c.find(name + ",", at)) c.insert(at + 2, w);
-      }
-    }
-    s << "  if (mode == " << k << "u) { " << c << " }\n";
-  }
+  for (size_t k = 0; k < modes.size(); ++k) s << "  if (mode == " << k << "u) { " << call(modes[k], order, false) << " }\n";
   s << "  uint base = (mode * params.count + v) * " << block << "u;\n"
     << "  for (int k = 0; k < " << ns << "; ++k) {\n"
     << "    results[base + uint(k)] = o1[k];\n";
