@@ -18,9 +18,6 @@ namespace fs = std::filesystem;
 
 // Double-precision methods (zhf double, Ivanic-Ruedenberg, HEALPix) against the reference.
 constexpr double kDoubleTolerance = 1e-12;
-// zxzxz in float: five stages of O(eps) rounding per coefficient, and the Euler angles'
-// rounding turns band l by ~l eps: 4 N eps_f (measured at most 0.6 of it).
-double zxzxz_float_tolerance(int order) { return 4 * order * verify::kFloatEpsilon; }
 
 double condition_of(const fs::path& table) { return optimizer::read_table(table.string()).worst_condition(); }
 
@@ -44,7 +41,7 @@ TEST(Bench, QuickRunMeasuresEveryMethodWithinItsTolerance) {
     double tolerance = kDoubleTolerance;
     if (precision == "float") {
       if (method == "zxzxz") {
-        tolerance = zxzxz_float_tolerance(order);
+        tolerance = verify::zxzxz_float_tolerance(order);
       } else {
         fs::path table = root / "generated" / "lobes" / ("order_" + std::to_string(order) + ".json");
         if (variant == "table cond<=50") table = root / "bench" / "tables" / "order_6_cond50.json";

@@ -24,7 +24,6 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDoubleTolerance = 1e-12;          // every double method
 constexpr double kReferenceAgreement = 1e-13;      // Ivanic-Ruedenberg vs quadrature projection
-double zxzxz_float_tolerance(int order) { return 4 * order * verify::kFloatEpsilon; }  // see bench_test.cc
 
 struct Extreme {
   std::string name;
@@ -140,7 +139,7 @@ TEST(EveryMethod, ExtremeRotationsStayWithinEachMethodsTolerance) {
     }
     const sh::ZxzxzRotator<float> zf(order);
     const sh::ZxzxzRotator<double> zd(order);
-    check("zxzxz float", order, rotations, through<float>([&](auto r, auto i, auto o) { zf.rotate(r, i, o); }), zxzxz_float_tolerance(order));
+    check("zxzxz float", order, rotations, through<float>([&](auto r, auto i, auto o) { zf.rotate(r, i, o); }), verify::zxzxz_float_tolerance(order));
     check("zxzxz double", order, rotations, through<double>([&](auto r, auto i, auto o) { zd.rotate(r, i, o); }), kDoubleTolerance);
   }
 }

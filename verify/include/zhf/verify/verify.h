@@ -23,6 +23,9 @@ inline double float_rotation_tolerance(int order, double worst_condition) {
   const double model = kFloatEpsilon * (order - 1) * worst_condition;
   return model > kFloatRotationTolerance ? model : kFloatRotationTolerance;
 }
+// zxzxz (sh/zxzxz.h) in float: five stages of O(eps) rounding per coefficient, and the Euler
+// angles' rounding turns band l by ~l eps: 4 N eps_f (measured at most 0.6 of it).
+inline double zxzxz_float_tolerance(int order) { return 4 * order * kFloatEpsilon; }
 // sh_eval: l-1 recurrence steps of relative error ~4 eps on |y| <= 1.07 (order 8) bound the
 // float error by ~1.7e-6 at l = 7; sh/'s own float evaluation is held to 2e-6 likewise.
 inline constexpr double kFloatEvaluationTolerance = 2e-6;
