@@ -46,6 +46,8 @@ class CppBackend : public Backend {
     config.wrap_literals_in_type = true;
     config.temp_qualifier = "const ";
     config.function_prefix = "template <class T>\ninline ";
+    config.wide_scalar = "W";
+    config.wide_declaration = "using W = std::common_type_t<T, double>;  // the lobe stage's type";
     config.input_array_qualifier = "const ";
     config.batch = true;
     config.planar_channels = true;
@@ -53,7 +55,9 @@ class CppBackend : public Backend {
     file.file_name = "zhf_order" + std::to_string(module.order) + ".h";
     const std::string body = print_functions(module, config, Precision::kDouble, file.counts);
     std::ostringstream out;
-    out << banner("//", options.command, file.counts) << "#pragma once\n\n#include <cstddef>\n\nnamespace zhf::gen {\n\n";
+    out << banner("//", options.command, file.counts) << "#pragma once\n\n#include <cstddef>\n";
+    if (module.wide_lobes) out << "#include <type_traits>\n";
+    out << "\nnamespace zhf::gen {\n\n";
     out << "inline constexpr int kOrder" << module.order << " = " << module.order << ";\n";
     if (!module.lobes.empty()) {
       LanguageConfig plain = config;
@@ -80,6 +84,9 @@ class ShaderBackend : public Backend {
     config.scalar = f64 ? "double" : "float";
     config.vector_stem = glsl_ ? (f64 ? "dvec" : "vec") : (f64 ? "double" : "float");
     config.literal_suffix = f64 ? (glsl_ ? "lf" : "L") : "f";
+    config.wide_scalar = "double";
+    config.wide_vector_stem = glsl_ ? "dvec" : "double";
+    config.wide_literal_suffix = glsl_ ? "lf" : "L";
     config.temp_qualifier = glsl_ ? "" : "const ";  // a GLSL const must be a compile-time constant
     config.input_array_qualifier = glsl_ ? "in " : "";
     config.output_array_qualifier = "out ";

@@ -29,24 +29,31 @@ std::string shortest(double value, Precision precision) {
 
 class Printer {
  public:
-  Printer(const Function& f, const LanguageConfig& c, Precision p) : f_(f), c_(c), p_(p) {}
+  Printer(const Function& f, const LanguageConfig& c, Precision p) : f_(f), c_(c), wide_(widened(c)), p_(p) {}
 
   std::string print(OpCount& ops) {
     std::ostringstream out;
     out << "// " << f_.name << ": " << f_.doc << ".\n";
     out << c_.function_prefix << "void " << f_.name << "(" << signature() << ") {\n";
     std::string indent = "  ";
+    const std::vector<int> outputs = f_.output_nodes();
+    const std::vector<int> live = f_.graph.live(outputs);
+    if (!c_.wide_declaration.empty())
+      for (int i : live)
+        if (f_.graph.node(i).wide) {
+          out << indent << c_.wide_declaration << "\n";
+          break;
+        }
     if (f_.batch) {
       out << "  for (std::size_t v = 0; v < count; ++v) {\n";
       indent = "    ";
     }
-    const std::vector<int> outputs = f_.output_nodes();
-    for (int i : f_.graph.live(outputs)) {
+    for (int i : live) {
       const Node& n = f_.graph.node(i);
       if (n.op == Op::kInput || n.op == Op::kConst) continue;
       const int lanes = scalarized(n) ? n.lanes : 1;
       for (int lane = 0; lane < lanes; ++lane) {
-        out << indent << c_.temp_qualifier << type_of(n) << " " << temp(i, scalarized(n) ? lane : -1) << " = "
+        out << indent << c_.temp_qualifier << type_of(n, n.wide) << " " << temp(i, scalarized(n) ? lane : -1) << " = "
             << expression(n, scalarized(n) ? lane : -1) << ";\n";
         if (n.op == Op::kMul) ++ops.multiplies;
         else ++ops.adds;
@@ -57,9 +64,9 @@ class Printer {
       const Param& param = f_.params[o.param];
       if (param.channels > 1 && c_.planar_channels) {
         for (int lane = 0; lane < param.channels; ++lane)
-          out << indent << access(o.param, o.element, lane) << " = " << operand(o.node, n.lanes > 1 ? lane : -1) << ";\n";
+          out << indent << access(o.param, o.element, lane) << " = " << operand(o.node, n.lanes > 1 ? lane : -1, false) << ";\n";
       } else {
-        out << indent << access(o.param, o.element, -1) << " = " << operand(o.node, -1) << ";\n";
+        out << indent << access(o.param, o.element, -1) << " = " << operand(o.node, -1, false) << ";\n";
       }
     }
     if (f_.batch) out << "  }\n";
@@ -70,7 +77,11 @@ class Printer {
  private:
   bool scalarized(const Node& n) const { return n.lanes > 1 && c_.vector_stem.empty(); }
   std::string vector_type(int lanes) const { return c_.vector_stem + std::to_string(lanes); }
-  std::string type_of(const Node& n) const { return n.lanes > 1 && !c_.vector_stem.empty() ? vector_type(n.lanes) : c_.scalar; }
+  // The type of a value of n's lanes computed wide or not.
+  std::string type_of(const Node& n, bool wide) const {
+    const LanguageConfig& c = wide ? wide_ : c_;
+    return n.lanes > 1 && !c.vector_stem.empty() ? c.vector_stem + std::to_string(n.lanes) : c.scalar;
+  }
   static std::string temp(int i, int lane) {
     return "t" + std::to_string(i) + (lane < 0 ? "" : std::string("_") + "rgba"[lane]);
   }
@@ -104,27 +115,33 @@ class Printer {
     return p.name + "[" + std::to_string(element) + "]";
   }
 
-  std::string literal(double v) const { return format_literal(v, c_, p_); }
-
-  std::string operand(int i, int lane) const {
+  // Node i as an operand of a computation (or a store, wide = false) of the given width:
+  // converted when the widths differ and the language's types do.
+  std::string operand(int i, int lane, bool wide) const {
     const Node& n = f_.graph.node(i);
-    if (n.op == Op::kConst) return literal(n.value);
-    if (n.op == Op::kInput) return access(n.param, n.element, n.lanes > 1 ? lane : -1);
-    return temp(i, scalarized(n) ? lane : -1);
+    if (n.op == Op::kConst) return format_literal(n.value, wide ? wide_ : c_, wide ? Precision::kDouble : p_);
+    const std::string text =
+        n.op == Op::kInput ? access(n.param, n.element, n.lanes > 1 ? lane : -1) : temp(i, scalarized(n) ? lane : -1);
+    const bool input_wide = n.op == Op::kInput ? false : n.wide;
+    if (input_wide == wide || wide_.scalar == c_.scalar) return text;
+    Node value = n;
+    if (scalarized(n)) value.lanes = 1;
+    return type_of(value, wide) + "(" + text + ")";
   }
 
   std::string expression(const Node& n, int lane) const {
     switch (n.op) {
-      case Op::kAdd: return operand(n.a, lane) + " + " + operand(n.b, lane);
-      case Op::kSub: return operand(n.a, lane) + " - " + operand(n.b, lane);
-      case Op::kMul: return operand(n.a, lane) + " * " + operand(n.b, lane);
-      case Op::kNeg: return "-" + operand(n.a, lane);
+      case Op::kAdd: return operand(n.a, lane, n.wide) + " + " + operand(n.b, lane, n.wide);
+      case Op::kSub: return operand(n.a, lane, n.wide) + " - " + operand(n.b, lane, n.wide);
+      case Op::kMul: return operand(n.a, lane, n.wide) + " * " + operand(n.b, lane, n.wide);
+      case Op::kNeg: return "-" + operand(n.a, lane, n.wide);
       default: return "";
     }
   }
 
   const Function& f_;
   const LanguageConfig& c_;
+  const LanguageConfig wide_;
   Precision p_;
 };
 
@@ -133,6 +150,15 @@ class Printer {
 std::string format_literal(double value, const LanguageConfig& config, Precision precision) {
   if (config.wrap_literals_in_type) return config.scalar + "(" + shortest(value, Precision::kDouble) + ")";
   return shortest(value, precision) + config.literal_suffix;
+}
+
+LanguageConfig widened(const LanguageConfig& config) {
+  LanguageConfig wide = config;
+  if (config.wide_scalar.empty()) return wide;
+  wide.scalar = config.wide_scalar;
+  wide.vector_stem = config.vector_stem.empty() ? "" : config.wide_vector_stem;
+  wide.literal_suffix = config.wide_literal_suffix;
+  return wide;
 }
 
 std::string print_function(const Function& function, const LanguageConfig& config, Precision precision,
@@ -167,6 +193,13 @@ std::vector<std::string> lobe_derivation(const Module& module, const EmitOptions
   lines.push_back("The rotations evaluate SH at R u_d, u_d = w_d rescaled so its components are +-1 where possible,");
   lines.push_back("with A_l's column d scaled by |u_d|^-l (band-l SH are homogeneous of degree l) and each");
   lines.push_back("output's normalisation applied once after the sum over lobes.");
+  if (module.wide_lobes) {
+    char model[32];
+    std::snprintf(model, sizeof model, "%.2g", kFloatEpsilon * (module.order - 1) * module.table.worst_condition());
+    lines.push_back("Lobe stage in double: R is projected onto the rotations (one Newton step to its polar factor),");
+    lines.push_back("and the rotated lobes, their SH and the sums over lobes are double, because in float the");
+    lines.push_back(std::string("error model eps_f (N-1) k_max = ") + model + " exceeds the 1e-6 target (zhf emit --lobe-precision).");
+  }
   for (size_t d = 0; d < module.lobes.size(); ++d)
     lines.push_back("  w_" + std::to_string(d) + ": " + module.lobes[d].source);
   return lines;

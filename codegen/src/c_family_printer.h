@@ -20,11 +20,17 @@ struct LanguageConfig {
   std::string function_prefix; // "template <class T>\ninline " for C++
   std::string input_array_qualifier;  // "const " in C++, "in " in GLSL, "" in HLSL
   std::string output_array_qualifier; // "" in C++, "out " in shaders
+  std::string wide_scalar;     // the wide type: "W" (C++), "double"; equal to scalar: no conversions
+  std::string wide_vector_stem;
+  std::string wide_literal_suffix;
+  std::string wide_declaration;  // C++: the line defining W, printed in functions that use it
   bool batch = false;          // structure-of-arrays batch entry points
   bool planar_channels = false;  // C++: multi-channel parameters are [channels][n]
 };
 
 std::string format_literal(double value, const LanguageConfig& config, Precision precision);
+// The same config printing the wide type as its scalar (for the wide nodes).
+LanguageConfig widened(const LanguageConfig& config);
 
 // The function's source text; ops receives the operation count of what was printed
 // (a vector operation counts once).

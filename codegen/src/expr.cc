@@ -6,10 +6,12 @@
 namespace zhf::codegen {
 
 int Graph::intern(const Node& n) {
-  const auto key = std::make_tuple(static_cast<int>(n.op), n.a, n.b, n.value, n.param, n.element);
+  Node node = n;
+  node.wide = wide_;
+  const auto key = std::make_tuple(static_cast<int>(node.op), node.a, node.b, node.value, node.param, node.element, node.wide);
   auto it = index_.find(key);
   if (it != index_.end()) return it->second;
-  nodes_.push_back(n);
+  nodes_.push_back(node);
   index_.emplace(key, size() - 1);
   return size() - 1;
 }

@@ -134,6 +134,7 @@ GenerateResult generate(const GenerateOptions& options) {
                                       {"precision", language == "cpp" ? "template" : precision_name(options.precision)},
                                       {"functions", functions}};
       if (!module_options.zero_bands.empty()) entry["zero_bands"] = module_options.zero_bands;
+      entry["lobe_stage"] = wide_lobes(table, module_options.lobe_precision) ? "double" : "native";
       entry["fnv1a64"] = content_hash(file.text);
       files.push_back(entry);
     }

@@ -115,22 +115,48 @@ void scale_lobe(const double w[3], double u[3]) {
 
 double norm2(const double u[3]) { return u[0] * u[0] + u[1] * u[1] + u[2] * u[2]; }
 
-// v = M u where M is R (transpose = false) or R^T, R = param 0 row-major.
-Vec3 rotate(Graph& g, const double u[3], bool transpose) {
+// v = M u where M is R (transpose = false) or R^T, R's nine nodes row-major.
+Vec3 rotate(Graph& g, const std::vector<int>& r, const double u[3], bool transpose) {
   Vec3 v;
   for (int i = 0; i < 3; ++i) {
     std::vector<std::pair<double, int>> terms;
-    for (int j = 0; j < 3; ++j) terms.push_back({u[j], g.input(0, transpose ? 3 * j + i : 3 * i + j)});
+    for (int j = 0; j < 3; ++j) terms.push_back({u[j], r[transpose ? 3 * j + i : 3 * i + j]});
     v.c[i] = g.linear(terms);
   }
   return v;
 }
 
+// Param 0 (R) projected onto the rotations by one Newton step toward its polar factor,
+// Q = R (3 I - R^T R) / 2. A float R is orthonormal to about eps_f only, and the lobe fit
+// amplifies its symmetric part by the band's condition number (1.3e-6 at order 7 with every
+// later step exact); after the step, done in the wide type, what remains is O(eps_f^2).
+std::vector<int> orthonormalized_rotation(Graph& g) {
+  std::vector<int> gram(9);  // R^T R
+  for (int i = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j) {
+      std::vector<std::pair<double, int>> terms;
+      for (int k = 0; k < 3; ++k) terms.push_back({1.0, g.mul(g.input(0, 3 * k + i), g.input(0, 3 * k + j))});
+      gram[3 * i + j] = gram[3 * j + i] = g.linear(terms);
+    }
+  std::vector<int> step(9);  // (3 I - R^T R) / 2
+  for (int i = 0; i < 9; ++i)
+    step[i] = i % 4 == 0 ? g.sub(g.constant(1.5), g.scale(0.5, gram[i])) : g.scale(-0.5, gram[i]);
+  std::vector<int> q(9);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      std::vector<std::pair<double, int>> terms;
+      for (int k = 0; k < 3; ++k) terms.push_back({1.0, g.mul(g.input(0, 3 * i + k), step[3 * k + j])});
+      q[3 * i + j] = g.linear(terms);
+    }
+  return q;
+}
+
 class Builder {
  public:
-  Builder(const optimizer::LobeTable& table, const std::vector<Lobe>& lobes, const std::vector<int>& zero_bands)
+  Builder(const optimizer::LobeTable& table, const std::vector<Lobe>& lobes, const std::vector<int>& zero_bands,
+          bool wide_lobes)
       : table_(table), lobes_(lobes), order_(table.order), count_(sh::coefficient_count(table.order)),
-        legendre_(std::max(table.order, 1)), live_(std::max(table.order, 1), true) {
+        legendre_(std::max(table.order, 1)), live_(std::max(table.order, 1), true), wide_lobes_(wide_lobes) {
     for (int l : zero_bands)
       if (l >= 0 && l < order_) live_[l] = false;
   }
@@ -186,18 +212,21 @@ class Builder {
         continue;
       }
       std::vector<int> zhat(2 * l + 1);
+      g.set_wide(false);  // the lobe weights only round once per term: float suffices
       for (int d = 0; d < 2 * l + 1; ++d) {
         std::vector<std::pair<double, int>> terms;
         for (int k = 0; k < 2 * l + 1; ++k)
           terms.push_back({band.inverse(k, d) * lobe_scale(band, d), g.input(in, base + k, channels)});
         zhat[d] = g.linear(terms);
       }
+      g.set_wide(wide_lobes_);
       for (int m = -l; m <= l; ++m) {
         std::vector<std::pair<double, int>> terms;
         for (int d = 0; d < 2 * l + 1; ++d) terms.push_back({1.0, g.mul(h[band.lobes[d]][sh::index(l, m)], zhat[d])});
         put(f, out, base + m + l, g.scale(legendre_.output_scale(l, m), g.linear(terms)));
       }
     }
+    g.set_wide(false);
     return f;
   }
 
@@ -225,12 +254,15 @@ class Builder {
         for (int m = -l; m <= l; ++m) terms.push_back({1.0, g.mul(h[band.lobes[d]][sh::index(l, m)], weighted[m + l])});
         samples[d] = g.linear(terms);
       }
+      g.set_wide(false);  // each sample rounded once: float suffices for A s
       for (int m = -l; m <= l; ++m) {
         std::vector<std::pair<double, int>> terms;
         for (int d = 0; d < 2 * l + 1; ++d) terms.push_back({band.inverse(m + l, d) * lobe_scale(band, d), samples[d]});
         put(f, 2, base + m + l, g.linear(terms));
       }
+      g.set_wide(wide_lobes_);
     }
+    g.set_wide(false);
     return f;
   }
 
@@ -263,6 +295,7 @@ class Builder {
           put(f, 1, dense_matrix_offset(l) + side * (m + l) + n, g.scale(legendre_.output_scale(l, m), g.linear(terms)));
         }
     }
+    g.set_wide(false);
     return f;
   }
 
@@ -367,14 +400,19 @@ class Builder {
   }
 
   // Per lobe, the homogeneous polynomials of every live band that uses it, at R u_d (or R^T u_d).
+  // With wide lobes the graph is left wide: the caller narrows where float suffices.
   std::vector<std::vector<int>> lobe_polynomials(Graph& g, bool transpose) const {
+    g.set_wide(wide_lobes_);
+    std::vector<int> r(9);
+    for (int i = 0; i < 9; ++i) r[i] = g.input(0, i);
+    if (wide_lobes_) r = orthonormalized_rotation(g);
     std::vector<std::vector<bool>> bands_of_lobe(lobes_.size(), std::vector<bool>(order_, false));
     for (const optimizer::TableBand& band : table_.bands)
       if (live_[band.l])
         for (int d : band.lobes) bands_of_lobe[d][band.l] = true;
     std::vector<std::vector<int>> h;
     for (size_t d = 0; d < lobes_.size(); ++d) {
-      const Vec3 v = rotate(g, lobes_[d].scaled, transpose);
+      const Vec3 v = rotate(g, r, lobes_[d].scaled, transpose);
       h.push_back(homogeneous_sh(g, v, norm2(lobes_[d].scaled), order_, bands_of_lobe[d], legendre_));
     }
     return h;
@@ -386,6 +424,7 @@ class Builder {
   int count_;
   Legendre legendre_;
   std::vector<bool> live_;  // bands not known to be zero
+  bool wide_lobes_;
 };
 
 }  // namespace
@@ -394,6 +433,28 @@ std::vector<int> Function::output_nodes() const {
   std::vector<int> nodes;
   for (const Output& o : outputs) nodes.push_back(o.node);
   return nodes;
+}
+
+bool float_needs_wide_lobes(const optimizer::LobeTable& table) {
+  return kFloatEpsilon * (table.order - 1) * table.worst_condition() > kFloatRotationTarget;
+}
+
+bool wide_lobes(const optimizer::LobeTable& table, LobePrecision precision) {
+  if (table.order <= 2) return false;
+  return precision == LobePrecision::kDouble || (precision == LobePrecision::kAuto && float_needs_wide_lobes(table));
+}
+
+std::string lobe_precision_name(LobePrecision precision) {
+  return precision == LobePrecision::kAuto ? "auto" : precision == LobePrecision::kFloat ? "float" : "double";
+}
+
+bool parse_lobe_precision(const std::string& text, LobePrecision& precision) {
+  for (LobePrecision p : {LobePrecision::kAuto, LobePrecision::kFloat, LobePrecision::kDouble})
+    if (text == lobe_precision_name(p)) {
+      precision = p;
+      return true;
+    }
+  return false;
 }
 
 optimizer::LobeTable order2_table() {
@@ -418,7 +479,8 @@ Module build_module(const optimizer::LobeTable& table, const ModuleOptions& opti
     lobe.source = t.source;
     module.lobes.push_back(lobe);
   }
-  const Builder builder(module.table, module.lobes, options.zero_bands);
+  module.wide_lobes = wide_lobes(module.table, options.lobe_precision);
+  const Builder builder(module.table, module.lobes, options.zero_bands, module.wide_lobes);
   auto wants = [](const std::vector<int>& list, int channels) {
     return std::find(list.begin(), list.end(), channels) != list.end();
   };

@@ -16,6 +16,7 @@
 
 #include <Eigen/Geometry>
 
+#include "zhf/codegen/kernels.h"
 #include "zhf/io/files.h"
 #include "zhf/optimizer/lobe_table.h"
 #include "zhf/sh/eval.h"
@@ -101,6 +102,7 @@ struct FileEntry {
   std::string path;  // relative to the generated dir
   std::vector<std::string> functions;
   std::vector<int> zero_bands;
+  std::string lobe_stage;  // "double" or "native"; empty: generated/'s default (auto)
 };
 
 std::map<std::pair<int, std::string>, FileEntry> read_manifest(const fs::path& generated, std::vector<int>& orders) {
@@ -117,6 +119,7 @@ std::map<std::pair<int, std::string>, FileEntry> read_manifest(const fs::path& g
     entry.path = f.value("path", "");
     for (const nlohmann::json& fn : f.value("functions", nlohmann::json::array())) entry.functions.push_back(fn.value("name", ""));
     entry.zero_bands = f.value("zero_bands", std::vector<int>{});
+    entry.lobe_stage = f.value("lobe_stage", "");
     const int order = f.value("order", 0);
     seen.insert(order);
     files[{order, language}] = entry;
@@ -460,23 +463,37 @@ double ulp_distance(float a, float b) {
   return std::abs(static_cast<double>(a) - static_cast<double>(b)) / ulp;
 }
 
-double tolerance_for(Kind kind, const std::string& precision, int order, double worst_condition) {
+// What a file's tolerances depend on besides the order.
+struct Conditioning {
+  double worst_condition = 1;
+  bool wide_lobes = false;  // the lobe stage runs in double
+};
+
+Conditioning conditioning(const optimizer::LobeTable& table, const FileEntry& entry) {
+  Conditioning c;
+  if (table.order <= 2) return c;
+  c.worst_condition = table.worst_condition();
+  c.wide_lobes = entry.lobe_stage.empty() ? codegen::float_needs_wide_lobes(table) : entry.lobe_stage == "double";
+  return c;
+}
+
+double tolerance_for(Kind kind, const std::string& precision, int order, const Conditioning& c) {
   if (precision == "double") return kDoubleTolerance;
   if (kind == Kind::kEval || kind == Kind::kZonal) return kFloatEvaluationTolerance;
   if (kind == Kind::kTranspose || kind == Kind::kMultiply) return kFloatSparseTolerance;
-  return float_rotation_tolerance(order, worst_condition);
+  return float_rotation_tolerance(order, c.worst_condition, c.wide_lobes);
 }
 
-FunctionResult compare(const Inputs& in, double worst_condition, const Mode& mode, const std::vector<double>& got,
+FunctionResult compare(const Inputs& in, const Conditioning& conditioning, const Mode& mode, const std::vector<double>& got,
                        const std::vector<double>& expected, const std::string& language, const std::string& precision,
                        const std::vector<double>* cpp_float) {
   FunctionResult r;
-  r.ulp_limit = language == "hlsl" || mode.kind == Kind::kDense ? hlsl_ulp_limit(in.order, worst_condition) : kGlslUlpLimit;
+  r.ulp_limit = language == "hlsl" || mode.kind == Kind::kDense ? hlsl_ulp_limit(in.order, conditioning.worst_condition) : kGlslUlpLimit;
   r.order = in.order;
   r.language = language;
   r.precision = precision;
   r.function = mode.function;
-  r.tolerance = tolerance_for(mode.kind, precision, in.order, worst_condition);
+  r.tolerance = tolerance_for(mode.kind, precision, in.order, conditioning);
   const int n = in.order * in.order;
   const int lanes = mode.channels * n;
   double sum = 0;
@@ -678,7 +695,7 @@ VerifyReport run_verify(const VerifyOptions& options) {
             const std::vector<double> got(all.begin() + (p * modes.size() + m) * block, all.begin() + (p * modes.size() + m + 1) * block);
             if (p == 0) cpp_float[modes[m].function] = got;
             if (wanted("cpp"))
-              report.results.push_back(compare(in, table.worst_condition(), modes[m], got, expected[m], "cpp", precision, nullptr));
+              report.results.push_back(compare(in, conditioning(table, *cpp_entry), modes[m], got, expected[m], "cpp", precision, nullptr));
           }
         }
       }
@@ -689,6 +706,11 @@ VerifyReport run_verify(const VerifyOptions& options) {
       const auto entry = entry_for(order, language);
       if (!entry) continue;
       const std::string tag = o + ", " + language;
+      if (conditioning(table, *entry).wide_lobes && !device->float64()) {
+        report.errors.push_back(tag + ": " + entry->path + " runs its lobe stage in double and " + device->description() +
+                                " lacks shaderFloat64; emit it with --lobe-precision float for such devices");
+        continue;
+      }
       std::vector<Mode> modes = modes_of(entry->functions, order, report.errors, tag);
       modes.erase(std::remove_if(modes.begin(), modes.end(), [](const Mode& m) { return m.kind == Kind::kBatch; }), modes.end());
       if (modes.empty()) continue;
@@ -743,7 +765,7 @@ VerifyReport run_verify(const VerifyOptions& options) {
           got[k] = f;
         }
         const auto reference = cpp_float.find(modes[m].function);
-        report.results.push_back(compare(in, table.worst_condition(), modes[m], got, expected[m], language, "float",
+        report.results.push_back(compare(in, conditioning(table, *entry), modes[m], got, expected[m], language, "float",
                                          reference == cpp_float.end() ? nullptr : &reference->second));
       }
     }

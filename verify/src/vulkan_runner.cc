@@ -75,14 +75,21 @@ class Device : public VulkanDevice {
     queue.queueFamilyIndex = family_;
     queue.queueCount = 1;
     queue.pQueuePriorities = &priority;
+    VkPhysicalDeviceFeatures available{}, enabled{};
+    vkGetPhysicalDeviceFeatures(physical_, &available);
+    enabled.shaderFloat64 = available.shaderFloat64;
+    float64_ = available.shaderFloat64 == VK_TRUE;
     VkDeviceCreateInfo device_info{};
     device_info.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
     device_info.queueCreateInfoCount = 1;
     device_info.pQueueCreateInfos = &queue;
+    device_info.pEnabledFeatures = &enabled;
     check(vkCreateDevice(physical_, &device_info, nullptr, &device_), "vkCreateDevice");
     vkGetDeviceQueue(device_, family_, 0, &queue_);
     return true;
   }
+
+  bool float64() const override { return float64_; }
 
   std::string description() const override {
     const char* type = "other";
@@ -273,6 +280,7 @@ class Device : public VulkanDevice {
   VkInstance instance_ = VK_NULL_HANDLE;
   VkPhysicalDevice physical_ = VK_NULL_HANDLE;
   VkPhysicalDeviceProperties properties_{};
+  bool float64_ = false;
   uint32_t family_ = 0;
   VkDevice device_ = VK_NULL_HANDLE;
   VkQueue queue_ = VK_NULL_HANDLE;

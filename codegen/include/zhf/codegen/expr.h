@@ -21,6 +21,7 @@ struct Node {
   int param = -1;       // kInput: parameter and element
   int element = -1;
   int lanes = 1;        // channels: 1 scalar, 3 (RGB) or 4 (RGBA) per value
+  bool wide = false;    // computed in the wide type (double for float kernels)
 };
 
 struct OpCount {
@@ -37,6 +38,11 @@ class Graph {
   int mul(int a, int b);
   int neg(int a);
   int scale(double c, int a) { return mul(constant(c), a); }
+
+  // Nodes created while wide is set are computed in the wide type; printers convert where a
+  // node's operand or output has the other width.
+  void set_wide(bool wide) { wide_ = wide; }
+  bool wide() const { return wide_; }
 
   // sum_i c_i x_i with terms of equal |c| (to 1e-12 relative) sharing one multiply:
   // c (x_1 - x_2 + ...). Terms with c = 0 are dropped.
@@ -55,7 +61,8 @@ class Graph {
   int intern(const Node& n);
   int binary(Op op, int a, int b);
   std::vector<Node> nodes_;
-  std::map<std::tuple<int, int, int, double, int, int>, int> index_;
+  std::map<std::tuple<int, int, int, double, int, int, bool>, int> index_;
+  bool wide_ = false;
 };
 
 }  // namespace zhf::codegen

@@ -54,7 +54,13 @@ struct Module {
   optimizer::LobeTable table;
   std::vector<Lobe> lobes;
   std::vector<Function> functions;
+  bool wide_lobes = false;  // the rotations' lobe stage runs in double
 };
+
+// Where the lobe stage of the rotations runs: in double for float kernels whose table's error
+// model misses kFloatRotationTarget (auto), always, or in the kernel's own type (float: fastest,
+// error up to the model).
+enum class LobePrecision { kAuto, kFloat, kDouble };
 
 // Which functions a module holds. The defaults are generated/'s; a scene spec narrows them.
 // Channel counts are 1, 3 (suffix _rgb) or 4 (_rgba); multi-channel functions share the
@@ -68,7 +74,22 @@ struct ModuleOptions {
   std::vector<int> dense_channels;               // rotation_matrices + apply_rotation_matrices[_rgb|_rgba]
   std::vector<int> zonal_channels;               // rotate_zonal[_rgb|_rgba]
   std::vector<int> zero_bands;                   // known zero: their outputs are 0 and cost nothing
+  LobePrecision lobe_precision = LobePrecision::kAuto;
 };
+
+// Float kernels: max abs error target for unit coefficient vectors, and the error model of
+// the lobe stage in float, eps_f (N - 1) k_max: each rotated lobe is rounded to float, band-l
+// SH turn that into about l eps_f, and A_l amplifies it by up to its condition number.
+inline constexpr double kFloatRotationTarget = 1e-6;
+inline constexpr double kFloatEpsilon = 5.9604644775390625e-08;  // 2^-24
+// Whether float kernels must run the lobe stage (R's projection onto the rotations, the
+// rotated lobes, their SH, the sums over lobes) in double to stay within the target.
+bool float_needs_wide_lobes(const optimizer::LobeTable& table);
+// The lobe precision resolved for a table: true for double.
+bool wide_lobes(const optimizer::LobeTable& table, LobePrecision precision);
+// "auto", "float", "double"; parse returns false on anything else.
+std::string lobe_precision_name(LobePrecision precision);
+bool parse_lobe_precision(const std::string& text, LobePrecision& precision);
 
 // "", "_rgb" or "_rgba".
 std::string channel_suffix(int channels);

@@ -8,13 +8,17 @@
 //   dense        one rotation shared by many vectors: build the band matrices once
 //                (~the cost of N^2/3 rotations), then each apply is a small dense product.
 // A rotator from a lobe table (from_table) handles any order up to 32 at a few times the cost
-// of the generated kernels; use it when the order is only known at run time.
+// of the generated kernels; use it when the order is only known at run time. Like the generated
+// kernels of orders whose float error model needs it, it runs the lobe stage in double
+// (see codegen/kernels.h, LobePrecision).
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <stdexcept>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 #include "zhf/runtime/lobe_table.h"
@@ -63,6 +67,7 @@ template <class T>
 class Rotator {
  public:
   using Kernel = void (*)(const T*, const T*, T*);
+  using W = std::common_type_t<T, double>;  // the table path's lobe stage
 
   // The compiled kernels of generated/cpp for order 2..8.
   static Rotator generated(int order) {
@@ -188,16 +193,17 @@ class Rotator {
     assert(validate_rotation(r).ok && "zhf: not a proper rotation; see Rotator::validate");
   }
 
-  // The loop form of the generated kernel: z = A^T f, SH at R w_d, dense Y_R^T z. The SH
-  // values at the rotated lobes are computed once and shared by the channels.
+  // The loop form of the generated kernel: z = A^T f, SH at Q w_d, dense Y_Q^T z, with Q the
+  // projection of R onto the rotations, the lobe stage in W. The SH values at the rotated
+  // lobes are computed once and shared by the channels.
   void rotate_from_table(const T r[9], const T* in, T* out, int channels) const {
     const int n = coefficients();
-    std::vector<std::array<T, 3>> rotated(table_.lobes.size());
+    const std::array<W, 9> q = orthonormalized(r);
+    std::vector<std::array<W, 3>> rotated(table_.lobes.size());
     for (size_t d = 0; d < table_.lobes.size(); ++d)
       for (int i = 0; i < 3; ++i)
-        rotated[d][i] = r[3 * i] * T(table_.lobes[d][0]) + r[3 * i + 1] * T(table_.lobes[d][1]) +
-                        r[3 * i + 2] * T(table_.lobes[d][2]);
-    std::vector<std::vector<T>> y_rotated(table_.bands.size());
+        rotated[d][i] = q[3 * i] * table_.lobes[d][0] + q[3 * i + 1] * table_.lobes[d][1] + q[3 * i + 2] * table_.lobes[d][2];
+    std::vector<std::vector<W>> y_rotated(table_.bands.size());
     for (size_t b = 0; b < table_.bands.size(); ++b) {
       const int size = 2 * table_.bands[b].l + 1;
       y_rotated[b].resize(size * size);  // [d * size + m]
@@ -223,12 +229,32 @@ class Rotator {
         z.assign(size, T(0));
         for (const Nonzero& a : nonzeros_[b]) z[a.d] += a.value * f[base + a.m];
         for (int m = 0; m < size; ++m) {
-          T sum = 0;
-          for (int d = 0; d < size; ++d) sum += y_rotated[b][d * size + m] * z[d];
-          g[base + m] = sum;
+          W sum = 0;
+          for (int d = 0; d < size; ++d) sum += y_rotated[b][d * size + m] * W(z[d]);
+          g[base + m] = T(sum);
         }
       }
     }
+  }
+
+  // One Newton step toward R's polar factor, Q = R (3 I - R^T R) / 2: a float R is orthonormal
+  // to eps_f only, and the lobe fit would amplify its symmetric part by the band's condition.
+  static std::array<W, 9> orthonormalized(const T r[9]) {
+    std::array<W, 9> step;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        W gram = 0;
+        for (int k = 0; k < 3; ++k) gram += W(r[3 * k + i]) * W(r[3 * k + j]);
+        step[3 * i + j] = (i == j ? W(1.5) : W(0)) - W(0.5) * gram;
+      }
+    std::array<W, 9> q;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        W sum = 0;
+        for (int k = 0; k < 3; ++k) sum += W(r[3 * i + k]) * step[3 * k + j];
+        q[3 * i + j] = sum;
+      }
+    return q;
   }
 
   int order_ = 0;
@@ -239,7 +265,7 @@ class Rotator {
     T value;  // A_l[m][d]
   };
   LobeTableData table_;
-  std::vector<BandEvaluator<T>> evaluators_;
+  std::vector<BandEvaluator<W>> evaluators_;
   std::vector<std::vector<Nonzero>> nonzeros_;  // per band, row-major order
 };
 

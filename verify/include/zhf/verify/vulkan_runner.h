@@ -15,6 +15,8 @@ class VulkanDevice {
   static std::unique_ptr<VulkanDevice> open(std::string& why);
   virtual ~VulkanDevice() = default;
   virtual std::string description() const = 0;
+  // Whether shaders may use double (shaderFloat64, enabled when the device has it).
+  virtual bool float64() const = 0;
 
   // Runs a compute shader (entry "main") with buffers[i] bound as storage buffer i of set 0;
   // every buffer is copied in before and out after. Throws std::runtime_error on failure.
