@@ -19,12 +19,24 @@ struct EmitCommandOptions {
   std::string table;
   std::string language;
   std::string precision = "float";
+  std::string lobe_precision = "auto";
   int channels = 0;  // 0: both
   std::string out;
 };
 
-codegen::ModuleOptions channel_options(int channels) {
+constexpr const char* kLobePrecisionHelp =
+    "auto, float or double: where float kernels run the lobe stage (auto: double where the table's "
+    "float error model exceeds 1e-6; float: fastest, and shaders need no shaderFloat64)";
+
+codegen::LobePrecision lobe_precision(const std::string& name) {
+  codegen::LobePrecision p = codegen::LobePrecision::kAuto;
+  codegen::parse_lobe_precision(name, p);  // CLI11 has checked the name
+  return p;
+}
+
+codegen::ModuleOptions channel_options(int channels, const std::string& lobes) {
   codegen::ModuleOptions m;
+  m.lobe_precision = lobe_precision(lobes);
   if (channels == 0) return m;
   m.standard_channels = {channels};
   if (channels > 1) m.tailored_channels.clear();
@@ -38,7 +50,7 @@ int run_emit(const EmitCommandOptions& o, const std::string& command) {
   emit.precision = o.precision == "double" ? codegen::Precision::kDouble : codegen::Precision::kFloat;
   emit.command = command;
   emit.table_path = o.table;
-  const codegen::EmittedFile file = codegen::emit_file(table, o.language, emit, channel_options(o.channels));
+  const codegen::EmittedFile file = codegen::emit_file(table, o.language, emit, channel_options(o.channels, o.lobe_precision));
   std::error_code ec;
   fs::create_directories(o.out, ec);
   if (ec) throw io::OutputError(o.out + ": cannot create: " + ec.message());
@@ -59,6 +71,7 @@ struct GenerateCommandOptions {
   std::string tables = project_path("generated/lobes");
   std::string out = "generated";
   std::string scene;
+  std::string lobe_precision = "auto";
 };
 
 int run_generate(const GenerateCommandOptions& o, bool out_given) {
@@ -67,6 +80,7 @@ int run_generate(const GenerateCommandOptions& o, bool out_given) {
   options.tables_dir = o.tables;
   options.out_dir = o.out;
   options.stop = &interrupt_requested();
+  options.module.lobe_precision = lobe_precision(o.lobe_precision);
   if (!o.scene.empty()) {
     if (!out_given) throw UsageError("--out: is required with --scene (generated/ holds the full set)");
     const codegen::Scene scene = codegen::read_scene(o.scene);
@@ -104,6 +118,7 @@ void add_codegen_commands(CLI::App& app, Action& action, const std::string& comm
   emit->add_option("--lang", e->language, "cpp, hlsl or glsl")->required()->check(CLI::IsMember({"cpp", "hlsl", "glsl"}));
   emit->add_option("--precision", e->precision, "float or double (shaders; C++ kernels are templates)")
       ->check(CLI::IsMember({"float", "double"}));
+  emit->add_option("--lobe-precision", e->lobe_precision, kLobePrecisionHelp)->check(CLI::IsMember({"auto", "float", "double"}));
   emit->add_option("--channels", e->channels, "1, 3 or 4 (default: 1 and 3)")->check(CLI::IsMember({1, 3, 4}));
   emit->add_option("--out", e->out, "Output directory")->required();
   emit->callback([e, &action, command_line] { action = [e, command_line] { return run_emit(*e, command_line); }; });
@@ -113,9 +128,14 @@ void add_codegen_commands(CLI::App& app, Action& action, const std::string& comm
   generate->add_option("--tables", g->tables, "Directory of order_N.json tables (default generated/lobes, else the source tree's)");
   CLI::Option* out = generate->add_option("--out", g->out, "Output directory (default generated)");
   generate->add_option("--scene", g->scene, "Scene spec (zhf-scene-1 JSON): emit only what it lists (needs --out)");
-  generate->callback([g, out, &action] {
-    const bool out_given = out->count() > 0;
-    action = [g, out_given] { return run_generate(*g, out_given); };
+  CLI::Option* lobes = generate->add_option("--lobe-precision", g->lobe_precision, std::string(kLobePrecisionHelp) + "; a scene sets it itself")
+                           ->check(CLI::IsMember({"auto", "float", "double"}));
+  generate->callback([g, out, lobes, &action] {
+    const bool out_given = out->count() > 0, lobes_given = lobes->count() > 0;
+    action = [g, out_given, lobes_given] {
+      if (lobes_given && !g->scene.empty()) throw UsageError("--lobe-precision: a scene sets it with its lobe_precision field");
+      return run_generate(*g, out_given);
+    };
   });
 }
 

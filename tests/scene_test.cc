@@ -97,6 +97,44 @@ TEST(Scene, KnownZeroBandsCostLessAndVerify) {
   fs::remove_all(dir);
 }
 
+std::string lobe_stage(const fs::path& manifest, const std::string& path) {
+  const nlohmann::json j = io::read_json_file(manifest.string());
+  for (const auto& f : j["files"])
+    if (f["path"] == path) return f.value("lobe_stage", "");
+  return "";
+}
+
+// auto puts order 7's lobe stage in double (its float error model is 1.3e-5) and meets 1e-6 in
+// every language; float keeps shaders free of double and is held to the model instead.
+TEST(Scene, LobePrecisionSaysWhereTheLobeStageRuns) {
+  double worst_condition = 0;
+  const nlohmann::json table = io::read_json_file(std::string(ZHF_SOURCE_DIR) + "/generated/lobes/order_7.json");
+  for (const auto& band : table["bands"])
+    worst_condition = std::max(worst_condition, band["condition"].get<double>());
+  for (const std::string precision : {"auto", "float"}) {
+    const fs::path dir = test::make_temp_dir();
+    const std::string scene = write_scene(dir, R"({"format": "zhf-scene-1", "targets": ["cpp", "glsl"], "lobe_precision": ")" +
+                                                   precision + R"(", "signals": [{"order": 7, "variants": ["standard"]}]})");
+    const test::RunResult r = test::run_zhf("generate --scene '" + scene + "' --out '" + (dir / "out").string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const bool wide = precision == "auto";
+    const std::string glsl = io::read_text_file((dir / "out" / "glsl" / "zhf_order7.glsl").string());
+    EXPECT_EQ(glsl.find("double") != std::string::npos, wide) << precision;
+    EXPECT_EQ(lobe_stage(dir / "out" / "manifest.json", "glsl/zhf_order7.glsl"), wide ? "double" : "native") << precision;
+    const verify::VerifyReport report = verify_dir(dir / "out", {"cpp", "glsl"});
+    EXPECT_TRUE(report.pass()) << report.table();
+    for (const verify::FunctionResult& f : report.results)
+      if (f.function == "rotate_order7" && f.precision == "float") {
+        if (wide) {
+          EXPECT_LE(f.max_error, verify::kFloatRotationTolerance) << f.language;
+        }
+        EXPECT_EQ(f.tolerance, wide ? verify::kFloatRotationTolerance : verify::float_rotation_tolerance(7, worst_condition, false))
+            << f.language << " " << precision;
+      }
+    fs::remove_all(dir);
+  }
+}
+
 TEST(Scene, BadSpecsGetOneLineNamingTheField) {
   const fs::path dir = test::make_temp_dir();
   const std::vector<std::pair<std::string, std::string>> cases = {
@@ -104,6 +142,8 @@ TEST(Scene, BadSpecsGetOneLineNamingTheField) {
       {R"({"format": "zhf-scene-1", "targets": ["metal"], "signals": []})", "targets[0]: 'metal' is not one of"},
       {R"({"format": "zhf-scene-1", "targets": ["glsl"], "precision": "half", "signals": [{"order": 3, "variants": ["standard"]}]})",
        "precision: half is not supported yet"},
+      {R"({"format": "zhf-scene-1", "targets": ["glsl"], "lobe_precision": "fast", "signals": [{"order": 3, "variants": ["standard"]}]})",
+       "lobe_precision: 'fast' is not one of auto, float, double"},
       {R"({"format": "zhf-scene-1", "targets": ["glsl"], "signals": [{"order": 3, "channels": 2, "variants": ["standard"]}]})",
        "signals[0].channels: must be 1, 3 or 4 (got 2)"},
       {R"({"format": "zhf-scene-1", "targets": ["glsl"], "signals": [{"order": 13, "variants": ["standard"]}]})",

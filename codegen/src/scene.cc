@@ -70,6 +70,7 @@ std::map<int, ModuleOptions> Scene::module_options() const {
       none.standard_channels.clear();
       none.tailored_channels.clear();
       none.zero_bands = signal.zero_bands;
+      none.lobe_precision = lobe_precision;
       out[signal.order] = none;
     }
     ModuleOptions& m = out[signal.order];
@@ -94,6 +95,7 @@ nlohmann::ordered_json Scene::to_json() const {
   j["format"] = kSceneFormat;
   j["targets"] = targets;
   j["precision"] = precision == Precision::kDouble ? "double" : "float";
+  j["lobe_precision"] = lobe_precision_name(lobe_precision);
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
   for (const SceneSignal& s : signals)
     list.push_back({{"name", s.name}, {"order", s.order}, {"channels", s.channels}, {"variants", s.variants},
@@ -108,7 +110,8 @@ Scene parse_scene(const nlohmann::json& j, const std::string& source) {
   const std::string format = r.text(r.member(j, "format", "format"), "format");
   if (format != kSceneFormat) r.fail("format", "'" + format + "' is not " + kSceneFormat);
   for (const auto& [key, value] : j.items())
-    if (key != "format" && key != "targets" && key != "precision" && key != "signals") r.fail(key, "unknown field");
+    if (key != "format" && key != "targets" && key != "precision" && key != "lobe_precision" && key != "signals")
+      r.fail(key, "unknown field");
   Scene scene;
   const nlohmann::json& targets = r.array(r.member(j, "targets", "targets"), "targets", true);
   for (size_t i = 0; i < targets.size(); ++i) {
@@ -122,6 +125,8 @@ Scene parse_scene(const nlohmann::json& j, const std::string& source) {
     if (p == "half") r.fail("precision", "half is not supported yet (float or double)");
     scene.precision = r.one_of(j["precision"], "precision", {"float", "double"}) == "double" ? Precision::kDouble : Precision::kFloat;
   }
+  if (j.contains("lobe_precision"))
+    parse_lobe_precision(r.one_of(j["lobe_precision"], "lobe_precision", {"auto", "float", "double"}), scene.lobe_precision);
   const nlohmann::json& signals = r.array(r.member(j, "signals", "signals"), "signals", true);
   std::map<int, std::string> first_of_order;
   for (size_t i = 0; i < signals.size(); ++i) {

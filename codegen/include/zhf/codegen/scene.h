@@ -4,6 +4,8 @@
 //     "format": "zhf-scene-1",
 //     "targets": ["glsl"],            // any of cpp, hlsl, glsl
 //     "precision": "float",           // float or double (shaders; C++ kernels are templates)
+//     "lobe_precision": "auto",       // auto, float or double: where float kernels run the lobe
+//                                     // stage (codegen/kernels.h, LobePrecision); optional
 //     "signals": [
 //       {"name": "lighting", "order": 3, "channels": 3, "variants": ["standard"]},
 //       {"name": "transfer", "order": 5, "channels": 1, "variants": ["signal-tailored"],
@@ -38,6 +40,7 @@ struct SceneSignal {
 struct Scene {
   std::vector<std::string> targets;
   Precision precision = Precision::kFloat;
+  LobePrecision lobe_precision = LobePrecision::kAuto;
   std::vector<SceneSignal> signals;
 
   std::vector<int> orders() const;                   // sorted, unique
