@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "zhf/runtime/lanes.h"
 #include "zhf/runtime/rotator.h"
 #include "zhf/sh/eval.h"
 #include "zhf/sh/reference_rotation.h"
@@ -93,8 +94,17 @@ double max_error(const std::vector<T>& out, const Eigen::VectorXd& expected, int
   return worst;
 }
 
+// The scalar generated kernel, or (lanes) the lobe-parallel one of runtime/lanes.h.
 template <int N, class T>
-void check_against_reference(double tolerance) {
+void rotate_with(bool lanes, const T* r, const T* in, T* out) {
+  if constexpr (N >= 3) {
+    if (lanes) return runtime::rotate_lanes<N, T>(r, in, out);
+  }
+  Kernels<N>::rotate(r, in, out);
+}
+
+template <int N, class T>
+void check_against_reference(double tolerance, bool lanes = false) {
   double worst = 0;
   int worst_index = 0, worst_trial = 0;
   const auto all = cases(N, kTrials, 100 + N);
@@ -102,7 +112,7 @@ void check_against_reference(double tolerance) {
     const auto r = to<T>(all[k].r);
     const auto in = to<T>(all[k].f);
     std::vector<T> out(N * N);
-    Kernels<N>::rotate(r.data(), in.data(), out.data());
+    rotate_with<N>(lanes, r.data(), in.data(), out.data());
     int at = 0;
     const double e = max_error(out, all[k].reference, at);
     if (e > worst) {
@@ -113,9 +123,9 @@ void check_against_reference(double tolerance) {
   }
   int band = 0;
   while ((band + 1) * (band + 1) <= worst_index) ++band;
-  EXPECT_LE(worst, tolerance) << "order " << N << ", band " << band << ", index " << worst_index << ", trial "
+  EXPECT_LE(worst, tolerance) << (lanes ? "lanes, " : "") << "order " << N << ", band " << band << ", index " << worst_index << ", trial "
                               << worst_trial << (sizeof(T) == 4 ? " (float)" : " (double)");
-  ::testing::Test::RecordProperty("max_error_order" + std::to_string(N) + (sizeof(T) == 4 ? "_float" : "_double"), std::to_string(worst));
+  ::testing::Test::RecordProperty(std::string(lanes ? "lanes_" : "") + "max_error_order" + std::to_string(N) + (sizeof(T) == 4 ? "_float" : "_double"), std::to_string(worst));
 }
 
 template <int N>
@@ -200,6 +210,10 @@ template <int N>
 void check_all() {
   check_against_reference<N, double>(kDoubleTolerance);
   check_against_reference<N, float>(kFloatTolerance);
+  if (N >= 3) {
+    check_against_reference<N, double>(kDoubleTolerance, /*lanes=*/true);
+    check_against_reference<N, float>(kFloatTolerance, /*lanes=*/true);
+  }
   check_variants<N>();
   check_composition<N>();
   check_eval<N>();

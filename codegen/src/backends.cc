@@ -59,6 +59,10 @@ class CppBackend : public Backend {
     if (module.wide_lobes) out << "#include <type_traits>\n";
     out << "\nnamespace zhf::gen {\n\n";
     out << "inline constexpr int kOrder" << module.order << " = " << module.order << ";\n";
+    if (!module.lobes.empty())
+      out << "// Whether the rotations below run their lobe stage in double (see the derivation below).\n"
+          << "inline constexpr bool kLobeStageInDoubleOrder" << module.order << " = " << (module.wide_lobes ? "true" : "false")
+          << ";\n";
     if (!module.lobes.empty()) {
       LanguageConfig plain = config;
       plain.wrap_literals_in_type = false;

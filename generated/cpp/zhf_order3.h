@@ -15,6 +15,8 @@
 namespace zhf::gen {
 
 inline constexpr int kOrder3 = 3;
+// Whether the rotations below run their lobe stage in double (see the derivation below).
+inline constexpr bool kLobeStageInDoubleOrder3 = false;
 
 // Lobe directions w_d (unit vectors) for order 3, from generated/lobes/order_3.json;
 // made by: zhf optimize --order 3 --seed 1 --out generated/lobes/order_3.json

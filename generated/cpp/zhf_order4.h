@@ -15,6 +15,8 @@
 namespace zhf::gen {
 
 inline constexpr int kOrder4 = 4;
+// Whether the rotations below run their lobe stage in double (see the derivation below).
+inline constexpr bool kLobeStageInDoubleOrder4 = false;
 
 // Lobe directions w_d (unit vectors) for order 4, from generated/lobes/order_4.json;
 // made by: zhf optimize --order 4 --seed 1 --out generated/lobes/order_4.json

@@ -16,6 +16,8 @@
 namespace zhf::gen {
 
 inline constexpr int kOrder5 = 5;
+// Whether the rotations below run their lobe stage in double (see the derivation below).
+inline constexpr bool kLobeStageInDoubleOrder5 = true;
 
 // Lobe directions w_d (unit vectors) for order 5, from generated/lobes/order_5.json;
 // made by: zhf optimize --order 5 --seed 1 --out generated/lobes/order_5.json

@@ -16,6 +16,8 @@
 namespace zhf::gen {
 
 inline constexpr int kOrder6 = 6;
+// Whether the rotations below run their lobe stage in double (see the derivation below).
+inline constexpr bool kLobeStageInDoubleOrder6 = true;
 
 // Lobe directions w_d (unit vectors) for order 6, from generated/lobes/order_6.json;
 // made by: zhf optimize --order 6 --seed 1 --max-condition 8 --out generated/lobes/order_6.json

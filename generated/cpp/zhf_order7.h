@@ -16,6 +16,8 @@
 namespace zhf::gen {
 
 inline constexpr int kOrder7 = 7;
+// Whether the rotations below run their lobe stage in double (see the derivation below).
+inline constexpr bool kLobeStageInDoubleOrder7 = true;
 
 // Lobe directions w_d (unit vectors) for order 7, from generated/lobes/order_7.json;
 // made by: zhf optimize --order 7 --seed 1 --out generated/lobes/order_7.json

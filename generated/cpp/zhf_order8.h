@@ -16,6 +16,8 @@
 namespace zhf::gen {
 
 inline constexpr int kOrder8 = 8;
+// Whether the rotations below run their lobe stage in double (see the derivation below).
+inline constexpr bool kLobeStageInDoubleOrder8 = true;
 
 // Lobe directions w_d (unit vectors) for order 8, from generated/lobes/order_8.json;
 // made by: zhf optimize --order 8 --seed 1 --out generated/lobes/order_8.json

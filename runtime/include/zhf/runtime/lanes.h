@@ -1,0 +1,147 @@
+// The signal-tailored rotation arranged lobe-parallel, for SIMD CPUs: one loop over the lobes
+// whose body (rotate the lobe by R^T, evaluate the SH there, dot each band with f) is the same
+// straight-line code for every lobe, so the compiler runs it across SIMD lanes; then the sparse
+// f' = A s per band. Orders 3..8, from the generated headers' lobe tables, SH evaluation and
+// AhatMultiply.
+//
+// It computes what rotate_signal_tailored_orderN does, with the lobe stage in double exactly
+// where the generated kernels have it (kLobeStageInDoubleOrderN), so the accuracy is the same.
+// It gives up the generated kernels' per-lobe constant folding (components +-1 or 0) to get
+// the lanes: the fast choice for one vector per rotation where the build targets AVX2 or
+// wider (-O3 -mavx2 -mfma, or -march=native); with SSE2 only, compare with zhf bench.
+#pragma once
+
+#include <cstddef>
+#include <type_traits>
+#include <utility>
+
+#include "zhf_order3.h"
+#include "zhf_order4.h"
+#include "zhf_order5.h"
+#include "zhf_order6.h"
+#include "zhf_order7.h"
+#include "zhf_order8.h"
+
+namespace zhf::runtime {
+
+template <int N>
+struct GeneratedOrder;
+#define ZHF_GENERATED_ORDER(N)                                                                  \
+  template <>                                                                                   \
+  struct GeneratedOrder<N> {                                                                    \
+    static constexpr bool kLobeStageInDouble = gen::kLobeStageInDoubleOrder##N;                 \
+    static constexpr const double (&kLobes)[2 * N - 1][3] = gen::kLobesOrder##N;                \
+    template <class T>                                                                          \
+    static void sh_eval(const T dir[3], T y[N * N]) { gen::sh_eval_order##N<T>(dir, y); }       \
+    template <class T>                                                                          \
+    static void lobe_multiply(const T s[N * N], T f[N * N]) { gen::AhatMultiply_order##N<T>(s, f); } \
+  };
+ZHF_GENERATED_ORDER(3)
+ZHF_GENERATED_ORDER(4)
+ZHF_GENERATED_ORDER(5)
+ZHF_GENERATED_ORDER(6)
+ZHF_GENERATED_ORDER(7)
+ZHF_GENERATED_ORDER(8)
+#undef ZHF_GENERATED_ORDER
+
+namespace lanes_detail {
+
+// Lobes per loop, padded to a multiple of 8 (AVX float lanes) with copies of lobe 0.
+constexpr int padded_lobes(int order) { return (2 * order - 1 + 7) / 8 * 8; }
+
+template <int N, class W>
+struct LobeColumns {
+  alignas(64) W x[padded_lobes(N)];
+  alignas(64) W y[padded_lobes(N)];
+  alignas(64) W z[padded_lobes(N)];
+};
+
+template <int N, class W>
+constexpr LobeColumns<N, W> lobe_columns() {
+  LobeColumns<N, W> c{};
+  for (int d = 0; d < padded_lobes(N); ++d) {
+    const int lobe = d < 2 * N - 1 ? d : 0;
+    c.x[d] = W(GeneratedOrder<N>::kLobes[lobe][0]);
+    c.y[d] = W(GeneratedOrder<N>::kLobes[lobe][1]);
+    c.z[d] = W(GeneratedOrder<N>::kLobes[lobe][2]);
+  }
+  return c;
+}
+
+// sum_m f_{l,m} y_{l,m}: a fixed trip count, so it unrolls into the loop body.
+template <int L, class W>
+inline W band_dot(const W* f, const W* y) {
+  W sum = 0;
+  for (int m = 0; m < 2 * L + 1; ++m) sum += f[L * L + m] * y[L * L + m];
+  return sum;
+}
+
+template <int N, class W, int... L>
+inline void band_samples(const W* f, const W* y, W (*s)[padded_lobes(N)], int d, std::integer_sequence<int, L...>) {
+  ((s[L][d] = band_dot<L + 2>(f, y)), ...);
+}
+
+// One Newton step toward R's polar factor (as the generated kernels do when their lobe stage
+// is double): Q = R (3 I - R^T R) / 2.
+template <class W, class T>
+inline void orthonormalize(const T r[9], W q[9]) {
+  W step[9];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      W gram = 0;
+      for (int k = 0; k < 3; ++k) gram += W(r[3 * k + i]) * W(r[3 * k + j]);
+      step[3 * i + j] = (i == j ? W(1.5) : W(0)) - W(0.5) * gram;
+    }
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      W sum = 0;
+      for (int k = 0; k < 3; ++k) sum += W(r[3 * i + k]) * step[3 * k + j];
+      q[3 * i + j] = sum;
+    }
+}
+
+}  // namespace lanes_detail
+
+// rotated = coefficients of f(R^T w), R row-major mapping v to R v; orders 3..8. Flattened so
+// the SH evaluation is inlined into the lobe loop at every order (the loop body must be
+// straight-line code to vectorize).
+// kDoubleLobes overrides where the lobe stage runs (false: float throughout, faster, error up to
+// the float model of verify.h).
+template <int N, class T, bool kDoubleLobes = GeneratedOrder<N>::kLobeStageInDouble>
+[[gnu::flatten]] inline void rotate_lanes(const T R[9], const T coeffs[N * N], T rotated[N * N]) {
+  using namespace lanes_detail;
+  using W = std::conditional_t<kDoubleLobes, std::common_type_t<T, double>, T>;
+  constexpr int kLanes = padded_lobes(N);
+  static constexpr LobeColumns<N, W> kColumns = lobe_columns<N, W>();
+  W q[9];
+  if constexpr (kDoubleLobes) {
+    orthonormalize(R, q);
+  } else {
+    for (int i = 0; i < 9; ++i) q[i] = R[i];
+  }
+  W f[N * N];
+  for (int i = 0; i < N * N; ++i) f[i] = W(coeffs[i]);
+  alignas(64) W samples[N - 2][kLanes];  // band l + 2's function at R^T w_d
+  for (int d = 0; d < kLanes; ++d) {
+    const W dir[3] = {q[0] * kColumns.x[d] + q[3] * kColumns.y[d] + q[6] * kColumns.z[d],
+                      q[1] * kColumns.x[d] + q[4] * kColumns.y[d] + q[7] * kColumns.z[d],
+                      q[2] * kColumns.x[d] + q[5] * kColumns.y[d] + q[8] * kColumns.z[d]};
+    W y[N * N];
+    GeneratedOrder<N>::sh_eval(dir, y);
+    band_samples<N>(f, y, samples, d, std::make_integer_sequence<int, N - 2>());
+  }
+  T s[N * N] = {};
+  for (int l = 2; l < N; ++l)
+    for (int d = 0; d < 2 * l + 1; ++d) s[l * l + d] = T(samples[l - 2][d]);
+  GeneratedOrder<N>::lobe_multiply(s, rotated);
+  // Band 0 is invariant; band 1 is c (y, z, x), so its matrix is R on those axes.
+  constexpr int kAxisOfM[3] = {1, 2, 0};
+  rotated[0] = coeffs[0];
+  for (int m = 0; m < 3; ++m) {
+    T sum = 0;
+    for (int n = 0; n < 3; ++n) sum += R[3 * kAxisOfM[m] + kAxisOfM[n]] * coeffs[1 + n];
+    rotated[1 + m] = sum;
+  }
+}
+
+}  // namespace zhf::runtime
