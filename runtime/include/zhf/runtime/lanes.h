@@ -15,6 +15,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "zhf/runtime/polar_step.h"
 #include "zhf_order3.h"
 #include "zhf_order4.h"
 #include "zhf_order5.h"
@@ -81,25 +82,6 @@ inline void band_samples(const W* f, const W* y, W (*s)[padded_lobes(N)], int d,
   ((s[L][d] = band_dot<L + 2>(f, y)), ...);
 }
 
-// One Newton step toward R's polar factor (as the generated kernels do when their lobe stage
-// is double): Q = R (3 I - R^T R) / 2.
-template <class W, class T>
-inline void orthonormalize(const T r[9], W q[9]) {
-  W step[9];
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      W gram = 0;
-      for (int k = 0; k < 3; ++k) gram += W(r[3 * k + i]) * W(r[3 * k + j]);
-      step[3 * i + j] = (i == j ? W(1.5) : W(0)) - W(0.5) * gram;
-    }
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      W sum = 0;
-      for (int k = 0; k < 3; ++k) sum += W(r[3 * i + k]) * step[3 * k + j];
-      q[3 * i + j] = sum;
-    }
-}
-
 }  // namespace lanes_detail
 
 // rotated = coefficients of f(R^T w), R row-major mapping v to R v; orders 3..8. Flattened so
@@ -115,7 +97,7 @@ template <int N, class T, bool kDoubleLobes = GeneratedOrder<N>::kLobeStageInDou
   static constexpr LobeColumns<N, W> kColumns = lobe_columns<N, W>();
   W q[9];
   if constexpr (kDoubleLobes) {
-    orthonormalize(R, q);
+    polar_step(R, q);
   } else {
     for (int i = 0; i < 9; ++i) q[i] = R[i];
   }

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "zhf/runtime/lobe_table.h"
+#include "zhf/runtime/polar_step.h"
 #include "zhf/runtime/rotation_check.h"
 #include "zhf_order2.h"
 #include "zhf_order3.h"
@@ -198,7 +199,8 @@ class Rotator {
   // lobes are computed once and shared by the channels.
   void rotate_from_table(const T r[9], const T* in, T* out, int channels) const {
     const int n = coefficients();
-    const std::array<W, 9> q = orthonormalized(r);
+    W q[9];
+    polar_step(r, q);
     std::vector<std::array<W, 3>> rotated(table_.lobes.size());
     for (size_t d = 0; d < table_.lobes.size(); ++d)
       for (int i = 0; i < 3; ++i)
@@ -235,26 +237,6 @@ class Rotator {
         }
       }
     }
-  }
-
-  // One Newton step toward R's polar factor, Q = R (3 I - R^T R) / 2: a float R is orthonormal
-  // to eps_f only, and the lobe fit would amplify its symmetric part by the band's condition.
-  static std::array<W, 9> orthonormalized(const T r[9]) {
-    std::array<W, 9> step;
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) {
-        W gram = 0;
-        for (int k = 0; k < 3; ++k) gram += W(r[3 * k + i]) * W(r[3 * k + j]);
-        step[3 * i + j] = (i == j ? W(1.5) : W(0)) - W(0.5) * gram;
-      }
-    std::array<W, 9> q;
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) {
-        W sum = 0;
-        for (int k = 0; k < 3; ++k) sum += W(r[3 * i + k]) * step[3 * k + j];
-        q[3 * i + j] = sum;
-      }
-    return q;
   }
 
   int order_ = 0;
