@@ -101,18 +101,6 @@ std::vector<Eigen::Vector3d> table_lobes(const runtime::LobeTableData& t) {
   return out;
 }
 
-template <class T>
-void rotate_lanes(int order, const T* r, const T* in, T* out) {
-  switch (order) {
-    case 3: return runtime::rotate_lanes<3, T>(r, in, out);
-    case 4: return runtime::rotate_lanes<4, T>(r, in, out);
-    case 5: return runtime::rotate_lanes<5, T>(r, in, out);
-    case 6: return runtime::rotate_lanes<6, T>(r, in, out);
-    case 7: return runtime::rotate_lanes<7, T>(r, in, out);
-    default: return runtime::rotate_lanes<8, T>(r, in, out);
-  }
-}
-
 std::string table_path(int order) {
   return std::string(ZHF_SOURCE_DIR) + "/generated/lobes/order_" + std::to_string(order) + ".json";
 }
@@ -149,8 +137,10 @@ TEST(EveryMethod, ExtremeRotationsStayWithinEachMethodsTolerance) {
       check("generated batch double", order, rotations, through<double>([&](auto r, auto i, auto o) { rd.rotate_batch(1, r, i, o); }), kDoubleTolerance);
       check("dense double", order, rotations, through<double>([&](auto r, auto i, auto o) { rd.dense(r).apply(i, o); }), kDoubleTolerance);
       if (order >= 3) {
-        check("lanes float", order, rotations, through<float>([&](auto r, auto i, auto o) { rotate_lanes(order, r, i, o); }), float_tolerance);
-        check("lanes double", order, rotations, through<double>([&](auto r, auto i, auto o) { rotate_lanes(order, r, i, o); }), kDoubleTolerance);
+        const auto lanes_f = runtime::lanes_kernel<float>(order);
+        const auto lanes_d = runtime::lanes_kernel<double>(order);
+        check("lanes float", order, rotations, through<float>([&](auto r, auto i, auto o) { lanes_f(r, i, o); }), float_tolerance);
+        check("lanes double", order, rotations, through<double>([&](auto r, auto i, auto o) { lanes_d(r, i, o); }), kDoubleTolerance);
       }
     }
     if (order >= 3) {

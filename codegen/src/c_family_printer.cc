@@ -195,7 +195,7 @@ std::vector<std::string> lobe_derivation(const Module& module, const EmitOptions
   lines.push_back("output's normalisation applied once after the sum over lobes.");
   if (module.wide_lobes) {
     char model[32];
-    std::snprintf(model, sizeof model, "%.2g", kFloatEpsilon * (module.order - 1) * module.table.worst_condition());
+    std::snprintf(model, sizeof model, "%.2g", float_lobe_error_model(module.order, module.table.worst_condition()));
     lines.push_back("Lobe stage in double: R is projected onto the rotations (one Newton step to its polar factor),");
     lines.push_back("and the rotated lobes, their SH and the sums over lobes are double, because in float the");
     lines.push_back(std::string("error model eps_f (N-1) k_max = ") + model + " exceeds the 1e-6 target (zhf emit --lobe-precision).");

@@ -436,7 +436,7 @@ std::vector<int> Function::output_nodes() const {
 }
 
 bool float_needs_wide_lobes(const optimizer::LobeTable& table) {
-  return kFloatEpsilon * (table.order - 1) * table.worst_condition() > kFloatRotationTarget;
+  return float_lobe_error_model(table.order, table.worst_condition()) > kFloatRotationTarget;
 }
 
 bool wide_lobes(const optimizer::LobeTable& table, LobePrecision precision) {

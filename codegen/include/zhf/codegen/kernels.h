@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "zhf/codegen/expr.h"
+#include "zhf/codegen/float_model.h"
 #include "zhf/optimizer/lobe_table.h"
 
 namespace zhf::codegen {
@@ -77,11 +78,6 @@ struct ModuleOptions {
   LobePrecision lobe_precision = LobePrecision::kAuto;
 };
 
-// Float kernels: max abs error target for unit coefficient vectors, and the error model of
-// the lobe stage in float, eps_f (N - 1) k_max: each rotated lobe is rounded to float, band-l
-// SH turn that into about l eps_f, and A_l amplifies it by up to its condition number.
-inline constexpr double kFloatRotationTarget = 1e-6;
-inline constexpr double kFloatEpsilon = 5.9604644775390625e-08;  // 2^-24
 // Whether float kernels must run the lobe stage (R's projection onto the rotations, the
 // rotated lobes, their SH, the sums over lobes) in double to stay within the target.
 bool float_needs_wide_lobes(const optimizer::LobeTable& table);

@@ -12,6 +12,8 @@
 #pragma once
 
 #include <cstddef>
+#include <stdexcept>
+#include <string>
 #include <type_traits>
 #include <utility>
 
@@ -123,6 +125,44 @@ template <int N, class T, bool kDoubleLobes = GeneratedOrder<N>::kLobeStageInDou
     T sum = 0;
     for (int n = 0; n < 3; ++n) sum += R[3 * kAxisOfM[m] + kAxisOfM[n]] * coeffs[1 + n];
     rotated[1 + m] = sum;
+  }
+}
+
+template <class T>
+using LanesKernel = void (*)(const T*, const T*, T*);
+
+namespace lanes_detail {
+template <int N, class T>
+LanesKernel<T> kernel_of(bool float_lobes) {
+  return float_lobes ? &rotate_lanes<N, T, false> : &rotate_lanes<N, T>;
+}
+}  // namespace lanes_detail
+
+// rotate_lanes for an order known at run time (3..8); float_lobes: the lobe stage in float.
+template <class T>
+LanesKernel<T> lanes_kernel(int order, bool float_lobes = false) {
+  switch (order) {
+    case 3: return lanes_detail::kernel_of<3, T>(float_lobes);
+    case 4: return lanes_detail::kernel_of<4, T>(float_lobes);
+    case 5: return lanes_detail::kernel_of<5, T>(float_lobes);
+    case 6: return lanes_detail::kernel_of<6, T>(float_lobes);
+    case 7: return lanes_detail::kernel_of<7, T>(float_lobes);
+    case 8: return lanes_detail::kernel_of<8, T>(float_lobes);
+    default: throw std::invalid_argument("lanes_kernel: order " + std::to_string(order) + " is not in [3, 8]");
+  }
+}
+
+// Whether the generated kernels (and so rotate_lanes by default) of an order 3..8 run their
+// lobe stage in double.
+inline bool lobe_stage_in_double(int order) {
+  switch (order) {
+    case 3: return GeneratedOrder<3>::kLobeStageInDouble;
+    case 4: return GeneratedOrder<4>::kLobeStageInDouble;
+    case 5: return GeneratedOrder<5>::kLobeStageInDouble;
+    case 6: return GeneratedOrder<6>::kLobeStageInDouble;
+    case 7: return GeneratedOrder<7>::kLobeStageInDouble;
+    case 8: return GeneratedOrder<8>::kLobeStageInDouble;
+    default: throw std::invalid_argument("lobe_stage_in_double: order " + std::to_string(order) + " is not in [3, 8]");
   }
 }
 

@@ -8,12 +8,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "zhf/codegen/float_model.h"
+
 namespace zhf::verify {
 
 // Tolerances, by method and precision (max abs error vs the double reference, unit-norm inputs).
 inline constexpr double kDoubleTolerance = 1e-12;
-inline constexpr double kFloatRotationTolerance = 1e-6;     // rotate, signal-tailored, rgb, batch, at least
-inline constexpr double kFloatEpsilon = 5.9604644775390625e-08;  // 2^-24
+inline constexpr double kFloatRotationTolerance = codegen::kFloatRotationTarget;  // rotations, at least
+using codegen::kFloatEpsilon;
 // Float rotations, by where the lobe stage runs (codegen/kernels.h, LobePrecision):
 // - in double (R projected onto the rotations first): what is left is the rounding of R
 //   itself, which turns band l by ~l eps_f, and of the output: max(1e-6, 2 (N-1) eps_f), which
@@ -25,7 +27,7 @@ inline constexpr double kFloatEpsilon = 5.9604644775390625e-08;  // 2^-24
 //   max(1e-6, eps_f (N-1) k_max); `auto` (the default) picks double exactly where this
 //   exceeds 1e-6.
 inline double float_rotation_tolerance(int order, double worst_condition, bool wide_lobes) {
-  const double model = wide_lobes ? 2 * (order - 1) * kFloatEpsilon : kFloatEpsilon * (order - 1) * worst_condition;
+  const double model = wide_lobes ? 2 * (order - 1) * kFloatEpsilon : codegen::float_lobe_error_model(order, worst_condition);
   return model > kFloatRotationTolerance ? model : kFloatRotationTolerance;
 }
 // zxzxz (sh/zxzxz.h) in float: five stages of O(eps) rounding per coefficient, and the Euler
