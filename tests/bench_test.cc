@@ -77,6 +77,16 @@ TEST(Bench, QuickRunMeasuresEveryMethodWithinItsTolerance) {
   EXPECT_EQ((ran[{"ivanic_ruedenberg", "single"}]), all);
   if (report["notes"].empty()) EXPECT_EQ((ran[{"healpix", "single"}]), all);
   else std::cout << "[ SKIPPED  ] HEALPix part: " << report["notes"][0] << "\n";
+  // The script a user reruns by hand writes the final SVGs, not zhf's temporary ones.
+  const std::string script = io::read_text_file((dir / "bench.gp").string());
+  EXPECT_NE(script.find("'" + (dir / "bench.svg").string() + "'"), std::string::npos) << script;
+  EXPECT_NE(script.find("'" + (dir / "bench_scaling.svg").string() + "'"), std::string::npos) << script;
+  if (r.out.find("gnuplot is not installed") == std::string::npos) {
+    EXPECT_GT(fs::file_size(dir / "bench.svg"), 0u);
+    EXPECT_GT(fs::file_size(dir / "bench_scaling.svg"), 0u);
+  }
+  for (const auto& entry : fs::directory_iterator(dir))
+    EXPECT_EQ(entry.path().string().find(".tmp."), std::string::npos) << "left behind: " << entry.path();
   fs::remove_all(dir);
 }
 

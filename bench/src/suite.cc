@@ -586,13 +586,15 @@ std::string write_plots(const SuiteReport& report, const std::string& svg_path) 
   csv << "# series, order, ns_median, max_error\n";
   std::ostringstream pareto, time;
   const std::string csv_path = (svg.parent_path() / (svg.stem().string() + ".csv")).string();
-  // gnuplot draws into temporary files, renamed into place only when it succeeds.
-  const std::string svg_tmp = svg.string() + ".tmp", scaling_tmp = scaling.string() + ".tmp";
-  pareto << "set terminal svg size 1000,700 dynamic background rgb 'white'\nset output '" << svg_tmp << "'\n"
+  // The script writes the final SVGs when a user runs it; zhf's own run passes temporary outputs
+  // (-e) and renames them into place only when gnuplot succeeds.
+  pareto << "if (!exists('pareto_svg')) pareto_svg = '" << svg.string() << "'\n"
+         << "if (!exists('scaling_svg')) scaling_svg = '" << scaling.string() << "'\n"
+         << "set terminal svg size 1000,700 dynamic background rgb 'white'\nset output pareto_svg\n"
          << "set title 'zhf bench: max error vs time per rotated vector (one vector, new rotation each call; labels: order N)' noenhanced\n"
          << "set logscale xy\nset xlabel 'ns per rotated vector (median)'\nset ylabel 'max abs error vs double reference'\n"
          << "set key outside right noenhanced\nset datafile separator ','\nplot ";
-  time << "set terminal svg size 1000,700 dynamic background rgb 'white'\nset output '" << scaling_tmp << "'\n"
+  time << "set terminal svg size 1000,700 dynamic background rgb 'white'\nset output scaling_svg\n"
        << "set title 'zhf bench: time vs order (log-log; fitted exponent in the key)'\n"
        << "set logscale xy\nset xlabel 'order N'\nset ylabel 'ns per rotated vector (median)'\nset xtics (2,3,4,5,6,8,10,12,16)\n"
        << "set key outside right noenhanced\nset datafile separator ','\nplot ";
@@ -619,13 +621,11 @@ std::string write_plots(const SuiteReport& report, const std::string& svg_path) 
   io::write_file_atomically(gp, pareto.str() + time.str());
   if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
     return "gnuplot is not installed: wrote " + csv_path + " and " + gp + " (run: gnuplot " + gp + ")";
-  if (std::system(("gnuplot '" + gp + "'").c_str()) != 0) {
-    fs::remove(svg_tmp);
-    fs::remove(scaling_tmp);
-    return "gnuplot failed on " + gp;
-  }
-  fs::rename(svg_tmp, svg);
-  fs::rename(scaling_tmp, scaling);
+  io::PendingFile pareto_svg(svg.string()), scaling_svg(scaling.string());
+  const std::string outputs = "pareto_svg='" + pareto_svg.path() + "'; scaling_svg='" + scaling_svg.path() + "'";
+  if (std::system(("gnuplot -e \"" + outputs + "\" '" + gp + "'").c_str()) != 0) return "gnuplot failed on " + gp;
+  pareto_svg.commit();
+  scaling_svg.commit();
   return "wrote " + svg.string() + " and " + scaling.string() + " (data " + csv_path + ", script " + gp + ")";
 }
 

@@ -9,47 +9,57 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 #include "zhf/io/errors.h"
 
 namespace zhf::io {
 
-void write_file_atomically(const std::string& path, const std::string& content) {
-  std::string pattern = path + ".tmp.XXXXXX";
+PendingFile::PendingFile(std::string destination) : destination_(std::move(destination)) {
+  std::string pattern = destination_ + ".tmp.XXXXXX";
   std::vector<char> name(pattern.begin(), pattern.end());
   name.push_back('\0');
-  const int fd = mkstemp(name.data());
-  if (fd < 0) throw OutputError(path + ": cannot create a temporary file beside it: " + std::strerror(errno));
-  const std::string temp(name.data());
+  fd_ = mkstemp(name.data());
+  if (fd_ < 0) throw OutputError(destination_ + ": cannot create a temporary file beside it: " + std::strerror(errno));
+  temp_ = name.data();
+  // mkstemp makes the file 0600; give it the mode a plain create would have had.
+  const mode_t mask = umask(0);
+  umask(mask);
+  fchmod(fd_, 0666 & ~mask);
+}
+
+PendingFile::~PendingFile() {
+  if (fd_ >= 0) ::close(fd_);
+  if (!committed_) std::remove(temp_.c_str());
+}
+
+void PendingFile::commit() {
+  if (fd_ >= 0 && ::close(fd_) != 0) throw OutputError(destination_ + ": write failed: " + std::strerror(errno));
+  fd_ = -1;
+  // fsync through a fresh descriptor: another program may have replaced the file by name.
+  const int fd = ::open(temp_.c_str(), O_RDONLY);
+  const bool flushed = fd >= 0 && fsync(fd) == 0 && ::close(fd) == 0;
+  if (!flushed) throw OutputError(destination_ + ": flush failed: " + std::strerror(errno));
+  if (std::rename(temp_.c_str(), destination_.c_str()) != 0)
+    throw OutputError(destination_ + ": cannot move the new file into place: " + std::strerror(errno));
+  committed_ = true;
+}
+
+void write_file_atomically(const std::string& path, const std::string& content) {
+  PendingFile file(path);
   const char* data = content.data();
   size_t left = content.size();
   while (left > 0) {
-    const ssize_t written = ::write(fd, data, left);
+    const ssize_t written = ::write(file.fd(), data, left);
     if (written < 0) {
       if (errno == EINTR) continue;
-      const std::string reason = std::strerror(errno);
-      ::close(fd);
-      std::remove(temp.c_str());
-      throw OutputError(path + ": write failed: " + reason);
+      throw OutputError(path + ": write failed: " + std::strerror(errno));
     }
     data += written;
     left -= static_cast<size_t>(written);
   }
-  // mkstemp makes the file 0600; give it the mode a plain create would have had.
-  const mode_t mask = umask(0);
-  umask(mask);
-  fchmod(fd, 0666 & ~mask);
-  if (fsync(fd) != 0 || ::close(fd) != 0) {
-    const std::string reason = std::strerror(errno);
-    std::remove(temp.c_str());
-    throw OutputError(path + ": flush failed: " + reason);
-  }
-  if (std::rename(temp.c_str(), path.c_str()) != 0) {
-    const std::string reason = std::strerror(errno);
-    std::remove(temp.c_str());
-    throw OutputError(path + ": cannot move the new file into place: " + reason);
-  }
+  file.commit();
 }
 
 std::string read_text_file(const std::string& path) {

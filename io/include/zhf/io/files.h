@@ -11,6 +11,29 @@ namespace zhf::io {
 // path, so readers see either the old file or the complete new one. Throws OutputError.
 void write_file_atomically(const std::string& path, const std::string& content);
 
+// A new empty file beside a destination (destination.tmp.XXXXXX, unique, so concurrent runs
+// never share one) that becomes the destination only on commit(); otherwise the destructor
+// removes it. For files another program writes by name (gnuplot); zhf's own output goes
+// through write_file_atomically. Throws OutputError naming the destination.
+class PendingFile {
+ public:
+  explicit PendingFile(std::string destination);
+  ~PendingFile();
+  PendingFile(const PendingFile&) = delete;
+  PendingFile& operator=(const PendingFile&) = delete;
+
+  const std::string& path() const { return temp_; }
+  int fd() const { return fd_; }  // open for writing until commit()
+  // Flushes to disk, closes and renames over the destination.
+  void commit();
+
+ private:
+  std::string destination_;
+  std::string temp_;
+  int fd_ = -1;
+  bool committed_ = false;
+};
+
 // Throws InputError naming the path when it is missing or unreadable.
 std::string read_text_file(const std::string& path);
 
