@@ -35,12 +35,11 @@ PendingFile::~PendingFile() {
 }
 
 void PendingFile::commit() {
-  if (fd_ >= 0 && ::close(fd_) != 0) throw OutputError(destination_ + ": write failed: " + std::strerror(errno));
+  // fsync flushes the file whoever wrote it: zhf through fd_, or another program by name.
+  const bool flushed = fsync(fd_) == 0;
+  const bool closed = ::close(fd_) == 0;
   fd_ = -1;
-  // fsync through a fresh descriptor: another program may have replaced the file by name.
-  const int fd = ::open(temp_.c_str(), O_RDONLY);
-  const bool flushed = fd >= 0 && fsync(fd) == 0 && ::close(fd) == 0;
-  if (!flushed) throw OutputError(destination_ + ": flush failed: " + std::strerror(errno));
+  if (!flushed || !closed) throw OutputError(destination_ + ": flush failed: " + std::strerror(errno));
   if (std::rename(temp_.c_str(), destination_.c_str()) != 0)
     throw OutputError(destination_ + ": cannot move the new file into place: " + std::strerror(errno));
   committed_ = true;
