@@ -7,6 +7,7 @@
 #include "commands.h"
 #include "interrupt.h"
 #include "zhf/io/files.h"
+#include "zhf/optimizer/conditioned.h"
 #include "zhf/optimizer/continuous.h"
 #include "zhf/optimizer/exhaustive.h"
 #include "zhf/optimizer/genetic.h"
@@ -32,6 +33,7 @@ struct OptimizeOptions {
   bool exhaustive = false;
   bool seed_from_continuous = false;
   bool quiet = false;
+  std::string objective = "sparsity";
   std::string out;
 };
 
@@ -103,10 +105,39 @@ int run_exhaustive(const optimizer::LobeEvaluator& evaluator, const OptimizeOpti
   return kExitOk;
 }
 
+// --objective amplification: continuous directions for the float lanes rotation.
+int run_conditioned(const OptimizeOptions& o, const std::string& command) {
+  if (o.no_sharing || o.exhaustive || o.seed_from_continuous)
+    throw UsageError("--objective amplification: searches shared continuous lobes; drop --no-sharing, --exhaustive "
+                     "and --seed-from-continuous");
+  optimizer::ConditionedOptions options;
+  options.seed = o.seed;
+  options.stop = &interrupt_requested();
+  const optimizer::ConditionedResult result = optimizer::conditioned_search(o.order, options);
+  if (result.theta.empty()) {
+    std::fprintf(stderr, "zhf: interrupted before the first pass ended; nothing written\n");
+    return kExitInterrupted;
+  }
+  const nlohmann::json provenance = {{"zhf_version", ZHF_VERSION},
+                                     {"command", command},
+                                     {"seed", o.seed},
+                                     {"objective", "amplification"},
+                                     {"evaluations", result.evaluations}};
+  const optimizer::LobeTable table = optimizer::make_conditioned_table(o.order, result, provenance);
+  print_summary(table);
+  std::printf("  float error amplification per band:");
+  for (double a : result.amplification) std::printf(" %.3f", a);
+  std::printf("\n  search: %ld evaluations\n", result.evaluations);
+  if (result.interrupted) return save_interrupted(table, o);
+  write_table(table, o);
+  return kExitOk;
+}
+
 int run_optimize(const OptimizeOptions& o, const std::string& command) {
   if (o.order < candidates::kMinOrder || o.order > kMaxOptimizeOrder)
     throw UsageError("--order: " + std::to_string(o.order) + " is outside [3, " + std::to_string(kMaxOptimizeOrder) + "]");
   const InterruptGuard interrupts;
+  if (o.objective == "amplification") return run_conditioned(o, command);
   const candidates::CandidateSet set = candidates::enumerate_candidates(o.order);
   const optimizer::LobeEvaluator evaluator(set, !o.no_sharing, o.max_condition);
   const bool tty = isatty(STDERR_FILENO);
@@ -207,6 +238,10 @@ void add_optimize_command(CLI::App& app, Action& action, const std::string& comm
               "Enumerate every lobe set (up to permutations within a band); with --time-limit, report the bound");
   c->add_flag("--seed-from-continuous", o->seed_from_continuous,
               "Seed the GA with 16 continuous (nlopt) optima snapped to candidates");
+  c->add_option("--objective", o->objective,
+                 "sparsity (default: SH-zero candidates, most zeros within --max-condition) or amplification "
+                 "(continuous lobes with the least float error amplification, for runtime/lanes.h)")
+      ->check(CLI::IsMember({"sparsity", "amplification"}));
   c->add_flag("--quiet", o->quiet, "No progress on stderr");
   c->add_option("--out", o->out, "Write the lobe table (zhf-lobes-1 JSON) here");
   c->callback([o, &action, command_line] { action = [o, command_line] { return run_optimize(*o, command_line); }; });

@@ -5,9 +5,9 @@
 namespace zhf::bench {
 
 // Instantiated here, in the unit ZHF_BENCH_ARCH builds for the host.
-FloatKernel lanes_kernel(int order, bool float_lobes) { return runtime::lanes_kernel<float>(order, float_lobes); }
+FloatKernel lanes_kernel(int order, bool all_float) { return runtime::lanes_kernel<float>(order, all_float); }
 
-bool lobe_stage_in_double(int order) { return runtime::lobe_stage_in_double(order); }
+int lanes_stage(int order) { return runtime::lanes_stage(order); }
 
 std::string lanes_arch() { return ZHF_LANES_ARCH; }
 

@@ -9,9 +9,9 @@ namespace zhf::bench {
 
 using FloatKernel = void (*)(const float*, const float*, float*);
 
-// Orders 3..8; the lobe stage where the generated kernels have it or, with float_lobes, in float.
-FloatKernel lanes_kernel(int order, bool float_lobes);
-bool lobe_stage_in_double(int order);
+// Orders 3..8; each step where the lanes tables put it or, with all_float, in float.
+FloatKernel lanes_kernel(int order, bool all_float);
+int lanes_stage(int order);
 // The -march this unit was built with ("" for the toolchain's default).
 std::string lanes_arch();
 

@@ -1,9 +1,11 @@
 #include "zhf/codegen/generate.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <system_error>
 
+#include "zhf/codegen/lanes_tables.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 
@@ -137,6 +139,26 @@ GenerateResult generate(const GenerateOptions& options) {
       entry["lobe_stage"] = wide_lobes(table, module_options.lobe_precision) ? "double" : "native";
       entry["fnv1a64"] = content_hash(file.text);
       files.push_back(entry);
+    }
+    // The lanes tables go with the full tree only (a scene lists exactly what it wants).
+    const fs::path lanes_table = fs::path(options.tables_dir) / ("lanes_order_" + std::to_string(order) + ".json");
+    const bool wants_cpp = std::find(options.languages.begin(), options.languages.end(), "cpp") != options.languages.end();
+    if (options.scene.is_null() && wants_cpp && fs::exists(lanes_table, ec)) {
+      const optimizer::LobeTable lanes = optimizer::read_table(lanes_table.string());
+      if (lanes.order != order)
+        throw io::InputError(lanes_table.string() + ": order: says " + std::to_string(lanes.order));
+      const std::string lanes_name = "lobes/" + lanes_table.filename().string();
+      stage(lanes_name, io::json_text(optimizer::to_json(lanes)));
+      const EmittedFile file = emit_lanes_tables(lanes, options.command, "generated/" + lanes_name);
+      stage("cpp/" + file.file_name, file.text);
+      summary.files += 2;
+      files.push_back({{"path", "cpp/" + file.file_name},
+                       {"order", order},
+                       {"language", "cpp"},
+                       {"kind", "lanes-tables"},
+                       {"functions", nlohmann::ordered_json::array()},
+                       {"lanes_stage", static_cast<int>(lanes_stage(lanes))},
+                       {"fnv1a64", content_hash(file.text)}});
     }
     result.orders.push_back(summary);
   }

@@ -115,6 +115,7 @@ std::map<std::pair<int, std::string>, FileEntry> read_manifest(const fs::path& g
     const std::string language = f.value("language", "");
     const std::string precision = f.value("precision", "");
     if (precision == "double") continue;  // shaders are run in float; C++ in both
+    if (f.contains("kind")) continue;      // tables without kernels (lanes-tables)
     FileEntry entry;
     entry.path = f.value("path", "");
     for (const nlohmann::json& fn : f.value("functions", nlohmann::json::array())) entry.functions.push_back(fn.value("name", ""));

@@ -1,23 +1,30 @@
 // The signal-tailored rotation arranged lobe-parallel, for SIMD CPUs: one loop over the lobes
 // whose body (rotate the lobe by R^T, evaluate the SH there, dot each band with f) is the same
-// straight-line code for every lobe, so the compiler runs it across SIMD lanes; then the sparse
-// f' = A s per band. Orders 3..8, from the generated headers' lobe tables, SH evaluation and
-// AhatMultiply.
+// straight-line code for every lobe, so the compiler runs it across SIMD lanes; then f' = A_l s
+// per band as a dense multiply of SIMD columns. Orders 3..8.
 //
-// It computes what rotate_signal_tailored_orderN does, with the lobe stage in double exactly
-// where the generated kernels have it (kLobeStageInDoubleOrderN), so the accuracy is the same.
-// It gives up the generated kernels' per-lobe constant folding (components +-1 or 0) to get
-// the lanes: the fast choice for one vector per rotation where the build targets AVX2 or
-// wider (-O3 -mavx2 -mfma, or -march=native); with SSE2 only, compare with zhf bench.
+// It uses its own lobe tables (generated zhf_lanes_orderN.h): continuous directions chosen for
+// the least float error amplification, not the sparse tables' SH zeros, since a dense SIMD A_l s
+// costs less here than the sparse scalar one. With them the lobe stage runs in float where the
+// float error model allows (kLanesLobeStageInDoubleOrderN), which halves the work per lane.
+// The fast choice for one vector per rotation where the build targets AVX2 or wider
+// (-O3 -mavx2 -mfma, or -march=native); with SSE2 only, compare with zhf bench.
 #pragma once
 
 #include <cstddef>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <utility>
 
 #include "zhf/runtime/polar_step.h"
+#include "zhf_lanes_order3.h"
+#include "zhf_lanes_order4.h"
+#include "zhf_lanes_order5.h"
+#include "zhf_lanes_order6.h"
+#include "zhf_lanes_order7.h"
+#include "zhf_lanes_order8.h"
 #include "zhf_order3.h"
 #include "zhf_order4.h"
 #include "zhf_order5.h"
@@ -32,12 +39,12 @@ struct GeneratedOrder;
 #define ZHF_GENERATED_ORDER(N)                                                                  \
   template <>                                                                                   \
   struct GeneratedOrder<N> {                                                                    \
-    static constexpr bool kLobeStageInDouble = gen::kLobeStageInDoubleOrder##N;                 \
-    static constexpr const double (&kLobes)[2 * N - 1][3] = gen::kLobesOrder##N;                \
+    static constexpr int kStage = gen::kLanesStageOrder##N;                                     \
+    static constexpr const double (&kLobes)[2 * N - 1][3] = gen::kLanesLobesOrder##N;           \
+    static constexpr const double (&kInverse)[N - 2][2 * N - 1][2 * N - 1] =                    \
+        gen::kLanesInverseOrder##N;                                                             \
     template <class T>                                                                          \
     static void sh_eval(const T dir[3], T y[N * N]) { gen::sh_eval_order##N<T>(dir, y); }       \
-    template <class T>                                                                          \
-    static void lobe_multiply(const T s[N * N], T f[N * N]) { gen::AhatMultiply_order##N<T>(s, f); } \
   };
 ZHF_GENERATED_ORDER(3)
 ZHF_GENERATED_ORDER(4)
@@ -49,7 +56,8 @@ ZHF_GENERATED_ORDER(8)
 
 namespace lanes_detail {
 
-// Lobes per loop, padded to a multiple of 8 (AVX float lanes) with copies of lobe 0.
+// Lobes per loop, padded to a multiple of 8 (AVX float lanes) with copies of lobe 0; also the
+// rows of the padded columns of A_l.
 constexpr int padded_lobes(int order) { return (2 * order - 1 + 7) / 8 * 8; }
 
 template <int N, class W>
@@ -79,6 +87,51 @@ inline W band_dot(const W* f, const W* y) {
   return sum;
 }
 
+// columns[l - 2][d]: column d of A_l, zero beyond its 2l + 1 rows.
+template <int N, class T>
+struct DenseColumns {
+  alignas(64) T columns[N - 2][2 * N - 1][padded_lobes(N)];
+};
+
+template <int N, class T>
+constexpr DenseColumns<N, T> dense_columns() {
+  DenseColumns<N, T> c{};
+  for (int b = 0; b < N - 2; ++b)
+    for (int d = 0; d < 2 * N - 1; ++d)
+      for (int row = 0; row < 2 * N - 1; ++row) c.columns[b][d][row] = T(GeneratedOrder<N>::kInverse[b][row][d]);
+  return c;
+}
+
+// out[band L] = A_L s: a sum of whole padded columns scaled by the samples.
+template <int N, int L, class T, class W>
+inline void band_multiply(const T (&columns)[2 * N - 1][padded_lobes(N)], const W* s, T* out) {
+  constexpr int kRows = padded_lobes(N);
+#if defined(__GNUC__) && !defined(ZHF_LANES_PLAIN_LOOPS)
+  // GCC vectorises the plain loops below across d, with transposes; vector types keep the
+  // columns whole.
+  typedef T Column __attribute__((vector_size(kRows * sizeof(T))));
+  Column sum = {};
+  for (int d = 0; d < 2 * L + 1; ++d) {
+    Column column;
+    std::memcpy(&column, columns[d], sizeof column);
+    sum += column * T(s[d]);
+  }
+  T rows[kRows];
+  std::memcpy(rows, &sum, sizeof rows);
+#else
+  T rows[kRows] = {};
+  for (int d = 0; d < 2 * L + 1; ++d)
+    for (int row = 0; row < kRows; ++row) rows[row] += columns[d][row] * T(s[d]);
+#endif
+  for (int m = 0; m < 2 * L + 1; ++m) out[L * L + m] = rows[m];
+}
+
+template <int N, class T, class W, int... L>
+inline void multiply_bands(const DenseColumns<N, T>& a, const W (*s)[padded_lobes(N)], T* out,
+                           std::integer_sequence<int, L...>) {
+  (band_multiply<N, L + 2>(a.columns[L], s[L], out), ...);
+}
+
 template <int N, class W, int... L>
 inline void band_samples(const W* f, const W* y, W (*s)[padded_lobes(N)], int d, std::integer_sequence<int, L...>) {
   ((s[L][d] = band_dot<L + 2>(f, y)), ...);
@@ -89,16 +142,20 @@ inline void band_samples(const W* f, const W* y, W (*s)[padded_lobes(N)], int d,
 // rotated = coefficients of f(R^T w), R row-major mapping v to R v; orders 3..8. Flattened so
 // the SH evaluation is inlined into the lobe loop at every order (the loop body must be
 // straight-line code to vectorize).
-// kDoubleLobes overrides where the lobe stage runs (false: float throughout, faster, error up to
-// the float model of verify.h).
-template <int N, class T, bool kDoubleLobes = GeneratedOrder<N>::kLobeStageInDouble>
+// kStage says where each step runs (0: all in float; 1: the lobes rotated in double; 2: R
+// projected onto the rotations and the whole lobe stage in double); the default is the
+// generated table's choice (zhf_lanes_orderN.h, from an error model against the 1e-6 target).
+// A s runs in T.
+template <int N, class T, int kStage = GeneratedOrder<N>::kStage>
 [[gnu::flatten]] inline void rotate_lanes(const T R[9], const T coeffs[N * N], T rotated[N * N]) {
   using namespace lanes_detail;
-  using W = std::conditional_t<kDoubleLobes, std::common_type_t<T, double>, T>;
+  using W = std::conditional_t<kStage == 2, std::common_type_t<T, double>, T>;
+  using Rotated = std::conditional_t<kStage >= 1, std::common_type_t<T, double>, T>;
   constexpr int kLanes = padded_lobes(N);
-  static constexpr LobeColumns<N, W> kColumns = lobe_columns<N, W>();
-  W q[9];
-  if constexpr (kDoubleLobes) {
+  static constexpr LobeColumns<N, Rotated> kColumns = lobe_columns<N, Rotated>();
+  static constexpr DenseColumns<N, T> kInverse = dense_columns<N, T>();
+  Rotated q[9];
+  if constexpr (kStage == 2) {
     polar_step(R, q);
   } else {
     for (int i = 0; i < 9; ++i) q[i] = R[i];
@@ -107,17 +164,14 @@ template <int N, class T, bool kDoubleLobes = GeneratedOrder<N>::kLobeStageInDou
   for (int i = 0; i < N * N; ++i) f[i] = W(coeffs[i]);
   alignas(64) W samples[N - 2][kLanes];  // band l + 2's function at R^T w_d
   for (int d = 0; d < kLanes; ++d) {
-    const W dir[3] = {q[0] * kColumns.x[d] + q[3] * kColumns.y[d] + q[6] * kColumns.z[d],
-                      q[1] * kColumns.x[d] + q[4] * kColumns.y[d] + q[7] * kColumns.z[d],
-                      q[2] * kColumns.x[d] + q[5] * kColumns.y[d] + q[8] * kColumns.z[d]};
+    const W dir[3] = {W(q[0] * kColumns.x[d] + q[3] * kColumns.y[d] + q[6] * kColumns.z[d]),
+                      W(q[1] * kColumns.x[d] + q[4] * kColumns.y[d] + q[7] * kColumns.z[d]),
+                      W(q[2] * kColumns.x[d] + q[5] * kColumns.y[d] + q[8] * kColumns.z[d])};
     W y[N * N];
     GeneratedOrder<N>::sh_eval(dir, y);
     band_samples<N>(f, y, samples, d, std::make_integer_sequence<int, N - 2>());
   }
-  T s[N * N] = {};
-  for (int l = 2; l < N; ++l)
-    for (int d = 0; d < 2 * l + 1; ++d) s[l * l + d] = T(samples[l - 2][d]);
-  GeneratedOrder<N>::lobe_multiply(s, rotated);
+  multiply_bands<N>(kInverse, samples, rotated, std::make_integer_sequence<int, N - 2>());
   // Band 0 is invariant; band 1 is c (y, z, x), so its matrix is R on those axes.
   constexpr int kAxisOfM[3] = {1, 2, 0};
   rotated[0] = coeffs[0];
@@ -133,36 +187,35 @@ using LanesKernel = void (*)(const T*, const T*, T*);
 
 namespace lanes_detail {
 template <int N, class T>
-LanesKernel<T> kernel_of(bool float_lobes) {
-  return float_lobes ? &rotate_lanes<N, T, false> : &rotate_lanes<N, T>;
+LanesKernel<T> kernel_of(bool all_float) {
+  return all_float ? &rotate_lanes<N, T, 0> : &rotate_lanes<N, T>;
 }
 }  // namespace lanes_detail
 
-// rotate_lanes for an order known at run time (3..8); float_lobes: the lobe stage in float.
+// rotate_lanes for an order known at run time (3..8); all_float: every step in float (stage 0).
 template <class T>
-LanesKernel<T> lanes_kernel(int order, bool float_lobes = false) {
+LanesKernel<T> lanes_kernel(int order, bool all_float = false) {
   switch (order) {
-    case 3: return lanes_detail::kernel_of<3, T>(float_lobes);
-    case 4: return lanes_detail::kernel_of<4, T>(float_lobes);
-    case 5: return lanes_detail::kernel_of<5, T>(float_lobes);
-    case 6: return lanes_detail::kernel_of<6, T>(float_lobes);
-    case 7: return lanes_detail::kernel_of<7, T>(float_lobes);
-    case 8: return lanes_detail::kernel_of<8, T>(float_lobes);
+    case 3: return lanes_detail::kernel_of<3, T>(all_float);
+    case 4: return lanes_detail::kernel_of<4, T>(all_float);
+    case 5: return lanes_detail::kernel_of<5, T>(all_float);
+    case 6: return lanes_detail::kernel_of<6, T>(all_float);
+    case 7: return lanes_detail::kernel_of<7, T>(all_float);
+    case 8: return lanes_detail::kernel_of<8, T>(all_float);
     default: throw std::invalid_argument("lanes_kernel: order " + std::to_string(order) + " is not in [3, 8]");
   }
 }
 
-// Whether the generated kernels (and so rotate_lanes by default) of an order 3..8 run their
-// lobe stage in double.
-inline bool lobe_stage_in_double(int order) {
+// rotate_lanes's default stage for an order 3..8 (0 float, 1 lobes in double, 2 double).
+inline int lanes_stage(int order) {
   switch (order) {
-    case 3: return GeneratedOrder<3>::kLobeStageInDouble;
-    case 4: return GeneratedOrder<4>::kLobeStageInDouble;
-    case 5: return GeneratedOrder<5>::kLobeStageInDouble;
-    case 6: return GeneratedOrder<6>::kLobeStageInDouble;
-    case 7: return GeneratedOrder<7>::kLobeStageInDouble;
-    case 8: return GeneratedOrder<8>::kLobeStageInDouble;
-    default: throw std::invalid_argument("lobe_stage_in_double: order " + std::to_string(order) + " is not in [3, 8]");
+    case 3: return GeneratedOrder<3>::kStage;
+    case 4: return GeneratedOrder<4>::kStage;
+    case 5: return GeneratedOrder<5>::kStage;
+    case 6: return GeneratedOrder<6>::kStage;
+    case 7: return GeneratedOrder<7>::kStage;
+    case 8: return GeneratedOrder<8>::kStage;
+    default: throw std::invalid_argument("lanes_stage: order " + std::to_string(order) + " is not in [3, 8]");
   }
 }
 

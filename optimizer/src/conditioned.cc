@@ -1,0 +1,168 @@
+#include "zhf/optimizer/conditioned.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+#include <string>
+
+#include <Eigen/LU>
+#include <Eigen/SVD>
+#include <nlopt.hpp>
+
+#include "search_support.h"
+#include "zhf/sh/eval.h"
+#include "zhf/sh/index.h"
+
+namespace zhf::optimizer {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// A singular set gets this instead of an infinite objective, so the simplex can move off it.
+constexpr double kSingularPenalty = 1e12;
+
+Eigen::MatrixXd band_matrix_at(int l, const std::vector<std::array<double, 3>>& dirs) {
+  const int size = 2 * l + 1;
+  Eigen::MatrixXd y(size, size);
+  std::vector<double> row(size);
+  for (int d = 0; d < size; ++d) {
+    sh::eval_band(l, dirs[d].data(), row.data());
+    for (int m = 0; m < size; ++m) y(d, m) = row[m];
+  }
+  return y;
+}
+
+std::vector<std::array<double, 3>> directions(const std::vector<double>& x) {
+  std::vector<std::array<double, 3>> dirs(x.size() / 2);
+  for (size_t i = 0; i < dirs.size(); ++i) sh::direction_from_angles(x[2 * i], x[2 * i + 1], dirs[i].data());
+  return dirs;
+}
+
+std::vector<double> amplifications(int order, const std::vector<double>& x) {
+  const auto dirs = directions(x);
+  std::vector<double> a;
+  for (int l = 2; l < order; ++l) a.push_back(band_amplification(band_matrix_at(l, dirs)));
+  return a;
+}
+
+double score(const std::vector<double>& a) {
+  double worst = 0, sum = 0;
+  for (double v : a) {
+    if (!std::isfinite(v)) return kSingularPenalty;
+    worst = std::max(worst, v);
+    sum += v * v;
+  }
+  return std::min(kSingularPenalty, 4 * worst * worst + sum / static_cast<double>(a.size()));
+}
+
+struct Problem {
+  int order;
+  long evaluations = 0;
+};
+
+double objective(const std::vector<double>& x, std::vector<double>&, void* data) {
+  auto* p = static_cast<Problem*>(data);
+  ++p->evaluations;
+  return score(amplifications(p->order, x));
+}
+
+}  // namespace
+
+double band_amplification(const Eigen::MatrixXd& y) {
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(y);
+  const double smallest = svd.singularValues()(y.rows() - 1);
+  return smallest > 0 ? y.row(0).norm() / smallest : INFINITY;
+}
+
+ConditionedResult conditioned_search(int order, const ConditionedOptions& options) {
+  if (order < 3 || order > sh::kMaxOrder)
+    throw std::invalid_argument("conditioned_search: order " + std::to_string(order) + " is outside [3, " +
+                                std::to_string(sh::kMaxOrder) + "]");
+  const int lobes = 2 * order - 1;
+  Problem problem{order};
+  std::mt19937_64 rng(options.seed);
+  ConditionedResult best;
+  best.objective = INFINITY;
+  for (int s = 0; s < options.starts && !best.interrupted; ++s) {
+    std::vector<double> x(2 * lobes);
+    for (int i = 0; i < lobes; ++i) {
+      x[2 * i] = std::acos(2 * detail::unit(rng) - 1);
+      x[2 * i + 1] = kPi * (2 * detail::unit(rng) - 1);
+    }
+    for (int pass = 0; pass < options.passes; ++pass) {
+      if (options.stop && options.stop->load()) {
+        best.interrupted = true;
+        break;
+      }
+      nlopt::opt opt(nlopt::LN_SBPLX, static_cast<unsigned>(x.size()));
+      opt.set_min_objective(objective, &problem);
+      opt.set_maxeval(options.max_evaluations_per_pass);
+      opt.set_xtol_rel(1e-10);
+      double value = 0;
+      try {
+        opt.optimize(x, value);
+      } catch (const std::exception&) {
+        value = score(amplifications(order, x));  // nlopt gives up on round-off; keep where it got to
+      }
+      if (value < best.objective) {
+        best.objective = value;
+        best.theta.assign(lobes, 0);
+        best.phi.assign(lobes, 0);
+        // Canonical angles: theta in [0, pi], phi in (-pi, pi].
+        const auto dirs = directions(x);
+        for (int i = 0; i < lobes; ++i) {
+          best.theta[i] = std::acos(std::clamp(dirs[i][2], -1.0, 1.0));
+          best.phi[i] = std::atan2(dirs[i][1], dirs[i][0]);
+        }
+      }
+    }
+  }
+  if (best.theta.empty()) return best;
+  std::vector<double> x;
+  for (int i = 0; i < lobes; ++i) {
+    x.push_back(best.theta[i]);
+    x.push_back(best.phi[i]);
+  }
+  best.amplification = amplifications(order, x);
+  best.objective = score(best.amplification);
+  best.evaluations = problem.evaluations;
+  return best;
+}
+
+LobeTable make_conditioned_table(int order, const ConditionedResult& result, const nlohmann::json& provenance) {
+  LobeTable table;
+  table.order = order;
+  table.lobe_sharing = true;
+  std::vector<std::array<double, 3>> dirs;
+  for (size_t i = 0; i < result.theta.size(); ++i) {
+    TableLobe lobe;
+    lobe.theta = result.theta[i];
+    lobe.phi = result.phi[i];
+    sh::direction_from_angles(lobe.theta, lobe.phi, lobe.xyz);
+    lobe.source = "continuous search for the least float error amplification (not an SH zero)";
+    dirs.push_back({lobe.xyz[0], lobe.xyz[1], lobe.xyz[2]});
+    table.lobes.push_back(lobe);
+  }
+  nlohmann::json amplification = nlohmann::json::array();
+  for (int l = 2; l < order; ++l) {
+    TableBand band;
+    band.l = l;
+    for (int d = 0; d < 2 * l + 1; ++d) band.lobes.push_back(d);
+    const Eigen::MatrixXd y = band_matrix_at(l, dirs);
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(y);
+    const auto& s = svd.singularValues();
+    band.condition = s(0) / s(s.size() - 1);
+    band.inverse = y.fullPivLu().inverse();
+    band.zeros = static_cast<int>((band.inverse.array() == 0).count());
+    table.zeros += band.zeros;
+    table.entries += static_cast<int>(band.inverse.size());
+    amplification.push_back(band_amplification(y));
+    table.bands.push_back(std::move(band));
+  }
+  table.provenance = provenance;
+  table.provenance["amplification"] = amplification;
+  return table;
+}
+
+}  // namespace zhf::optimizer
