@@ -27,7 +27,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 // A knob that trades accuracy (the float error model instead of 1e-6): not a winner.
-constexpr const char* kFloatLobesVariant = "all float";
+constexpr const char* kAllFloatVariant = "all float";
 
 // Scale of one run.
 struct Scale {
@@ -356,7 +356,7 @@ SuiteReport run_suite(const SuiteOptions& o) {
         if (lanes_stage(order) > 0) {
           const FloatKernel fast = lanes_kernel(order, true);
           say(single<float>(scale, pool, "zhf_lanes", "single", 1, [&](auto r, auto in, auto out) { fast(r, in, out); },
-                            kFloatLobesVariant));
+                            kAllFloatVariant));
         }
       }
     }
@@ -521,7 +521,7 @@ std::string SuiteReport::table() const {
   out << "\nfastest per scenario and order (float methods; ratio = runner-up time / winner time):\n";
   std::map<std::pair<std::string, int>, std::vector<const Row*>> groups;
   for (const Row& r : rows)
-    if (r.precision == "float" && r.variant.rfind("pruned", 0) != 0 && r.variant != kFloatLobesVariant) groups[{r.scenario, r.order}].push_back(&r);
+    if (r.precision == "float" && r.variant.rfind("pruned", 0) != 0 && r.variant != kAllFloatVariant) groups[{r.scenario, r.order}].push_back(&r);
   for (auto& [key, group] : groups) {
     std::sort(group.begin(), group.end(), [](const Row* a, const Row* b) { return a->ns_median < b->ns_median; });
     const Row* best = group.front();
