@@ -79,12 +79,16 @@ constexpr LobeColumns<N, W> lobe_columns() {
   return c;
 }
 
-// sum_m f_{l,m} y_{l,m}: a fixed trip count, so it unrolls into the loop body.
+// sum_m f_{l,m} y_{l,m}: a fixed trip count, so it unrolls into the loop body; two partial sums
+// halve the dependency chain.
 template <int L, class W>
 inline W band_dot(const W* f, const W* y) {
-  W sum = 0;
-  for (int m = 0; m < 2 * L + 1; ++m) sum += f[L * L + m] * y[L * L + m];
-  return sum;
+  W even = 0, odd = 0;
+  for (int m = 0; m < 2 * L; m += 2) {
+    even += f[L * L + m] * y[L * L + m];
+    odd += f[L * L + m + 1] * y[L * L + m + 1];
+  }
+  return (even + f[L * L + 2 * L] * y[L * L + 2 * L]) + odd;
 }
 
 // columns[l - 2][d]: column d of A_l, zero beyond its 2l + 1 rows.
@@ -110,12 +114,13 @@ inline void band_multiply(const T (&columns)[2 * N - 1][padded_lobes(N)], const 
   // GCC vectorises the plain loops below across d, with transposes; vector types keep the
   // columns whole.
   typedef T Column __attribute__((vector_size(kRows * sizeof(T))));
-  Column sum = {};
+  Column even = {}, odd = {};
   for (int d = 0; d < 2 * L + 1; ++d) {
     Column column;
     std::memcpy(&column, columns[d], sizeof column);
-    sum += column * T(s[d]);
+    (d % 2 == 0 ? even : odd) += column * T(s[d]);
   }
+  const Column sum = even + odd;
   T rows[kRows];
   std::memcpy(rows, &sum, sizeof rows);
 #else
@@ -162,11 +167,17 @@ template <int N, class T, int kStage = GeneratedOrder<N>::kStage>
   }
   W f[N * N];
   for (int i = 0; i < N * N; ++i) f[i] = W(coeffs[i]);
+  // The lobes rotated in a loop of their own: fused with the evaluation, a double rotation
+  // feeding float lanes vectorises worse.
+  alignas(64) W rx[kLanes], ry[kLanes], rz[kLanes];
+  for (int d = 0; d < kLanes; ++d) {
+    rx[d] = W(q[0] * kColumns.x[d] + q[3] * kColumns.y[d] + q[6] * kColumns.z[d]);
+    ry[d] = W(q[1] * kColumns.x[d] + q[4] * kColumns.y[d] + q[7] * kColumns.z[d]);
+    rz[d] = W(q[2] * kColumns.x[d] + q[5] * kColumns.y[d] + q[8] * kColumns.z[d]);
+  }
   alignas(64) W samples[N - 2][kLanes];  // band l + 2's function at R^T w_d
   for (int d = 0; d < kLanes; ++d) {
-    const W dir[3] = {W(q[0] * kColumns.x[d] + q[3] * kColumns.y[d] + q[6] * kColumns.z[d]),
-                      W(q[1] * kColumns.x[d] + q[4] * kColumns.y[d] + q[7] * kColumns.z[d]),
-                      W(q[2] * kColumns.x[d] + q[5] * kColumns.y[d] + q[8] * kColumns.z[d])};
+    const W dir[3] = {rx[d], ry[d], rz[d]};
     W y[N * N];
     GeneratedOrder<N>::sh_eval(dir, y);
     band_samples<N>(f, y, samples, d, std::make_integer_sequence<int, N - 2>());
