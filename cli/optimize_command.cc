@@ -34,6 +34,8 @@ struct OptimizeOptions {
   bool seed_from_continuous = false;
   bool quiet = false;
   std::string objective = "sparsity";
+  int starts = optimizer::ConditionedOptions{}.starts;
+  bool starts_given = false;
   std::string out;
 };
 
@@ -112,6 +114,8 @@ int run_conditioned(const OptimizeOptions& o, const std::string& command) {
                      "and --seed-from-continuous");
   optimizer::ConditionedOptions options;
   options.seed = o.seed;
+  options.starts = o.starts;
+  options.threads = o.threads;
   options.stop = &interrupt_requested();
   const optimizer::ConditionedResult result = optimizer::conditioned_search(o.order, options);
   if (result.theta.empty()) {
@@ -122,6 +126,7 @@ int run_conditioned(const OptimizeOptions& o, const std::string& command) {
                                      {"command", command},
                                      {"seed", o.seed},
                                      {"objective", "amplification"},
+                                     {"starts", o.starts},
                                      {"evaluations", result.evaluations}};
   const optimizer::LobeTable table = optimizer::make_conditioned_table(o.order, result, provenance);
   print_summary(table);
@@ -138,6 +143,7 @@ int run_optimize(const OptimizeOptions& o, const std::string& command) {
     throw UsageError("--order: " + std::to_string(o.order) + " is outside [3, " + std::to_string(kMaxOptimizeOrder) + "]");
   const InterruptGuard interrupts;
   if (o.objective == "amplification") return run_conditioned(o, command);
+  if (o.starts_given) throw UsageError("--starts: only --objective amplification has random starts");
   const candidates::CandidateSet set = candidates::enumerate_candidates(o.order);
   const optimizer::LobeEvaluator evaluator(set, !o.no_sharing, o.max_condition);
   const bool tty = isatty(STDERR_FILENO);
@@ -242,9 +248,16 @@ void add_optimize_command(CLI::App& app, Action& action, const std::string& comm
                  "sparsity (default: SH-zero candidates, most zeros within --max-condition) or amplification "
                  "(continuous lobes with the least float error amplification, for runtime/lanes.h)")
       ->check(CLI::IsMember({"sparsity", "amplification"}));
+  CLI::Option* starts = c->add_option("--starts", o->starts,
+                                      "amplification: random start points (default 8); more finds lower error, "
+                                      "in proportion more time")
+                            ->check(CLI::Range(1, 1000000));
   c->add_flag("--quiet", o->quiet, "No progress on stderr");
   c->add_option("--out", o->out, "Write the lobe table (zhf-lobes-1 JSON) here");
-  c->callback([o, &action, command_line] { action = [o, command_line] { return run_optimize(*o, command_line); }; });
+  c->callback([o, starts, &action, command_line] {
+    o->starts_given = starts->count() > 0;
+    action = [o, command_line] { return run_optimize(*o, command_line); };
+  });
 }
 
 }  // namespace zhf::cli

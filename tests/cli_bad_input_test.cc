@@ -55,6 +55,11 @@ TEST_F(BadInput, OptionsOutOfRangeOrNotNumbers) {
   expect_one_line(run_zhf("optimize --order 4 --max-condition 0"), 2, "--max-condition", "max condition 0");
   expect_one_line(run_zhf("optimize --order 4 --population 1"), 2, "--population", "population 1");
   expect_one_line(run_zhf("optimize --order 4 --threads -1"), 2, "--threads", "threads -1");
+  expect_one_line(run_zhf("optimize --order 4 --objective amplification --starts 0"), 2, "--starts", "starts 0");
+  expect_one_line(run_zhf("optimize --order 4 --starts 4 --out " + path("t.json")), 2, "--starts: only --objective amplification",
+                  "starts with the sparsity objective");
+  expect_one_line(run_zhf("optimize --order 4 --objective amplification --no-sharing --out " + path("t.json")), 2,
+                  "--objective amplification", "amplification without sharing");
   expect_one_line(run_zhf("emit --table " + kTable3.string() + " --lang metal --out " + dir_), 2, "--lang", "lang");
   expect_one_line(run_zhf("emit --table " + kTable3.string() + " --lang cpp --channels 2 --out " + dir_), 2, "--channels", "channels");
   expect_one_line(run_zhf("verify --langs cpp,cuda"), 2, "--langs", "langs");

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 #include <Eigen/LU>
 #include <Eigen/SVD>
@@ -67,6 +69,45 @@ double objective(const std::vector<double>& x, std::vector<double>&, void* data)
   return score(amplifications(p->order, x));
 }
 
+int resolve_threads(int threads) {
+  return threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+struct StartResult {
+  std::vector<double> x;  // the best point of this start's passes; empty if none ended
+  double objective = INFINITY;
+  long evaluations = 0;
+  bool interrupted = false;
+};
+
+// Subplex passes from one start point, each from where the previous one stopped.
+StartResult descend_from(int order, std::vector<double> x, const ConditionedOptions& options) {
+  Problem problem{order};
+  StartResult result;
+  for (int pass = 0; pass < options.passes; ++pass) {
+    if (options.stop && options.stop->load()) {
+      result.interrupted = true;
+      break;
+    }
+    nlopt::opt opt(nlopt::LN_SBPLX, static_cast<unsigned>(x.size()));
+    opt.set_min_objective(objective, &problem);
+    opt.set_maxeval(options.max_evaluations_per_pass);
+    opt.set_xtol_rel(1e-10);
+    double value = 0;
+    try {
+      opt.optimize(x, value);
+    } catch (const std::exception&) {
+      value = score(amplifications(order, x));  // nlopt gives up on round-off; keep where it got to
+    }
+    if (value < result.objective) {
+      result.objective = value;
+      result.x = x;
+    }
+  }
+  result.evaluations = problem.evaluations;
+  return result;
+}
+
 }  // namespace
 
 double band_amplification(const Eigen::MatrixXd& y) {
@@ -80,53 +121,50 @@ ConditionedResult conditioned_search(int order, const ConditionedOptions& option
     throw std::invalid_argument("conditioned_search: order " + std::to_string(order) + " is outside [3, " +
                                 std::to_string(sh::kMaxOrder) + "]");
   const int lobes = 2 * order - 1;
-  Problem problem{order};
+  // Every start point is drawn here, on one thread, so a start's result never depends on which
+  // worker ran it; the best is then taken in start order (ties: the earlier start).
   std::mt19937_64 rng(options.seed);
-  ConditionedResult best;
-  best.objective = INFINITY;
-  for (int s = 0; s < options.starts && !best.interrupted; ++s) {
-    std::vector<double> x(2 * lobes);
+  std::vector<std::vector<double>> points(std::max(0, options.starts), std::vector<double>(2 * lobes));
+  for (std::vector<double>& x : points)
     for (int i = 0; i < lobes; ++i) {
       x[2 * i] = std::acos(2 * detail::unit(rng) - 1);
       x[2 * i + 1] = kPi * (2 * detail::unit(rng) - 1);
     }
-    for (int pass = 0; pass < options.passes; ++pass) {
-      if (options.stop && options.stop->load()) {
-        best.interrupted = true;
-        break;
-      }
-      nlopt::opt opt(nlopt::LN_SBPLX, static_cast<unsigned>(x.size()));
-      opt.set_min_objective(objective, &problem);
-      opt.set_maxeval(options.max_evaluations_per_pass);
-      opt.set_xtol_rel(1e-10);
-      double value = 0;
-      try {
-        opt.optimize(x, value);
-      } catch (const std::exception&) {
-        value = score(amplifications(order, x));  // nlopt gives up on round-off; keep where it got to
-      }
-      if (value < best.objective) {
-        best.objective = value;
-        best.theta.assign(lobes, 0);
-        best.phi.assign(lobes, 0);
-        // Canonical angles: theta in [0, pi], phi in (-pi, pi].
-        const auto dirs = directions(x);
-        for (int i = 0; i < lobes; ++i) {
-          best.theta[i] = std::acos(std::clamp(dirs[i][2], -1.0, 1.0));
-          best.phi[i] = std::atan2(dirs[i][1], dirs[i][0]);
-        }
-      }
+  std::vector<StartResult> results(points.size());
+  std::atomic<int> next{0};
+  auto work = [&] {
+    for (int s = next.fetch_add(1); s < static_cast<int>(points.size()); s = next.fetch_add(1))
+      results[s] = descend_from(order, points[s], options);
+  };
+  const int workers = std::min(resolve_threads(options.threads), std::max(1, static_cast<int>(points.size())));
+  std::vector<std::thread> pool;
+  for (int t = 1; t < workers; ++t) pool.emplace_back(work);
+  work();
+  for (std::thread& t : pool) t.join();
+
+  ConditionedResult best;
+  best.objective = INFINITY;
+  const StartResult* winner = nullptr;
+  for (const StartResult& r : results) {
+    best.evaluations += r.evaluations;
+    best.interrupted = best.interrupted || r.interrupted;
+    if (!r.x.empty() && r.objective < best.objective) {
+      best.objective = r.objective;
+      winner = &r;
     }
   }
-  if (best.theta.empty()) return best;
+  if (!winner) return best;
+  // Canonical angles: theta in [0, pi], phi in (-pi, pi].
+  const auto dirs = directions(winner->x);
   std::vector<double> x;
   for (int i = 0; i < lobes; ++i) {
+    best.theta.push_back(std::acos(std::clamp(dirs[i][2], -1.0, 1.0)));
+    best.phi.push_back(std::atan2(dirs[i][1], dirs[i][0]));
     x.push_back(best.theta[i]);
     x.push_back(best.phi[i]);
   }
   best.amplification = amplifications(order, x);
   best.objective = score(best.amplification);
-  best.evaluations = problem.evaluations;
   return best;
 }
 

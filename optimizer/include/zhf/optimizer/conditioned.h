@@ -23,6 +23,7 @@ struct ConditionedOptions {
   int starts = 8;
   int passes = 3;  // subplex restarts from where the previous pass stopped
   int max_evaluations_per_pass = 20000;
+  int threads = 0;  // starts run in parallel (0: all cores); never changes the result
   const std::atomic<bool>* stop = nullptr;  // checked between passes
 };
 
