@@ -5,8 +5,8 @@
 //
 // It uses its own lobe tables (generated zhf_lanes_orderN.h): continuous directions chosen for
 // the least float error amplification, not the sparse tables' SH zeros, since a dense SIMD A_l s
-// costs less here than the sparse scalar one. With them the lobe stage runs in float where the
-// float error model allows (kLanesLobeStageInDoubleOrderN), which halves the work per lane.
+// costs less here than the sparse scalar one. With them each step runs in float where the
+// float error model allows (kLanesStageOrderN), which halves the work per lane.
 // The fast choice for one vector per rotation where the build targets AVX2 or wider
 // (-O3 -mavx2 -mfma, or -march=native); with SSE2 only, compare with zhf bench.
 #pragma once
