@@ -2,12 +2,10 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
 #include <random>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
 #include <Eigen/LU>
 #include <Eigen/SVD>
@@ -69,10 +67,6 @@ double objective(const std::vector<double>& x, std::vector<double>&, void* data)
   return score(amplifications(p->order, x));
 }
 
-int resolve_threads(int threads) {
-  return threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-}
-
 struct StartResult {
   std::vector<double> x;  // the best point of this start's passes; empty if none ended
   double objective = INFINITY;
@@ -130,17 +124,10 @@ ConditionedResult conditioned_search(int order, const ConditionedOptions& option
       x[2 * i] = std::acos(2 * detail::unit(rng) - 1);
       x[2 * i + 1] = kPi * (2 * detail::unit(rng) - 1);
     }
-  std::vector<StartResult> results(points.size());
-  std::atomic<int> next{0};
-  auto work = [&] {
-    for (int s = next.fetch_add(1); s < static_cast<int>(points.size()); s = next.fetch_add(1))
-      results[s] = descend_from(order, points[s], options);
-  };
-  const int workers = std::min(resolve_threads(options.threads), std::max(1, static_cast<int>(points.size())));
-  std::vector<std::thread> pool;
-  for (int t = 1; t < workers; ++t) pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool) t.join();
+  const int count = static_cast<int>(points.size());
+  std::vector<StartResult> results(count);
+  detail::parallel_for(count, std::min(detail::resolve_threads(options.threads), std::max(1, count)),
+                       [&](int s) { results[s] = descend_from(order, points[s], options); });
 
   ConditionedResult best;
   best.objective = INFINITY;

@@ -6,7 +6,6 @@
 #include <map>
 #include <numeric>
 #include <random>
-#include <thread>
 
 #include "search_support.h"
 
@@ -14,11 +13,6 @@ namespace zhf::optimizer {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-int resolve_threads(int threads) {
-  if (threads > 0) return threads;
-  return std::max(1u, std::thread::hardware_concurrency());
-}
 
 using detail::pick;
 using detail::unit;
@@ -78,15 +72,8 @@ void evaluate_all(const LobeEvaluator& evaluator, const std::vector<Genome>& gen
                   int threads) {
   out.assign(genomes.size(), Fitness{});
   const int count = static_cast<int>(genomes.size());
-  const int workers = std::min(resolve_threads(threads), std::max(1, count / 8));
-  std::atomic<int> next{0};
-  auto work = [&] {
-    for (int i = next.fetch_add(1); i < count; i = next.fetch_add(1)) out[i] = evaluator.evaluate(genomes[i]);
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < workers; ++t) pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool) t.join();
+  const int workers = std::min(detail::resolve_threads(threads), std::max(1, count / 8));
+  detail::parallel_for(count, workers, [&](int i) { out[i] = evaluator.evaluate(genomes[i]); });
 }
 
 SearchResult genetic_search(const LobeEvaluator& evaluator, const GeneticOptions& options) {
