@@ -1,5 +1,6 @@
 // zhf bench --quick, as CI runs it: every method ran at every order it covers, and every
-// error is within the method's named tolerance. No timing is asserted.
+// error, random inputs and the worst unit input, is within the method's named tolerance. No
+// timing is asserted.
 #include <algorithm>
 #include <filesystem>
 #include <map>
@@ -21,6 +22,10 @@ namespace fs = std::filesystem;
 
 // Double-precision methods (zhf double, Ivanic-Ruedenberg, HEALPix) against the reference.
 constexpr double kDoubleTolerance = 1e-12;
+// The worst unit input (single vector) against a method's random-input tolerance. It is the
+// largest row norm of the error matrix, which a random unit f sees about N/3 times smaller, so
+// no fixed factor is exact; measured up to 1.75 (zhf_lanes at N = 6, 20000 rotations).
+constexpr double kWorstUnitInputFactor = 3;
 
 
 // The float tolerance of a lobe method: the runtime table path runs its lobe stage in double;
@@ -70,6 +75,11 @@ TEST(Bench, QuickRunMeasuresEveryMethodWithinItsTolerance) {
       }
     }
     EXPECT_LE(error, tolerance) << where;
+    if (scenario == "single") {
+      ASSERT_TRUE(row.contains("worst_unit_error")) << where;
+      const double worst = row["worst_unit_error"];
+      EXPECT_LE(worst, precision == "float" ? kWorstUnitInputFactor * tolerance : kDoubleTolerance) << where << ", worst unit input";
+    }
   }
   const std::set<int> generated = {2, 3, 4, 5, 6, 7, 8};
   const std::set<int> all = {2, 3, 4, 5, 6, 7, 8, 10, 12, 16};

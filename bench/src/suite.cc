@@ -35,6 +35,7 @@ struct Scale {
   int repeats;        // timed repeats; median, min and max are reported
   double seconds;     // target time of one repeat
   size_t batch;       // vectors in the batch and shared scenarios
+  int worst_rotations;  // rotations searched for the worst unit input (single vector)
 };
 
 // Random rotations and unit-norm coefficient vectors (three channels each), with the double
@@ -117,6 +118,31 @@ void measure_error(const Pool& pool, const std::vector<T>& out, int channels, in
   row.rms_error = std::sqrt(sum / std::max<size_t>(1, terms));
 }
 
+// The worst unit input of a linear method: over unit f the largest |error_i| is the norm of row
+// i of E = K - D, K's columns the method's outputs for the basis vectors and D the reference
+// band matrices (the error is linear in f up to rounding). Random unit f meet that row at an
+// angle whose cosine is about 1/N, so max_error understates it 2x to 3x.
+template <class T, class F>
+void measure_worst_unit_input(const Pool& pool, int rotations, F&& rotate, Row& row) {
+  const int n = pool.n;
+  double worst = 0;
+  Eigen::MatrixXd error(n, n);
+  std::vector<T> basis(n, T(0)), out(n);
+  for (int k = 0; k < std::min(rotations, pool.size); ++k) {
+    const sh::BandMatrices bands = sh::quadrature_rotation(pool.r[k], pool.order);
+    for (int c = 0; c < n; ++c) {
+      basis[c] = T(1);
+      rotate(pool.rot<T>(k), basis.data(), out.data());
+      basis[c] = T(0);
+      const Eigen::VectorXd exact = sh::apply_band_matrices(bands, Eigen::VectorXd::Unit(n, c));
+      for (int i = 0; i < n; ++i) error(i, c) = double(out[i]) - exact[i];
+    }
+    const double rows = error.rowwise().norm().maxCoeff();
+    worst = std::isnan(rows) ? INFINITY : std::max(worst, rows);
+  }
+  row.worst_unit_error = worst;
+}
+
 Row make_row(const std::string& method, const std::string& scenario, const std::string& precision, int order,
              const std::string& variant = "") {
   Row r;
@@ -138,6 +164,7 @@ Row single(const Scale& scale, const Pool& pool, const std::string& method, cons
   // Channel c of input k is the pool's channel c: the coefficients are contiguous per input.
   time_calls(scale, pool.size, [&](int k) { rotate(pool.rot<T>(k), pool.coeffs<T>(k), &out[size_t(k) * channels * pool.n]); }, row);
   measure_error(pool, out, channels, pool.size, row);
+  if (channels == 1) measure_worst_unit_input<T>(pool, scale.worst_rotations, rotate, row);
   return row;
 }
 
@@ -292,7 +319,7 @@ std::string today() {
 }  // namespace
 
 SuiteReport run_suite(const SuiteOptions& o) {
-  const Scale scale = o.quick ? Scale{128, 3, 0.01, 1 << 15} : Scale{512, 7, 0.05, 1 << 20};
+  const Scale scale = o.quick ? Scale{128, 3, 0.01, 1 << 15, 8} : Scale{512, 7, 0.05, 1 << 20, 64};
   std::vector<int> orders = o.orders;
   if (orders.empty()) orders = {2, 3, 4, 5, 6, 7, 8, 10, 12, 16};
   const fs::path root = o.source_dir;
@@ -411,7 +438,7 @@ SuiteReport run_suite(const SuiteOptions& o) {
       say(single<double>(scale, pool, "healpix", "single", 1, [&](auto r, auto in, auto out) { h.rotate(r, in, out); }, "incl. real<->complex"));
       // The conversions' share of that time, alone (no rotation, so no error to report).
       Row convert = single<double>(scale, pool, "healpix", "single", 1, [&](auto r, auto in, auto out) { h.convert_only(r, in, out); }, "conversion only");
-      convert.max_error = convert.rms_error = NAN;
+      convert.max_error = convert.rms_error = convert.worst_unit_error = NAN;
       say(convert);
     }
 
@@ -491,6 +518,7 @@ nlohmann::ordered_json SuiteReport::to_json() const {
                                 {"variant", r.variant},     {"order", r.order},         {"ns_median", r.ns_median},
                                 {"ns_min", r.ns_min},       {"ns_max", r.ns_max},       {"max_error", r.max_error},
                                 {"rms_error", r.rms_error}};
+    if (!std::isnan(r.worst_unit_error)) x["worst_unit_error"] = r.worst_unit_error;
     if (r.multiplies >= 0) x["multiplies"] = r.multiplies, x["adds"] = r.adds;
     list.push_back(x);
   }
@@ -501,8 +529,8 @@ nlohmann::ordered_json SuiteReport::to_json() const {
 std::string SuiteReport::table() const {
   std::ostringstream out;
   char line[300];
-  std::snprintf(line, sizeof line, "%-7s %5s  %-20s %-6s %-36s %10s %21s %10s %10s %13s\n", "scenario", "order", "method",
-                "prec", "variant", "ns/vector", "[min, max]", "max err", "RMS err", "mults/adds");
+  std::snprintf(line, sizeof line, "%-7s %5s  %-20s %-6s %-36s %10s %21s %10s %10s %10s %13s\n", "scenario", "order",
+                "method", "prec", "variant", "ns/vector", "[min, max]", "max err", "RMS err", "worst unit", "mults/adds");
   out << line;
   std::vector<Row> sorted = rows;
   std::stable_sort(sorted.begin(), sorted.end(), [](const Row& a, const Row& b) {
@@ -512,9 +540,11 @@ std::string SuiteReport::table() const {
     const std::string ops = r.multiplies >= 0 ? std::to_string(r.multiplies) + "/" + std::to_string(r.adds) : "-";
     char range[64];
     std::snprintf(range, sizeof range, "[%.1f, %.1f]", r.ns_min, r.ns_max);
-    std::snprintf(line, sizeof line, "%-8s %5d  %-20s %-6s %-36s %10.1f %21s %10.2e %10.2e %13s\n", r.scenario.c_str(),
-                  r.order, r.method.c_str(), r.precision.c_str(), r.variant.c_str(), r.ns_median, range, r.max_error,
-                  r.rms_error, ops.c_str());
+    char worst[16] = "-";
+    if (!std::isnan(r.worst_unit_error)) std::snprintf(worst, sizeof worst, "%.2e", r.worst_unit_error);
+    std::snprintf(line, sizeof line, "%-8s %5d  %-20s %-6s %-36s %10.1f %21s %10.2e %10.2e %10s %13s\n",
+                  r.scenario.c_str(), r.order, r.method.c_str(), r.precision.c_str(), r.variant.c_str(), r.ns_median,
+                  range, r.max_error, r.rms_error, worst, ops.c_str());
     out << line;
   }
   // Per scenario and order: the fastest float method, and its lead over the next method.

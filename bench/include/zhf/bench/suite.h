@@ -3,6 +3,7 @@
 // counts; a table, JSON and gnuplot plots (the speed/accuracy trade).
 #pragma once
 
+#include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
@@ -26,6 +27,7 @@ struct Row {
   int order = 0;
   double ns_median = 0, ns_min = 0, ns_max = 0;  // per rotated vector (all channels), over repeats
   double max_error = 0, rms_error = 0;           // vs the double reference, unit-norm inputs
+  double worst_unit_error = NAN;                 // single vector: the worst unit input (NaN: not measured)
   long multiplies = -1, adds = -1;               // straight-line methods only
 };
 
