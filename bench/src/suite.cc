@@ -118,27 +118,14 @@ void measure_error(const Pool& pool, const std::vector<T>& out, int channels, in
   row.rms_error = std::sqrt(sum / std::max<size_t>(1, terms));
 }
 
-// The worst unit input of a linear method: over unit f the largest |error_i| is the norm of row
-// i of E = K - D, K's columns the method's outputs for the basis vectors and D the reference
-// band matrices (the error is linear in f up to rounding). Random unit f meet that row at an
-// angle whose cosine is about 1/N, so max_error understates it 2x to 3x.
+// The worst unit input of a linear method (sh::worst_unit_input_error), over the first
+// `rotations` rotations of the pool against its quadrature reference.
 template <class T, class F>
 void measure_worst_unit_input(const Pool& pool, int rotations, F&& rotate, Row& row) {
-  const int n = pool.n;
   double worst = 0;
-  Eigen::MatrixXd error(n, n);
-  std::vector<T> basis(n, T(0)), out(n);
   for (int k = 0; k < std::min(rotations, pool.size); ++k) {
-    const sh::BandMatrices bands = sh::quadrature_rotation(pool.r[k], pool.order);
-    for (int c = 0; c < n; ++c) {
-      basis[c] = T(1);
-      rotate(pool.rot<T>(k), basis.data(), out.data());
-      basis[c] = T(0);
-      const Eigen::VectorXd exact = sh::apply_band_matrices(bands, Eigen::VectorXd::Unit(n, c));
-      for (int i = 0; i < n; ++i) error(i, c) = double(out[i]) - exact[i];
-    }
-    const double rows = error.rowwise().norm().maxCoeff();
-    worst = std::isnan(rows) ? INFINITY : std::max(worst, rows);
+    const auto rotate_k = [&](const T* in, T* out) { rotate(pool.rot<T>(k), in, out); };
+    worst = std::max(worst, sh::worst_unit_input_error<T>(sh::quadrature_rotation(pool.r[k], pool.order), rotate_k));
   }
   row.worst_unit_error = worst;
 }
