@@ -11,6 +11,7 @@
 #include "zhf/runtime/lanes.h"
 #include "zhf/runtime/rotator.h"
 #include "zhf/sh/eval.h"
+#include "zhf/sh/index.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/verify/verify.h"
 
@@ -146,8 +147,7 @@ void check_against_reference(double tolerance, bool lanes = false) {
       worst_trial = k;
     }
   }
-  int band = 0;
-  while ((band + 1) * (band + 1) <= worst_index) ++band;
+  const int band = sh::band_of(worst_index);
   EXPECT_LE(worst, tolerance) << (lanes ? "lanes, " : "") << "order " << N << ", band " << band << ", index " << worst_index << ", trial "
                               << worst_trial << (sizeof(T) == 4 ? " (float)" : " (double)");
   ::testing::Test::RecordProperty(std::string(lanes ? "lanes_" : "") + "max_error_order" + std::to_string(N) + (sizeof(T) == 4 ? "_float" : "_double"), scientific(worst));
@@ -251,8 +251,7 @@ void check_worst_unit_vector(Rotate rotate, double tolerance, const char* path, 
       worst_trial = k;
     }
   }
-  int band = 0;
-  while ((band + 1) * (band + 1) <= worst_index) ++band;
+  const int band = sh::band_of(worst_index);
   EXPECT_LE(worst, tolerance) << path << ", order " << N << ", band " << band << ", index " << worst_index
                               << ", rotation " << worst_trial << ": worst unit input";
   ::testing::Test::RecordProperty(std::string(key) + "_worst_unit_vector_order" + std::to_string(N), scientific(worst));
