@@ -1,7 +1,7 @@
-// The signal-tailored rotation arranged lobe-parallel, for SIMD CPUs: one loop over the lobes
-// whose body (rotate the lobe by R^T, evaluate the SH there, dot each band with f) is the same
-// straight-line code for every lobe, so the compiler runs it across SIMD lanes; then f' = A_l s
-// per band as a dense multiply of SIMD columns. Orders 3..8.
+// The signal-tailored rotation arranged lobe-parallel, for SIMD CPUs: loops over the lobes
+// (rotate each by R^T; evaluate the SH there and dot each band with f) whose bodies are the
+// same straight-line code for every lobe, so the compiler runs them across SIMD lanes; then
+// f' = A_l s per band as a dense multiply of SIMD columns. Orders 3..8.
 //
 // It uses its own lobe tables (generated zhf_lanes_orderN.h): continuous directions chosen for
 // the least float error amplification, not the sparse tables' SH zeros, since a dense SIMD A_l s
