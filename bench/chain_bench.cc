@@ -8,12 +8,14 @@
 
 #include "zhf/runtime/rotator.h"
 #include "zhf/sh/reference_rotation.h"
+#include "zhf/sh/rotation_matrix.h"
+#include "zhf_kernels.h"
 
 namespace {
 
 template <class T>
 void chain(int order, long steps) {
-  const auto rotator = zhf::runtime::Rotator<T>::generated(order);
+  const auto rotator = zhf::runtime::Rotator<T>::with(zhf::gen::scalar_kernels<T>(order));
   std::mt19937_64 rng(11);
   std::normal_distribution<double> normal;
   const int n = order * order;
@@ -31,8 +33,11 @@ void chain(int order, long steps) {
     v.swap(next);
     if (k == checkpoint) {
       // The composed matrix drifts from orthonormal by ~k eps_d; re-project before comparing.
+      const zhf::runtime::Matrix3 composed = zhf::sh::to_array(total);
+      zhf::runtime::Matrix3 projected{};
+      zhf::runtime::nearest_rotation(composed.data(), projected.data());
       const Eigen::VectorXd expected =
-          zhf::sh::apply_band_matrices(zhf::sh::ivanic_ruedenberg(zhf::sh::nearest_rotation(total), order), f);
+          zhf::sh::apply_band_matrices(zhf::sh::ivanic_ruedenberg(zhf::sh::to_eigen(projected), order), f);
       double error = 0, norm = 0;
       for (int i = 0; i < n; ++i) {
         error = std::max(error, std::abs(double(v[i]) - expected[i]));

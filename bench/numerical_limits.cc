@@ -7,8 +7,8 @@
 #include <random>
 #include <string>
 
-#include "zhf/optimizer/lobe_table.h"
 #include "zhf/runtime/rotator.h"
+#include "zhf_kernels.h"
 #include "zhf/sh/reference_rotation.h"
 
 namespace {
@@ -44,12 +44,12 @@ int main(int argc, char** argv) {
   for (int order = 2; order <= zhf::runtime::kMaxTableOrder; ++order) {
     const std::string path = lobes + "order_" + std::to_string(order) + ".json";
     if (order > 2 && !std::filesystem::exists(path)) continue;
-    const double condition = order == 2 ? 1.0 : zhf::optimizer::read_table(path).worst_condition();
+    const double condition = order == 2 ? 1.0 : zhf::runtime::read_lobe_table(path, order).worst_condition();
     const bool generated = order <= zhf::runtime::kMaxGeneratedOrder;
     auto make = [&](auto tag) {
       using T = decltype(tag);
-      return generated ? zhf::runtime::Rotator<T>::generated(order)
-                       : zhf::runtime::Rotator<T>::from_table(zhf::runtime::read_lobe_table(path));
+      return generated ? zhf::runtime::Rotator<T>::with(zhf::gen::scalar_kernels<T>(order))
+                       : zhf::runtime::Rotator<T>::from_table(zhf::runtime::read_lobe_table(path, order));
     };
     const double e_float = max_error(make(float{}), order, trials);
     const double e_double = max_error(make(double{}), order, trials);

@@ -11,6 +11,7 @@
 #include <benchmark/benchmark.h>
 
 #include "zhf/runtime/rotator.h"
+#include "zhf_kernels.h"
 #include "zhf/sh/reference_rotation.h"
 
 namespace {
@@ -35,7 +36,7 @@ struct Inputs {
 void zhf_generated(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   const Inputs in(n);
-  const auto rotator = zhf::runtime::Rotator<float>::generated(n);
+  const auto rotator = zhf::runtime::Rotator<float>::with(zhf::gen::scalar_kernels<float>(n));
   std::vector<float> out(n * n);
   int k = 0;
   for (auto _ : state) {
@@ -49,7 +50,7 @@ void zhf_generated(benchmark::State& state) {
 void zhf_rgb(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   const Inputs in(n);
-  const auto rotator = zhf::runtime::Rotator<float>::generated(n);
+  const auto rotator = zhf::runtime::Rotator<float>::with(zhf::gen::scalar_kernels<float>(n));
   std::vector<float> out(3 * n * n);
   int k = 0;
   for (auto _ : state) {
@@ -64,7 +65,7 @@ void zhf_json(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   const Inputs in(n);
   const auto rotator = zhf::runtime::Rotator<float>::from_table(
-      zhf::runtime::read_lobe_table(std::string(ZHF_SOURCE_DIR) + "/generated/lobes/order_" + std::to_string(n) + ".json"));
+      zhf::runtime::read_lobe_table(std::string(ZHF_SOURCE_DIR) + "/generated/lobes/order_" + std::to_string(n) + ".json", n));
   std::vector<float> out(n * n);
   int k = 0;
   for (auto _ : state) {
@@ -89,7 +90,7 @@ void ivanic(benchmark::State& state) {
 void dense_apply(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   const Inputs in(n);
-  const auto rotator = zhf::runtime::Rotator<float>::generated(n);
+  const auto rotator = zhf::runtime::Rotator<float>::with(zhf::gen::scalar_kernels<float>(n));
   std::vector<zhf::runtime::DenseRotation<float>> dense;
   for (int k = 0; k < 64; ++k) dense.push_back(rotator.dense(&in.r[9 * k]));
   std::vector<float> out(n * n);

@@ -4,9 +4,13 @@
 #include <Eigen/Geometry>
 
 #include "commands.h"
+#include "options.h"
 #include "zhf/codegen/scene.h"
 #include "zhf/io/coefficients.h"
 #include "zhf/io/files.h"
+#include "zhf/io/signals.h"
+#include "zhf/runtime/limits.h"
+#include "zhf/runtime/tolerances.h"
 #include "zhf/sh/analysis.h"
 
 namespace zhf::cli {
@@ -14,20 +18,24 @@ namespace {
 
 struct AnalyzeOptions {
   std::string coeffs;
-  double tolerance = 1e-3;
+  std::string tolerance = "1e-3";
   int channels = 0;
   std::string json;
   std::string scene_out;
 };
 
-// Axes of zonal signals agree when their directions match to this (|a x b|); a and -a are
-// the same axis.
-constexpr double kSameAxis = 1e-6;
-
 nlohmann::ordered_json vec3(const Eigen::Vector3d& v) { return {v[0], v[1], v[2]}; }
 
-int run_analyze(const AnalyzeOptions& o) {
-  const io::CoefficientFile file = io::read_coefficients(o.coeffs, o.channels);
+int run_analyze(const AnalyzeOptions& options) {
+  struct {
+    const std::string& coeffs;
+    double tolerance;
+    const std::string& json;
+    const std::string& scene_out;
+  } o{options.coeffs, number_option("--tolerance", options.tolerance, 1e-15, 1.0), options.json, options.scene_out};
+  for (const std::string& out : {o.json, o.scene_out})
+    if (!out.empty()) io::PendingFile check(out);  // refuse an unwritable output before the work
+  const io::CoefficientFile file = io::read_coefficients(o.coeffs, options.channels);
   std::vector<Eigen::VectorXd> signals;
   for (const auto& s : file.signals) signals.push_back(Eigen::Map<const Eigen::VectorXd>(s.data(), Eigen::Index(s.size())));
   const sh::EnergyReport energy = sh::analyze_energy(signals, o.tolerance);
@@ -47,7 +55,7 @@ int run_analyze(const AnalyzeOptions& o) {
       if (!have_axis) {
         axis = fit.axis;
         have_axis = true;
-      } else if (axis.cross(fit.axis).norm() > kSameAxis) {
+      } else if (axis.cross(fit.axis).norm() > runtime::tolerance::kSameAxis) {
         common = false;
       }
     }
@@ -79,6 +87,8 @@ int run_analyze(const AnalyzeOptions& o) {
     std::printf("zonal: no (%d of %zu signals zonal%s; worst residual %.2e)\n", zonal_count, signals.size(),
                 common ? "" : ", axes differ", worst_residual);
 
+  // Both outputs are made before either is written: one refused is neither written.
+  std::string json_text, scene_text;
   if (!o.json.empty()) {
     nlohmann::ordered_json j;
     j["format"] = "zhf-analysis-1";
@@ -94,12 +104,11 @@ int run_analyze(const AnalyzeOptions& o) {
     j["zonal"] = zonal;
     if (zonal) j["axis"] = vec3(axis);
     j["signals"] = fits;
-    io::write_file_atomically(o.json, io::json_text(j));
-    std::printf("wrote %s\n", o.json.c_str());
+    json_text = io::json_text(j);
   }
   if (!o.scene_out.empty()) {
     codegen::Scene scene;
-    scene.targets = codegen::backend_languages();
+    scene.targets = codegen::all_languages();
     codegen::SceneSignal signal;
     signal.name = "analyzed";
     signal.order = std::max(2, energy.smallest_order);
@@ -107,11 +116,19 @@ int run_analyze(const AnalyzeOptions& o) {
     signal.variants = {zonal ? "zonal" : "standard"};
     for (int l : energy.zero_bands)
       if (l < signal.order) signal.zero_bands.push_back(l);
-    if (signal.order > codegen::kMaxSceneOrder)
+    if (signal.order > runtime::kMaxEmitOrder)
       throw UsageError("--scene-out: the data needs order " + std::to_string(signal.order) + ", zhf emits up to " +
-                       std::to_string(codegen::kMaxSceneOrder));
+                       std::to_string(runtime::kMaxEmitOrder));
     scene.signals.push_back(signal);
-    io::write_file_atomically(o.scene_out, io::json_text(scene.to_json()));
+    scene_text = io::json_text(scene.to_json());
+  }
+  io::throw_if_interrupted();
+  if (!o.json.empty()) {
+    io::write_file_atomically(o.json, json_text);
+    std::printf("wrote %s\n", o.json.c_str());
+  }
+  if (!o.scene_out.empty()) {
+    io::write_file_atomically(o.scene_out, scene_text);
     std::printf("wrote %s (a scene spec for zhf generate --scene; edit targets and variants to taste)\n", o.scene_out.c_str());
   }
   return kExitOk;
@@ -123,8 +140,7 @@ void add_analyze_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<AnalyzeOptions>();
   CLI::App* c = app.add_subcommand("analyze", "Per-band energy, the order the data needs, known-zero bands, zonal axis");
   c->add_option("--coeffs", o->coeffs, "SH coefficient vectors: JSON array or text, one vector per line")->required();
-  c->add_option("--tolerance", o->tolerance, "Relative L2 error allowed (default 1e-3); also the zonal residual bound")
-      ->check(CLI::Range(1e-15, 1.0));
+  c->add_option("--tolerance", o->tolerance, "Relative L2 error allowed, 1e-15..1 (default 1e-3); also the zonal residual bound");
   c->add_option("--channels", o->channels, "Channels per vector (text: numbers per line split evenly; JSON: checked)")
       ->check(CLI::Range(1, 4));
   c->add_option("--json", o->json, "Write the analysis as JSON here");

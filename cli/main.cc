@@ -1,9 +1,11 @@
 // zhf: sparse zonal-harmonic factorisation of SH rotation. Thin front end over the libraries.
 #include <iostream>
+#include <new>
 #include <string>
 
 #include "commands.h"
 #include "zhf/io/errors.h"
+#include "zhf/io/signals.h"
 
 namespace {
 
@@ -24,16 +26,26 @@ std::string recorded_command(int argc, char** argv) {
   return command;
 }
 
+// One line on stderr: messages quote inputs only as short escaped excerpts, but a path or an
+// option's text may still hold a newline.
+int fail(int code, const std::string& message) {
+  std::string line = "zhf: ";
+  for (char c : message) line += c == '\n' || c == '\r' ? ' ' : c;
+  std::cerr << line << "\n";
+  return code;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   using namespace zhf::cli;
+  const zhf::io::InterruptGuard interrupts;
   CLI::App app{"zhf " ZHF_VERSION ": fast real spherical-harmonic rotation by sparse zonal-harmonic factorisation"};
   app.set_version_flag("--version", "zhf " ZHF_VERSION);
   app.require_subcommand(1);
   Action action;
-  add_candidates_command(app, action);
   const std::string command = recorded_command(argc, argv);
+  add_candidates_command(app, action);
   add_optimize_command(app, action, command);
   add_codegen_commands(app, action, command);
   add_verify_command(app, action);
@@ -43,10 +55,7 @@ int main(int argc, char** argv) {
   if (argc > 1 && argv[1][0] != '-') {
     bool known = false;
     for (const CLI::App* sub : app.get_subcommands({})) known = known || sub->get_name() == argv[1];
-    if (!known) {
-      std::cerr << "zhf: unknown command '" << argv[1] << "' (see zhf --help)\n";
-      return kExitUsage;
-    }
+    if (!known) return fail(kExitUsage, "unknown command '" + zhf::io::excerpt(argv[1]) + "' (see zhf --help)");
   }
   try {
     app.parse(argc, argv);
@@ -57,22 +66,22 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "zhf: " << e.what() << " (see zhf --help)\n";
-    return kExitUsage;
+    return fail(kExitUsage, std::string(e.what()) + " (see zhf --help)");
   }
   try {
     return action();
+  } catch (const zhf::io::Interrupted&) {
+    std::cerr << "zhf: interrupted; previous outputs are as they were\n";
+    return zhf::io::interrupted_exit_code();
   } catch (const UsageError& e) {
-    std::cerr << "zhf: " << e.what() << "\n";
-    return kExitUsage;
+    return fail(kExitUsage, e.what());
   } catch (const zhf::io::InputError& e) {
-    std::cerr << "zhf: " << e.what() << "\n";
-    return kExitBadInput;
+    return fail(kExitBadInput, e.what());
   } catch (const zhf::io::OutputError& e) {
-    std::cerr << "zhf: " << e.what() << "\n";
-    return kExitOutput;
+    return fail(kExitOutput, e.what());
+  } catch (const std::bad_alloc&) {
+    return fail(kExitFailure, "out of memory");
   } catch (const std::exception& e) {
-    std::cerr << "zhf: internal error: " << e.what() << "\n";
-    return kExitFailure;
+    return fail(kExitFailure, std::string("internal error: ") + e.what());
   }
 }

@@ -1,70 +1,58 @@
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <sstream>
 
 #include "commands.h"
+#include "options.h"
+#include "zhf/io/errors.h"
 #include "zhf/io/files.h"
+#include "zhf/io/signals.h"
+#include "zhf/pipeline/project.h"
+#include "zhf/runtime/limits.h"
 #include "zhf/verify/verify.h"
 
 namespace zhf::cli {
 namespace {
 
 struct VerifyCommandOptions {
-  std::string generated = project_path("generated");
+  std::string generated;
   std::string orders;  // empty: every order in the manifest
   std::string languages = "cpp,glsl,hlsl";
   std::string json;
   std::string work_dir;
-  int rotations = 1000;
+  std::string rotations = "1000";
 };
 
-// "2..8", "3,5,7" or "4".
-std::vector<int> parse_orders(const std::string& text) {
-  std::vector<int> orders;
-  const auto dots = text.find("..");
-  try {
-    if (dots != std::string::npos) {
-      const int lo = std::stoi(text.substr(0, dots)), hi = std::stoi(text.substr(dots + 2));
-      for (int n = lo; n <= hi; ++n) orders.push_back(n);
-    } else {
-      std::stringstream s(text);
-      std::string item;
-      while (std::getline(s, item, ',')) orders.push_back(std::stoi(item));
-    }
-  } catch (const std::exception&) {
-    throw UsageError("--orders: expected a range like 2..8 or a list like 3,5, found \"" + text + "\"");
-  }
-  if (orders.empty()) throw UsageError("--orders: no orders in \"" + text + "\"");
-  for (int n : orders)
-    if (n < 2 || n > 12) throw UsageError("--orders: " + std::to_string(n) + " is outside [2, 12] (the orders zhf emits)");
-  return orders;
-}
-
-std::vector<std::string> parse_languages(const std::string& text) {
-  std::vector<std::string> languages;
+std::vector<codegen::Language> parse_languages(const std::string& text) {
+  std::vector<codegen::Language> languages;
   std::stringstream s(text);
   std::string item;
   while (std::getline(s, item, ',')) {
-    if (item != "cpp" && item != "glsl" && item != "hlsl")
-      throw UsageError("--langs: \"" + item + "\" is not one of cpp, glsl, hlsl");
-    languages.push_back(item);
+    codegen::Language language = codegen::Language::kCpp;
+    if (!codegen::parse_language(item, language))
+      throw UsageError("--langs: '" + io::excerpt(item) + "' is not one of cpp, glsl, hlsl");
+    languages.push_back(language);
   }
   if (languages.empty()) throw UsageError("--langs: empty");
   return languages;
 }
 
 int run_verify_command(const VerifyCommandOptions& o) {
+  const pipeline::Project project = pipeline::project();
   verify::VerifyOptions options;
-  options.generated_dir = o.generated;
-  if (!o.orders.empty()) options.orders = parse_orders(o.orders);
+  options.generated_dir = o.generated.empty() ? project.generated() : o.generated;
+  if (!o.orders.empty()) options.orders = orders_option("--orders", o.orders, runtime::kMinGeneratedOrder, runtime::kMaxEmitOrder);
   options.languages = parse_languages(o.languages);
-  options.rotations = o.rotations;
+  options.rotations = static_cast<int>(integer_option("--rotations", o.rotations, 1, 1000000));
   options.work_dir = o.work_dir;
+  options.runtime_include = project.runtime_include();
+  // Refuse an unwritable report before the work, not after it.
+  if (!o.json.empty()) io::PendingFile check(o.json);
   const verify::VerifyReport report = verify::run_verify(options);
   if (!report.device.empty()) std::printf("Vulkan device: %s\n", report.device.c_str());
   std::printf("%s", report.table().c_str());
   if (!o.json.empty()) {
+    io::throw_if_interrupted();
     io::write_file_atomically(o.json, io::json_text(report.to_json()));
     std::printf("wrote %s\n", o.json.c_str());
   }
@@ -81,13 +69,12 @@ int run_verify_command(const VerifyCommandOptions& o) {
 void add_verify_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<VerifyCommandOptions>();
   CLI::App* c = app.add_subcommand("verify", "Compile and run every emitted kernel against the double reference");
-  c->add_option("--generated", o->generated, "The generated/ tree to check (default generated)");
+  c->add_option("--generated", o->generated, "The generated tree to check (default generated, else the source tree's)");
   c->add_option("--orders", o->orders, "Orders, e.g. 2..8 or 3,5 (default: every order in the manifest)");
   c->add_option("--langs", o->languages, "Languages, comma separated (default cpp,glsl,hlsl)");
   c->add_option("--json", o->json, "Write the report as JSON here");
-  c->add_option("--work-dir", o->work_dir, "Keep the harnesses, shaders and logs here (default: a temp dir, removed)");
-  c->add_option("--rotations", o->rotations, "Random rotations besides the fixed extreme set (default 1000)")
-      ->check(CLI::Range(1, 1000000));
+  c->add_option("--work-dir", o->work_dir, "Keep the harnesses, shaders and logs here (default: a private temp dir, removed)");
+  c->add_option("--rotations", o->rotations, "Random rotations besides the fixed extreme set, 1..1000000 (default 1000)");
   c->callback([o, &action] { action = [o] { return run_verify_command(*o); }; });
 }
 

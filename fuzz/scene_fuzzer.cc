@@ -7,15 +7,14 @@
 
 #include "zhf/codegen/scene.h"
 #include "zhf/io/errors.h"
+#include "zhf/runtime/limits.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const nlohmann::json json =
-      nlohmann::json::parse(std::string(reinterpret_cast<const char*>(data), size), nullptr, /*allow_exceptions=*/false);
-  if (json.is_discarded()) return 0;
   try {
+    const zhf::runtime::json::Value json = zhf::runtime::json::parse(std::string(reinterpret_cast<const char*>(data), size), "fuzz.json");
     const zhf::codegen::Scene scene = zhf::codegen::parse_scene(json, "fuzz.json");
     for (const auto& [order, options] : scene.module_options()) {
-      if (order < 2 || order > zhf::codegen::kMaxSceneOrder) std::abort();
+      if (order < zhf::runtime::kMinGeneratedOrder || order > zhf::runtime::kMaxEmitOrder) std::abort();
       for (int l : options.zero_bands)
         if (l < 0 || l >= order) std::abort();
     }

@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
-# The main job on built-in defaults: emit every kernel (orders 2..8; C++, HLSL, GLSL) from the
-# checked-in lobe tables into a scratch directory, print the summary, then compile and run all
-# of them against the double reference (GLSL/HLSL on Vulkan; lavapipe when there is no GPU).
+# The main job on built-in defaults: build the zhf binary (only it), emit every kernel (orders
+# 2..8; C++, HLSL, GLSL) from the checked-in lobe tables into a scratch directory, print the
+# summary, then compile and run all of them against the double reference (GLSL/HLSL on Vulkan;
+# lavapipe when there is no GPU).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
+cmake --build "$ZHF_BUILD" -j "$ZHF_JOBS" --target zhf
 cd "$ZHF_ROOT"
 scratch=${ZHF_SCRATCH:-$(mktemp -d "${TMPDIR:-/tmp}/zhf-main-XXXXXX")}
 echo "== zhf generate --out $scratch"

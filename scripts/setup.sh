@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Installs the Debian packages zhf needs (when run as root), then configures and builds it
-# in Release. Sourced by main.sh and test.sh; safe to run again (it only does what is missing).
+# Installs the Debian packages zhf needs (when run as root), then configures the Release build.
+# Sourced by main.sh and test.sh, which build what they need; safe to run again (it only does
+# what is missing).
 set -euo pipefail
 
 ZHF_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -31,4 +32,3 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 cmake -S "$ZHF_ROOT" -B "$ZHF_BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release -DZHF_WERROR=ON >/dev/null
-cmake --build "$ZHF_BUILD" -j "$ZHF_JOBS"

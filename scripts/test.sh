@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
-# The whole test suite: set up and build, then
+# The whole test suite: set up and build everything, then
 #   1. every test on the Release build (ctest);
 #   2. every test again under AddressSanitizer + UndefinedBehaviorSanitizer;
-#   3. each libFuzzer target for ZHF_FUZZ_SECONDS (default 60) on the seed corpus.
+#   3. each libFuzzer target for ZHF_FUZZ_SECONDS (default 60) on its seed corpus.
 # Non-zero exit on any failure. ZHF_QUICK=1 runs stage 1 only.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
+cmake --build "$ZHF_BUILD" -j "$ZHF_JOBS"
 
 echo "== stage 1: tests (Release)"
 ctest --test-dir "$ZHF_BUILD" --output-on-failure -j "$ZHF_JOBS"
@@ -25,18 +26,16 @@ echo "== stage 3: fuzzing"
 fuzz_build="${ZHF_BUILD}-fuzz"
 CC=clang CXX=clang++ cmake -S "$ZHF_ROOT" -B "$fuzz_build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "$debug_flags" -DZHF_FUZZ=ON >/dev/null
 cmake --build "$fuzz_build" -j "$ZHF_JOBS"
-for target in fuzz_lobe_table fuzz_runtime_table fuzz_coefficients fuzz_scene fuzz_rotation_text; do
+for corpus in json lobe_table coefficients scene manifest rotation_text; do
+  target="fuzz_$corpus"
   work=$(mktemp -d)
-  corpus=lobe_table
-  [ "$target" = fuzz_coefficients ] && corpus=coefficients
-  [ "$target" = fuzz_scene ] && corpus=scene
-  [ "$target" = fuzz_rotation_text ] && corpus=rotation_text
   cp "$ZHF_ROOT"/tests/fuzz_corpus/$corpus/* "$work/"
   echo "-- $target for ${ZHF_FUZZ_SECONDS:-60} s"
-  "$fuzz_build/fuzz/$target" -max_total_time="${ZHF_FUZZ_SECONDS:-60}" -artifact_prefix="$work/" -print_final_stats=1 "$work" 2>&1 \
+  "$fuzz_build/fuzz/$target" -max_total_time="${ZHF_FUZZ_SECONDS:-60}" -dict="$ZHF_ROOT/tests/fuzz_corpus/json.dict" \
+    -max_len=200000 -artifact_prefix="$work/" -print_final_stats=1 "$work" 2>&1 \
     | grep -E "^(Done|stat::number_of_executed_units)|ERROR|SUMMARY" || true
-  if ls "$work"/crash-* "$work"/leak-* "$work"/timeout-* >/dev/null 2>&1; then
-    echo "$target found a failing input: $(ls "$work"/crash-* "$work"/leak-* "$work"/timeout-* 2>/dev/null | head -1)" >&2
+  if ls "$work"/crash-* "$work"/leak-* "$work"/timeout-* "$work"/oom-* >/dev/null 2>&1; then
+    echo "$target found a failing input: $(ls "$work"/crash-* "$work"/leak-* "$work"/timeout-* "$work"/oom-* 2>/dev/null | head -1)" >&2
     exit 1
   fi
   rm -rf "$work"

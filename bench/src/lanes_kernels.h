@@ -9,8 +9,10 @@ namespace zhf::bench {
 
 using FloatKernel = void (*)(const float*, const float*, float*);
 
-// Orders 3..8; each step where the lanes tables put it or, with all_float, in float.
+// rotate_lanes of a generated order with lanes tables (nullptr for the others), at the tables'
+// lobe stage or, with all_float, all in float.
 FloatKernel lanes_kernel(int order, bool all_float);
+// The tables' lobe stage (runtime::LobeStage as an int), or -1 when the order has no lanes tables.
 int lanes_stage(int order);
 // The -march this unit was built with ("" for the toolchain's default).
 std::string lanes_arch();

@@ -15,9 +15,14 @@
 
 #include "healpix_method.h"
 #include "lanes_kernels.h"
+#include "zhf/codegen/manifest.h"
+#include "zhf/io/errors.h"
 #include "zhf/io/files.h"
+#include "zhf/io/process.h"
+#include "zhf/io/signals.h"
 #include "zhf/runtime/lobe_table.h"
 #include "zhf/runtime/rotator.h"
+#include "zhf_kernels.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/zxzxz.h"
 
@@ -186,29 +191,28 @@ void count_zxzxz(int order, Row& row) {
 // Op counts of the generated C++ kernels, from the manifest.
 std::map<std::string, std::pair<long, long>> manifest_counts(const fs::path& manifest) {
   std::map<std::string, std::pair<long, long>> out;
-  if (!fs::exists(manifest)) return out;
-  const nlohmann::json j = io::read_json_file(manifest.string());
-  for (const auto& f : j["files"])
-    if (f["language"] == "cpp")
-      for (const auto& fn : f["functions"]) out[fn["name"]] = {fn["multiplies"].get<long>(), fn["adds"].get<long>()};
+  for (const codegen::ManifestFile& f : codegen::read_manifest(manifest.string()).files)
+    if (f.language == codegen::Language::kCpp)
+      for (const codegen::EmittedFunction& fn : f.functions) out[fn.name] = {fn.ops.multiplies, fn.ops.adds};
   return out;
 }
 
-// A table with every entry of A below threshold * max |A| set to zero.
-runtime::LobeTableData pruned(runtime::LobeTableData table, double threshold) {
-  for (runtime::RuntimeBand& band : table.bands) {
+// A table with every entry of A below threshold * max |A| set to zero (no longer the exact
+// inverse of its lobes: Rotator::from_table checks its shape only).
+runtime::LobeTable pruned(runtime::LobeTable table, double threshold) {
+  for (runtime::TableBand& band : table.bands) {
     double largest = 0;
-    for (double a : band.inverse) largest = std::max(largest, std::abs(a));
-    for (double& a : band.inverse)
+    for (double a : band.inverse.values) largest = std::max(largest, std::abs(a));
+    for (double& a : band.inverse.values)
       if (std::abs(a) < threshold * largest) a = 0;
   }
   return table;
 }
 
-long nonzeros(const runtime::LobeTableData& table) {
+long nonzeros(const runtime::LobeTable& table) {
   long count = 0;
-  for (const runtime::RuntimeBand& band : table.bands)
-    for (double a : band.inverse) count += a != 0;
+  for (const runtime::TableBand& band : table.bands)
+    for (double a : band.inverse.values) count += a != 0;
   return count;
 }
 
@@ -322,6 +326,7 @@ SuiteReport run_suite(const SuiteOptions& o) {
   if (!lanes_arch().empty()) report.flags += "; zhf_lanes: -march=" + lanes_arch();
   report.date = today();
   auto say = [&](const Row& r) {
+    io::throw_if_interrupted();
     report.rows.push_back(r);
     if (o.progress) {
       char line[200];
@@ -346,25 +351,16 @@ SuiteReport run_suite(const SuiteOptions& o) {
 
     // Scenario 1: one vector, a new rotation per call.
     if (generated) {
-      const auto f = runtime::Rotator<float>::generated(order);
-      const auto d = runtime::Rotator<double>::generated(order);
+      const auto f = runtime::Rotator<float>::with(gen::scalar_kernels<float>(order));
+      const auto d = runtime::Rotator<double>::with(gen::scalar_kernels<double>(order));
       say(with_counts(single<float>(scale, pool, "zhf", "single", 1, [&](auto r, auto in, auto out) { f.rotate(r, in, out); }), "rotate" + on));
       say(with_counts(single<double>(scale, pool, "zhf", "single", 1, [&](auto r, auto in, auto out) { d.rotate(r, in, out); }), "rotate" + on));
-      auto tailored = [&](const float* r, const float* in, float* out) {
-        switch (order) {
-          case 2: gen::rotate_signal_tailored_order2<float>(r, in, out); break;
-          case 3: gen::rotate_signal_tailored_order3<float>(r, in, out); break;
-          case 4: gen::rotate_signal_tailored_order4<float>(r, in, out); break;
-          case 5: gen::rotate_signal_tailored_order5<float>(r, in, out); break;
-          case 6: gen::rotate_signal_tailored_order6<float>(r, in, out); break;
-          case 7: gen::rotate_signal_tailored_order7<float>(r, in, out); break;
-          default: gen::rotate_signal_tailored_order8<float>(r, in, out); break;
-        }
-      };
+      const auto tailored = gen::with_order(order, [](auto n) -> void (*)(const float*, const float*, float*) {
+        return &gen::Kernels<decltype(n)::value>::template rotate_signal_tailored<float>;
+      });
       say(with_counts(single<float>(scale, pool, "zhf_signal_tailored", "single", 1, tailored), "rotate_signal_tailored" + on));
       say(with_counts(single<float>(scale, pool, "zhf", "rgb", 3, [&](auto r, auto in, auto out) { f.rotate_rgb(r, in, out); }), "rotate_rgb" + on));
-      if (order >= 3) {
-        const FloatKernel lanes = lanes_kernel(order, false);
+      if (const FloatKernel lanes = lanes_kernel(order, false)) {
         say(single<float>(scale, pool, "zhf_lanes", "single", 1, [&](auto r, auto in, auto out) { lanes(r, in, out); }));
         // Knob: every step in float where the default widens some (faster, error past the model).
         if (lanes_stage(order) > 0) {
@@ -375,14 +371,14 @@ SuiteReport run_suite(const SuiteOptions& o) {
       }
     }
     if (have_table) {
-      const runtime::LobeTableData table = runtime::read_lobe_table(table_path.string());
+      const runtime::LobeTable table = runtime::read_lobe_table(table_path.string(), order);
       const auto t = runtime::Rotator<float>::from_table(table);
       say(single<float>(scale, pool, "zhf_runtime", "single", 1, [&](auto r, auto in, auto out) { t.rotate(r, in, out); }));
       say(single<float>(scale, pool, "zhf_runtime", "rgb", 3, [&](auto r, auto in, auto out) { t.rotate_rgb(r, in, out); }));
       if (generated) {
         // Knob: pruned tables, through the runtime path (which skips A's zeros).
         for (double threshold : {1e-3, 1e-2}) {
-          const runtime::LobeTableData p = pruned(table, threshold);
+          const runtime::LobeTable p = pruned(table, threshold);
           const auto pr = runtime::Rotator<float>::from_table(p);
           char variant[96];
           std::snprintf(variant, sizeof variant, "pruned %.0e (%ld of %ld nonzeros)", threshold, nonzeros(p), nonzeros(table));
@@ -396,7 +392,7 @@ SuiteReport run_suite(const SuiteOptions& o) {
              {"order_4_no_sharing.json", "no sharing"}}) {
       const fs::path path = root / "bench" / "tables" / file;
       if (!fs::exists(path)) continue;
-      const runtime::LobeTableData table = runtime::read_lobe_table(path.string());
+      const runtime::LobeTable table = runtime::read_lobe_table(path.string());
       if (table.order != order) continue;
       const auto t = runtime::Rotator<float>::from_table(table);
       say(single<float>(scale, pool, "zhf_runtime", "single", 1, [&](auto r, auto in, auto out) { t.rotate(r, in, out); }, variant));
@@ -432,8 +428,11 @@ SuiteReport run_suite(const SuiteOptions& o) {
     // Scenarios 3 and 4 at the generated orders.
     if (!generated) continue;
     const size_t count = scale.batch;
-    const auto f = runtime::Rotator<float>::generated(order);
+    const auto f = runtime::Rotator<float>::with(gen::scalar_kernels<float>(order));
     const sh::ZxzxzRotator<float> z(order);
+    const auto soa_kernel = gen::with_order(order, [](auto n) -> void (*)(std::size_t, const float*, const float*, float*) {
+      return &gen::Kernels<decltype(n)::value>::template rotate_batch<float>;
+    });
     const size_t n = pool.n;
     for (int threads : {1, 2}) {
       say(batch(scale, pool, "zhf", threads, [&](size_t b, size_t e, const float* r, const float* in, float* out) {
@@ -441,17 +440,7 @@ SuiteReport run_suite(const SuiteOptions& o) {
       }, count));
       // The generated structure-of-arrays kernel, each thread on its own SoA slice (laid out
       // before timing, as a caller keeping SoA data would).
-      say(batch_soa(scale, pool, threads, count, [&](size_t m, const float* r, const float* in, float* out) {
-        switch (order) {
-          case 2: gen::rotate_batch_order2<float>(m, r, in, out); break;
-          case 3: gen::rotate_batch_order3<float>(m, r, in, out); break;
-          case 4: gen::rotate_batch_order4<float>(m, r, in, out); break;
-          case 5: gen::rotate_batch_order5<float>(m, r, in, out); break;
-          case 6: gen::rotate_batch_order6<float>(m, r, in, out); break;
-          case 7: gen::rotate_batch_order7<float>(m, r, in, out); break;
-          default: gen::rotate_batch_order8<float>(m, r, in, out); break;
-        }
-      }));
+      say(batch_soa(scale, pool, threads, count, soa_kernel));
       say(batch(scale, pool, "zxzxz", threads, [&](size_t b, size_t e, const float* r, const float* in, float* out) {
         for (size_t v = b; v < e; ++v) z.rotate(r + 9 * v, in + n * v, out + n * v);
       }, count));
@@ -501,11 +490,13 @@ nlohmann::ordered_json SuiteReport::to_json() const {
   j["notes"] = notes;
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
   for (const Row& r : rows) {
-    nlohmann::ordered_json x = {{"method", r.method},       {"scenario", r.scenario},   {"precision", r.precision},
-                                {"variant", r.variant},     {"order", r.order},         {"ns_median", r.ns_median},
-                                {"ns_min", r.ns_min},       {"ns_max", r.ns_max},       {"max_error", r.max_error},
-                                {"rms_error", r.rms_error}};
-    if (!std::isnan(r.worst_unit_error)) x["worst_unit_error"] = r.worst_unit_error;
+    nlohmann::ordered_json x = {{"method", r.method},   {"scenario", r.scenario}, {"precision", r.precision},
+                                {"variant", r.variant}, {"order", r.order},       {"ns_median", r.ns_median},
+                                {"ns_min", r.ns_min},   {"ns_max", r.ns_max}};
+    // What was not measured (a conversion alone has no error) is left out.
+    if (std::isfinite(r.max_error)) x["max_error"] = r.max_error;
+    if (std::isfinite(r.rms_error)) x["rms_error"] = r.rms_error;
+    if (std::isfinite(r.worst_unit_error)) x["worst_unit_error"] = r.worst_unit_error;
     if (r.multiplies >= 0) x["multiplies"] = r.multiplies, x["adds"] = r.adds;
     list.push_back(x);
   }
@@ -588,9 +579,37 @@ double scaling_exponent(const SuiteReport& report, const std::string& method, co
   return fit_exponent(rows);
 }
 
+namespace {
+
+constexpr const char* kPlotBanner = "# Generated by zhf bench";
+
+// A gnuplot string literal: single quotes, a quote inside doubled. Paths with control characters
+// are refused before this (a newline would end the command).
+std::string gnuplot_string(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) out += c == '\'' ? std::string("''") : std::string(1, c);
+  return out + "'";
+}
+
+// The files --plot derives from its path are replaced only when zhf bench wrote them.
+void check_derived(const fs::path& path, const std::string& mark) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return;
+  if (!fs::is_regular_file(path, ec) || io::read_text_file(path.string(), std::size_t(1) << 26).find(mark) == std::string::npos)
+    throw io::OutputError(path.string() + ": exists and was not written by zhf bench; refusing to replace it");
+}
+
+}  // namespace
+
 std::string write_plots(const SuiteReport& report, const std::string& svg_path) {
+  if (!runtime::is_printable_text(svg_path)) throw io::OutputError("--plot: the path has control characters or backslashes");
   const fs::path svg(svg_path);
   const fs::path scaling = svg.parent_path() / (svg.stem().string() + "_scaling.svg");
+  const std::string csv_path = (svg.parent_path() / (svg.stem().string() + ".csv")).string();
+  const std::string gp = (svg.parent_path() / (svg.stem().string() + ".gp")).string();
+  check_derived(scaling, "zhf bench: time vs order");
+  check_derived(csv_path, kPlotBanner);
+  check_derived(gp, kPlotBanner);
   // One series per method (and precision/variant), single-vector scenario.
   std::map<std::string, std::vector<const Row*>> series;
   for (const Row& r : report.rows) {
@@ -600,13 +619,14 @@ std::string write_plots(const SuiteReport& report, const std::string& svg_path) 
     series[name].push_back(&r);
   }
   std::ostringstream csv;
-  csv << "# series, order, ns_median, max_error\n";
+  csv << kPlotBanner << ": series, order, ns_median, max_error\n";
   std::ostringstream pareto, time;
-  const std::string csv_path = (svg.parent_path() / (svg.stem().string() + ".csv")).string();
-  // The script writes the final SVGs when a user runs it; zhf's own run passes temporary outputs
-  // (-e) and renames them into place only when gnuplot succeeds.
-  pareto << "if (!exists('pareto_svg')) pareto_svg = '" << svg.string() << "'\n"
-         << "if (!exists('scaling_svg')) scaling_svg = '" << scaling.string() << "'\n"
+  // The script writes the final SVGs from the final CSV when a user runs it; zhf's own run passes
+  // its temporary files (-e) and moves everything into place only when gnuplot succeeds.
+  pareto << kPlotBanner << "; run: gnuplot " << gp << "\n"
+         << "if (!exists('data')) data = " << gnuplot_string(csv_path) << "\n"
+         << "if (!exists('pareto_svg')) pareto_svg = " << gnuplot_string(svg.string()) << "\n"
+         << "if (!exists('scaling_svg')) scaling_svg = " << gnuplot_string(scaling.string()) << "\n"
          << "set terminal svg size 1000,700 dynamic background rgb 'white'\nset output pareto_svg\n"
          << "set title 'zhf bench: max error vs time per rotated vector (one vector, new rotation each call; labels: order N)' noenhanced\n"
          << "set logscale xy\nset xlabel 'ns per rotated vector (median)'\nset ylabel 'max abs error vs double reference'\n"
@@ -620,7 +640,7 @@ std::string write_plots(const SuiteReport& report, const std::string& svg_path) 
     // An exact zero would vanish from a log axis: plotted at 1e-17, below every measured error.
     for (const Row* r : rows) csv << name << "," << r->order << "," << r->ns_median << "," << std::max(r->max_error, 1e-17) << "\n";
     csv << "\n\n";
-    const std::string sel = "'" + csv_path + "' index " + std::to_string(index);
+    const std::string sel = "data index " + std::to_string(index);
     pareto << (index ? ", \\\n  " : "") << sel << " using 3:4 with linespoints title '" << name << "', " << sel
            << " using 3:4:2 with labels offset 0.8,0.4 notitle";
     // The scaling plot shows the methods, not the knobs (pruned tables, other lobe sets).
@@ -633,14 +653,24 @@ std::string write_plots(const SuiteReport& report, const std::string& svg_path) 
   }
   pareto << "\n";
   time << "\n";
-  const std::string gp = (svg.parent_path() / (svg.stem().string() + ".gp")).string();
-  io::write_file_atomically(csv_path, csv.str());
-  io::write_file_atomically(gp, pareto.str() + time.str());
-  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
+  io::PendingFile csv_file(csv_path), gp_file(gp);
+  csv_file.write(csv.str());
+  gp_file.write(pareto.str() + time.str());
+  if (!io::program_available("gnuplot")) {
+    io::throw_if_interrupted();
+    csv_file.commit();
+    gp_file.commit();
     return "gnuplot is not installed: wrote " + csv_path + " and " + gp + " (run: gnuplot " + gp + ")";
+  }
   io::PendingFile pareto_svg(svg.string()), scaling_svg(scaling.string());
-  const std::string outputs = "pareto_svg='" + pareto_svg.path() + "'; scaling_svg='" + scaling_svg.path() + "'";
-  if (std::system(("gnuplot -e \"" + outputs + "\" '" + gp + "'").c_str()) != 0) return "gnuplot failed on " + gp;
+  const std::string variables = "data=" + gnuplot_string(csv_file.path()) + "; pareto_svg=" + gnuplot_string(pareto_svg.path()) +
+                                "; scaling_svg=" + gnuplot_string(scaling_svg.path());
+  io::PendingFile log(svg.string() + ".gnuplot-log");
+  const io::ProcessResult run = io::run_process({"gnuplot", "-e", variables, gp_file.path()}, log.path());
+  if (!run.ok()) throw io::OutputError("gnuplot failed on " + gp + ": " + io::log_excerpt(log.path(), 2));
+  io::throw_if_interrupted();
+  csv_file.commit();
+  gp_file.commit();
   pareto_svg.commit();
   scaling_svg.commit();
   return "wrote " + svg.string() + " and " + scaling.string() + " (data " + csv_path + ", script " + gp + ")";

@@ -6,7 +6,8 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "zhf/sh/eval.h"
+#include "zhf/runtime/limits.h"
+#include "zhf/runtime/sh_eval.h"
 #include "zhf/sh/legendre.h"
 
 namespace zhf::candidates {
@@ -53,9 +54,9 @@ std::vector<std::pair<PiFraction, std::string>> phi_zeros(int max_m) {
 }
 
 CandidateSet enumerate_candidates(int order) {
-  if (order < kMinOrder || order > kMaxOrder) {
-    throw std::invalid_argument("order " + std::to_string(order) + " is outside [" + std::to_string(kMinOrder) +
-                                ", " + std::to_string(kMaxOrder) + "]");
+  if (order < runtime::kMinSearchOrder || order > runtime::kMaxSearchOrder) {
+    throw std::invalid_argument("order " + std::to_string(order) + " is outside [" + std::to_string(runtime::kMinSearchOrder) +
+                                ", " + std::to_string(runtime::kMaxSearchOrder) + "]");
   }
   CandidateSet set;
   set.order = order;
@@ -99,7 +100,7 @@ CandidateSet enumerate_candidates(int order) {
     d.phi = phi;
     d.theta_index = theta_index;
     d.phi_index = phi_index;
-    sh::direction_from_angles(d.theta, d.phi, d.xyz);
+    runtime::direction_from_angles(d.theta, d.phi, d.xyz);
     // cos(pi/2) and friends come out as ~6e-17; the true component is exactly zero.
     for (double& c : d.xyz)
       if (std::abs(c) < kSnapToZero) c = 0.0;

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "zhf/codegen/emitter.h"
+#include "zhf/codegen/backend.h"
 
 namespace zhf::codegen {
 
@@ -36,9 +36,27 @@ LanguageConfig widened(const LanguageConfig& config);
 // (a vector operation counts once).
 std::string print_function(const Function& function, const LanguageConfig& config, Precision precision,
                            OpCount& ops);
+// Its parameter list as declared, and its parameters' names as a call passes them.
+std::string print_parameters(const Function& function, const LanguageConfig& config);
+std::string print_arguments(const Function& function);
+
+// Every function of a module the language has (batch entry points only where config.batch), with
+// the op counts for the banner and the manifest.
+std::string print_functions(const Module& module, const LanguageConfig& config, Precision precision,
+                            std::vector<EmittedFunction>& functions);
+
+// Text as it may stand in a // comment: printable ASCII as it is, anything else (control
+// characters that would end the comment, backslashes that would splice lines) and '%' as %XX.
+std::string comment_text(const std::string& text);
+// Lines as // comments.
+std::string commented(const std::vector<std::string>& lines);
 
 // The common file banner: generator, command, do-not-edit, op counts.
-std::string banner(const std::string& comment, const std::string& command, const std::vector<FunctionCount>& counts);
+std::string banner(const std::string& command, const std::vector<EmittedFunction>& functions);
+
+// The lobe directions, one row per lobe: row_open x, y, z row_close, "  // w_d".
+std::string lobe_values(const Module& module, const LanguageConfig& config, Precision precision,
+                        const std::string& row_open, const std::string& row_close);
 
 // The lobe table derivation comment lines (without comment markers).
 std::vector<std::string> lobe_derivation(const Module& module, const EmitOptions& options);

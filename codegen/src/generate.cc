@@ -1,75 +1,150 @@
 #include "zhf/codegen/generate.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
-#include <cstdio>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <system_error>
 
-#include "zhf/codegen/lanes_tables.h"
+#include "zhf/codegen/dispatch.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
+#include "zhf/io/lobe_table_writer.h"
+#include "zhf/runtime/limits.h"
 
 namespace zhf::codegen {
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string precision_name(Precision p) { return p == Precision::kDouble ? "double" : "float"; }
+// The staged tree: relative path -> bytes, in the order written, and the manifest entries.
+struct Tree {
+  std::vector<std::pair<std::string, std::string>> files;
+  Manifest manifest;
 
-void check_output_dir(const fs::path& dir) {
-  std::error_code ec;
-  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
-    throw io::OutputError(dir.string() + ": exists and is not a directory");
-  if (!fs::exists(dir, ec) || fs::exists(dir / "manifest.json", ec)) return;
-  // A directory with nothing but zhf's own lobes/ is a generated/ tree before its first run.
-  for (const fs::directory_entry& entry : fs::directory_iterator(dir, ec))
-    if (entry.path().filename() != "lobes")
-      throw io::OutputError(dir.string() + ": not empty and has no zhf manifest.json; refusing to write into it");
-}
-
-}  // namespace
-
-std::string content_hash(const std::string& bytes) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : bytes) {
-    h ^= c;
-    h *= 1099511628211ull;
+  void add(const std::string& path, std::string text, ManifestFile entry) {
+    entry.path = path;
+    entry.fnv1a64 = content_hash(text);
+    manifest.files.push_back(std::move(entry));
+    files.emplace_back(path, std::move(text));
   }
-  char buffer[17];
-  std::snprintf(buffer, sizeof buffer, "%016llx", static_cast<unsigned long long>(h));
-  return buffer;
+};
+
+ManifestFile code_entry(FileKind kind, Language language, int order, FilePrecision precision, const Module* module,
+                        const EmittedFile& file, const ModuleOptions* options) {
+  ManifestFile entry;
+  entry.kind = kind;
+  entry.language = language;
+  entry.order = order;
+  entry.precision = precision;
+  if (module) entry.lobe_stage = module->lobe_stage;
+  if (options) entry.zero_bands = options->zero_bands;
+  entry.functions = file.functions;
+  return entry;
 }
 
-EmittedFile emit_file(const optimizer::LobeTable& table, const std::string& language, const EmitOptions& options,
-                      const ModuleOptions& module_options) {
-  const auto backend = make_backend(language);
-  if (!backend) throw std::invalid_argument("unknown language " + language);
-  return backend->emit(build_module(table, module_options), options);
+ManifestFile table_entry(int order) {
+  ManifestFile entry;
+  entry.kind = FileKind::kLobeTable;
+  entry.order = order;
+  return entry;
 }
 
-GenerateResult generate(const GenerateOptions& options) {
-  const fs::path out(options.out_dir);
-  check_output_dir(out);
+// A lock on the output directory for this process's lifetime (flock: released by the kernel if
+// the process dies), so two generates never interleave their renames.
+class DirectoryLock {
+ public:
+  explicit DirectoryLock(const fs::path& dir) {
+    fd_ = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd_ < 0) throw io::OutputError(dir.string() + ": cannot open: " + std::strerror(errno));
+    if (flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      ::close(fd_);
+      throw io::OutputError(dir.string() + ": another zhf generate is writing this directory");
+    }
+  }
+  ~DirectoryLock() { ::close(fd_); }
+  DirectoryLock(const DirectoryLock&) = delete;
+  DirectoryLock& operator=(const DirectoryLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
+
+// Everything that could make the commit overwrite what zhf did not write is checked here,
+// before anything is written.
+void check_targets(const fs::path& out, const Tree& tree) {
   std::error_code ec;
-  const bool created = !fs::exists(out, ec);
-  fs::create_directories(out, ec);
-  if (ec) throw io::OutputError(out.string() + ": cannot create: " + ec.message());
-  // A run that fails or is interrupted before the commit leaves no trace: not even the output
-  // directory, when this run made it.
+  if (fs::is_empty(out, ec)) return;
+  const fs::path manifest_path = out / "manifest.json";
+  std::optional<std::map<std::string, std::string>> old;
+  if (fs::exists(manifest_path, ec)) {
+    try {
+      old = read_manifest_hashes(manifest_path.string());
+    } catch (const io::InputError& e) {
+      throw io::OutputError(out.string() + ": has a manifest.json zhf cannot read as its own (" + e.what() +
+                            "); refusing to write into it");
+    }
+  }
+  for (const auto& [relative, text] : tree.files) {
+    const fs::path target = out / relative;
+    struct stat st {};
+    if (lstat(target.c_str(), &st) != 0) continue;  // new
+    if (!S_ISREG(st.st_mode))
+      throw io::OutputError(target.string() + ": exists and is not a regular file; refusing to replace it");
+    if (relative == "manifest.json") continue;  // a zhf manifest (read above) is zhf's
+    if (io::read_text_file(target.string(), std::size_t(1) << 30) == text) continue;
+    const auto recorded = old ? old->find(relative) : std::map<std::string, std::string>::const_iterator();
+    if (!old || recorded == old->end() || recorded->second != content_hash(io::read_text_file(target.string(), std::size_t(1) << 30)))
+      throw io::OutputError(target.string() + ": exists and was not written by zhf (or was changed since); refusing to replace it");
+  }
+  if (!old) {
+    // No manifest: only a tree whose every file this run writes again unchanged (a fresh
+    // generated/ holding its own lobe tables) counts as zhf's.
+    for (const fs::directory_entry& entry : fs::recursive_directory_iterator(out, ec)) {
+      if (!entry.is_regular_file()) continue;
+      const std::string relative = fs::relative(entry.path(), out).string();
+      if (relative.rfind(".zhf-staging-", 0) == 0) continue;
+      const auto ours = std::find_if(tree.files.begin(), tree.files.end(), [&](const auto& f) { return f.first == relative; });
+      if (ours == tree.files.end())
+        throw io::OutputError(out.string() + ": not empty and has no zhf manifest.json; refusing to write into it");
+    }
+  }
+}
+
+// Creates out (when missing), stages the tree in a private directory inside it and renames every
+// file into place. Leaves no trace when interrupted or refused: not even out, when it made it.
+void commit(const fs::path& out, const Tree& tree, const std::atomic<bool>* stop, bool& interrupted) {
+  std::error_code ec;
+  bool created = false;
+  if (!fs::exists(out, ec)) {
+    fs::create_directories(out.parent_path().empty() ? "." : out.parent_path(), ec);
+    if (::mkdir(out.c_str(), 0777) == 0) {
+      created = true;
+    } else if (errno != EEXIST) {
+      throw io::OutputError(out.string() + ": cannot create: " + std::strerror(errno));
+    }
+  }
   struct RemoveIfUnused {
     fs::path path;
     bool created;
-    bool committed = false;
     ~RemoveIfUnused() {
       std::error_code ignored;
-      if (created && !committed && fs::is_empty(path, ignored)) fs::remove(path, ignored);
+      if (created && fs::is_empty(path, ignored)) fs::remove(path, ignored);
     }
   } out_guard{out, created};
-  // Staging inside out_dir keeps the final renames on one file system.
+  if (!fs::is_directory(out, ec)) throw io::OutputError(out.string() + ": exists and is not a directory");
+  const DirectoryLock lock(out);
+  check_targets(out, tree);
+  // Staging inside out keeps the final renames on one file system.
   std::string pattern = (out / ".zhf-staging-XXXXXX").string();
   std::vector<char> name(pattern.begin(), pattern.end());
   name.push_back('\0');
-  if (!mkdtemp(name.data())) throw io::OutputError(out.string() + ": cannot create a staging directory");
+  if (!mkdtemp(name.data())) throw io::OutputError(out.string() + ": cannot create a staging directory: " + std::strerror(errno));
   const fs::path staging(name.data());
   struct Cleanup {
     fs::path path;
@@ -78,33 +153,53 @@ GenerateResult generate(const GenerateOptions& options) {
       fs::remove_all(path, ignored);
     }
   } cleanup{staging};
-
-  GenerateResult result;
-  nlohmann::ordered_json manifest;
-  manifest["format"] = "zhf-manifest-1";
-  manifest["generator"] = std::string("zhf ") + ZHF_VERSION;
-  manifest["command"] = options.command;
-  if (!options.scene.is_null()) manifest["scene"] = options.scene;
-  nlohmann::ordered_json files = nlohmann::ordered_json::array();
-  auto stage = [&](const std::string& relative, const std::string& text) {
-    fs::create_directories((staging / relative).parent_path());
+  for (const auto& [relative, text] : tree.files) {
+    if (stop && stop->load()) {
+      interrupted = true;
+      return;
+    }
+    fs::create_directories((staging / relative).parent_path(), ec);
     io::write_file_atomically((staging / relative).string(), text);
-    result.files.push_back(relative);
-  };
+  }
+  if (stop && stop->load()) {
+    interrupted = true;
+    return;
+  }
+  out_guard.created = false;
+  // Commit: every file is complete in staging; each rename replaces one old file whole.
+  for (const auto& [relative, text] : tree.files) {
+    fs::create_directories((out / relative).parent_path(), ec);
+    fs::rename(staging / relative, out / relative, ec);
+    if (ec) throw io::OutputError((out / relative).string() + ": cannot move into place: " + ec.message());
+  }
+}
 
+}  // namespace
+
+EmittedFile emit_file(const runtime::LobeTable& table, Language language, const EmitOptions& options,
+                      const ModuleOptions& module_options) {
+  return make_backend(language)->emit(build_module(table, module_options), options);
+}
+
+GenerateResult generate(const GenerateOptions& options) {
+  GenerateResult result;
+  Tree tree;
+  tree.manifest.generator = std::string("zhf ") + ZHF_VERSION;
+  tree.manifest.command = options.command;
+  tree.manifest.scene = options.scene;
+  const bool wants_cpp = std::find(options.languages.begin(), options.languages.end(), Language::kCpp) != options.languages.end();
+  const bool full_tree = !options.scene;
+  std::vector<int> lanes_orders;
   for (int order : options.orders) {
     if (options.stop && options.stop->load()) {
       result.interrupted = true;
       return result;
     }
-    const optimizer::LobeTable table =
-        order == 2 ? order2_table()
-                   : optimizer::read_table((fs::path(options.tables_dir) / ("order_" + std::to_string(order) + ".json")).string());
-    if (table.order != order)
-      throw io::InputError(options.tables_dir + "/order_" + std::to_string(order) + ".json: order: says " +
-                           std::to_string(table.order));
+    const runtime::LobeTable table =
+        order == 2 ? runtime::lobe_free_table()
+                   : runtime::read_lobe_table((fs::path(options.tables_dir) / ("order_" + std::to_string(order) + ".json")).string(), order);
     const std::string table_name = "lobes/order_" + std::to_string(order) + ".json";
-    stage(table_name, io::json_text(optimizer::to_json(table)));
+    tree.add(table_name, io::lobe_table_text(table, table_name), table_entry(order));
     OrderSummary summary;
     summary.order = order;
     summary.lobes = static_cast<int>(table.lobes.size());
@@ -119,63 +214,44 @@ GenerateResult generate(const GenerateOptions& options) {
     emit.precision = options.precision;
     emit.command = options.command;
     emit.table_path = "generated/" + table_name;
-    for (const std::string& language : options.languages) {
-      const auto backend = make_backend(language);
-      const EmittedFile file = backend->emit(module, emit);
-      const std::string relative = language + "/" + file.file_name;
-      stage(relative, file.text);
+    for (Language language : options.languages) {
+      const EmittedFile file = make_backend(language)->emit(module, emit);
+      const FilePrecision precision = language == Language::kCpp              ? FilePrecision::kTemplate
+                                      : options.precision == Precision::kDouble ? FilePrecision::kDouble
+                                                                                : FilePrecision::kFloat;
+      const std::string relative = std::string(language_name(language)) + "/" + file.file_name;
+      tree.add(relative, file.text, code_entry(FileKind::kKernels, language, order, precision, &module, file, &module_options));
       ++summary.files;
-      nlohmann::ordered_json functions = nlohmann::ordered_json::array();
-      for (const FunctionCount& c : file.counts) {
-        functions.push_back({{"name", c.name}, {"multiplies", c.ops.multiplies}, {"adds", c.ops.adds}});
-        if (language == "cpp" && c.name == "rotate_order" + std::to_string(order)) summary.rotate_ops = c.ops;
-      }
-      nlohmann::ordered_json entry = {{"path", relative},
-                                      {"order", order},
-                                      {"language", language},
-                                      {"precision", language == "cpp" ? "template" : precision_name(options.precision)},
-                                      {"functions", functions}};
-      if (!module_options.zero_bands.empty()) entry["zero_bands"] = module_options.zero_bands;
-      entry["lobe_stage"] = wide_lobes(table, module_options.lobe_precision) ? "double" : "native";
-      entry["fnv1a64"] = content_hash(file.text);
-      files.push_back(entry);
+      for (const EmittedFunction& f : file.functions)
+        if (language == Language::kCpp && f.kind == KernelKind::kRotate && f.channels == 1) summary.rotate_ops = f.ops;
     }
     // The lanes tables go with the full tree only (a scene lists exactly what it wants).
-    const fs::path lanes_table = fs::path(options.tables_dir) / ("lanes_order_" + std::to_string(order) + ".json");
-    const bool wants_cpp = std::find(options.languages.begin(), options.languages.end(), "cpp") != options.languages.end();
-    if (options.scene.is_null() && wants_cpp && fs::exists(lanes_table, ec)) {
-      const optimizer::LobeTable lanes = optimizer::read_table(lanes_table.string());
-      if (lanes.order != order)
-        throw io::InputError(lanes_table.string() + ": order: says " + std::to_string(lanes.order));
-      const std::string lanes_name = "lobes/" + lanes_table.filename().string();
-      stage(lanes_name, io::json_text(optimizer::to_json(lanes)));
-      const EmittedFile file = emit_lanes_tables(lanes, options.command, "generated/" + lanes_name);
-      stage("cpp/" + file.file_name, file.text);
+    const fs::path lanes_path = fs::path(options.tables_dir) / ("lanes_order_" + std::to_string(order) + ".json");
+    std::error_code ec;
+    if (full_tree && wants_cpp && fs::exists(lanes_path, ec)) {
+      const runtime::LobeTable lanes = runtime::read_lobe_table(lanes_path.string(), order);
+      const std::string lanes_name = "lobes/" + lanes_path.filename().string();
+      tree.add(lanes_name, io::lobe_table_text(lanes, lanes_name), table_entry(order));
+      EmitOptions lanes_emit = emit;
+      lanes_emit.table_path = "generated/" + lanes_name;
+      const Module lanes_module = build_lanes_module(lanes);
+      const EmittedFile file = make_backend(Language::kCpp)->emit(lanes_module, lanes_emit);
+      tree.add("cpp/" + file.file_name, file.text,
+               code_entry(FileKind::kLanesTables, Language::kCpp, order, FilePrecision::kTemplate, &lanes_module, file, nullptr));
       summary.files += 2;
-      files.push_back({{"path", "cpp/" + file.file_name},
-                       {"order", order},
-                       {"language", "cpp"},
-                       {"kind", "lanes-tables"},
-                       {"functions", nlohmann::ordered_json::array()},
-                       {"lanes_stage", static_cast<int>(lanes_stage(lanes))},
-                       {"fnv1a64", content_hash(file.text)}});
+      lanes_orders.push_back(order);
     }
     result.orders.push_back(summary);
   }
-  manifest["files"] = files;
-  stage("manifest.json", io::json_text(manifest));
-
-  if (options.stop && options.stop->load()) {
-    result.interrupted = true;
-    return result;
+  if (full_tree && wants_cpp) {
+    const EmittedFile dispatch = emit_dispatch_header(options.orders, lanes_orders, options.command);
+    tree.add("cpp/" + dispatch.file_name, dispatch.text,
+             code_entry(FileKind::kDispatch, Language::kCpp, 0, FilePrecision::kTemplate, nullptr, dispatch, nullptr));
   }
-  out_guard.committed = true;
-  // Commit: every file is complete in staging; each rename replaces one old file whole.
-  for (const std::string& relative : result.files) {
-    fs::create_directories((out / relative).parent_path(), ec);
-    fs::rename(staging / relative, out / relative, ec);
-    if (ec) throw io::OutputError((out / relative).string() + ": cannot move into place: " + ec.message());
-  }
+  tree.files.emplace_back("manifest.json", io::json_text(manifest_json(tree.manifest)));
+  commit(options.out_dir, tree, options.stop, result.interrupted);
+  if (result.interrupted) return result;
+  for (const auto& [relative, text] : tree.files) result.files.push_back(relative);
   return result;
 }
 

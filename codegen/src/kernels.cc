@@ -4,52 +4,48 @@
 #include <cmath>
 #include <map>
 
-#include "zhf/sh/eval.h"
-#include "zhf/sh/index.h"
+#include "zhf/runtime/rotation.h"
+#include "zhf/runtime/sh_eval.h"
+#include "zhf/runtime/tolerances.h"
 
 namespace zhf::codegen {
 namespace {
 
-constexpr double kInvSqrt4Pi = 0.28209479177387814347;
+using runtime::kInvSqrt4Pi;
 constexpr double kSqrt3Over4Pi = 0.48860251190291992159;  // band 1: c (y, z, x)
-
-// Band 1 is c (y, z, x): element m of band 1 is axis kAxisOfM[m + 1].
-constexpr int kAxisOfM[3] = {1, 2, 0};
+using runtime::kBand1Axis;
 
 struct Vec3 {
   int c[3];
 };
 
-// Scaled Legendre recurrences for the homogeneous band-l polynomials (see eval.h):
+// Scaled Legendre recurrences for the homogeneous band-l polynomials (runtime/sh_eval.h, whose
+// coefficients they are built from):
 //   q_m^m = 1, q_{m+1}^m = z, q_l^m = z q_{l-1}^m - c_{l,m}(r2) q_{l-2}^m,
 // with Q_l^m = sigma_{l,m} q_l^m; sigma depends on l, m only, so it moves to the output.
 struct Legendre {
+  using K = runtime::LegendreCoefficients<>;
   std::vector<std::vector<double>> sigma;  // [l][m]
   explicit Legendre(int order) : sigma(order, std::vector<double>(order, 0.0)) {
     double q_mm = kInvSqrt4Pi;
     for (int m = 0; m < order; ++m) {
-      if (m > 0) q_mm *= std::sqrt((2.0 * m + 1) / (2.0 * m));
+      if (m > 0) q_mm *= K::diagonal(m);
       sigma[m][m] = q_mm;
-      if (m + 1 < order) sigma[m + 1][m] = std::sqrt(2.0 * m + 3) * q_mm;
-      for (int l = m + 2; l < order; ++l) sigma[l][m] = a(l, m) * sigma[l - 1][m];
+      if (m + 1 < order) sigma[m + 1][m] = K::subdiagonal(m) * q_mm;
+      for (int l = m + 2; l < order; ++l) sigma[l][m] = K::a(l, m) * sigma[l - 1][m];
     }
   }
-  static double a(int l, int m) { return std::sqrt((4.0 * l * l - 1) / (double(l) * l - double(m) * m)); }
-  static double b(int l, int m) {
-    const double lm1 = l - 1.0;
-    return std::sqrt((lm1 * lm1 - double(m) * m) / (4 * lm1 * lm1 - 1));
-  }
   // c_{l,m}(r2) = b r2 sigma_{l-2} / sigma_{l-1}.
-  double c(int l, int m, double r2) const { return b(l, m) * r2 * sigma[l - 2][m] / sigma[l - 1][m]; }
+  double c(int l, int m, double r2) const { return K::b(l, m) * r2 * sigma[l - 2][m] / sigma[l - 1][m]; }
   // y_l^{+-m} = output_scale * q_l^m * (C_m or S_m).
-  double output_scale(int l, int m) const { return (m == 0 ? 1.0 : sh::kSqrt2) * sigma[l][std::abs(m)]; }
+  double output_scale(int l, int m) const { return (m == 0 ? 1.0 : runtime::kSqrt2) * sigma[l][std::abs(m)]; }
 };
 
 // H_{l,m}(v) / output_scale for bands in [first_band, order) at v (given r2 = |v|^2);
 // entry [index(l, m)], -1 where not computed.
 std::vector<int> homogeneous_sh(Graph& g, const Vec3& v, double r2, int order, const std::vector<bool>& bands,
                                 const Legendre& legendre) {
-  std::vector<int> out(sh::coefficient_count(order), -1);
+  std::vector<int> out(runtime::coefficient_count(order), -1);
   const int x = v.c[0], y = v.c[1], z = v.c[2];
   int top = -1;
   for (int l = 0; l < order; ++l)
@@ -80,10 +76,10 @@ std::vector<int> homogeneous_sh(Graph& g, const Vec3& v, double r2, int order, c
       }
       if (!bands[l]) continue;
       if (m == 0) {
-        out[sh::index(l, 0)] = q;
+        out[runtime::index(l, 0)] = q;
       } else {
-        out[sh::index(l, m)] = g.mul(q, c_m);
-        out[sh::index(l, -m)] = g.mul(q, s_m);
+        out[runtime::index(l, m)] = g.mul(q, c_m);
+        out[runtime::index(l, -m)] = g.mul(q, s_m);
       }
     }
   }
@@ -153,16 +149,17 @@ std::vector<int> orthonormalized_rotation(Graph& g) {
 
 class Builder {
  public:
-  Builder(const optimizer::LobeTable& table, const std::vector<Lobe>& lobes, const std::vector<int>& zero_bands,
-          bool wide_lobes)
-      : table_(table), lobes_(lobes), order_(table.order), count_(sh::coefficient_count(table.order)),
-        legendre_(std::max(table.order, 1)), live_(std::max(table.order, 1), true), wide_lobes_(wide_lobes) {
+  Builder(const runtime::LobeTable& table, const std::vector<Lobe>& lobes, const std::vector<int>& zero_bands,
+          runtime::LobeStage stage)
+      : table_(table), lobes_(lobes), order_(table.order), count_(runtime::coefficient_count(table.order)),
+        legendre_(std::max(table.order, 1)), live_(std::max(table.order, 1), true),
+        wide_rotation_(stage != runtime::LobeStage::kFloat), wide_lobes_(stage == runtime::LobeStage::kDouble) {
     for (int l : zero_bands)
       if (l >= 0 && l < order_) live_[l] = false;
   }
 
   Function sh_eval() const {
-    Function f = make("sh_eval_order" + std::to_string(order_),
+    Function f = make(KernelKind::kShEval, "sh_eval", 1,
                       "y[index(l,m)] = y_l^m(dir) for every band, dir a unit vector",
                       {{"dir", 3, false, 1}, {"y", count_, true, 1}});
     Graph& g = f.graph;
@@ -173,15 +170,15 @@ class Builder {
 
   // z[l^2 + d] = sum_m A_l[m][d] f[l^2 + m] (transpose) or out[l^2 + m] = sum_d A_l[m][d] s[l^2 + d].
   Function sparse_multiply(bool transpose) const {
-    const std::string name = std::string(transpose ? "AhatTransposeMultiply" : "AhatMultiply") + "_order" +
-                             std::to_string(order_);
     const std::string doc = transpose
                                 ? "lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied"
                                 : "coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied";
-    Function f = make(name, doc, {{transpose ? "f" : "s", count_, false, 1}, {transpose ? "z" : "f", count_, true, 1}});
+    Function f = make(transpose ? KernelKind::kLobeWeights : KernelKind::kFromSamples,
+                      transpose ? "lobe_weights" : "coefficients_from_samples", 1, doc,
+                      {{transpose ? "f" : "s", count_, false, 1}, {transpose ? "z" : "f", count_, true, 1}});
     Graph& g = f.graph;
     for (int i = 0; i < std::min(count_, 4); ++i) put(f, 1, i, g.input(0, i));
-    for (const optimizer::TableBand& band : table_.bands) {
+    for (const runtime::TableBand& band : table_.bands) {
       const int l = band.l, base = l * l;
       for (int i = 0; i < 2 * l + 1; ++i) {
         std::vector<std::pair<double, int>> terms;
@@ -195,17 +192,16 @@ class Builder {
 
   // The standard rotation; several channels share the per-rotation work.
   Function rotation(int channels, bool batch) const {
-    const std::string name = std::string(batch ? "rotate_batch" : "rotate") + channel_suffix(channels) + "_order" +
-                             std::to_string(order_);
     std::string doc = "rotated = coefficients of f(R^T w), R row-major mapping v to R v" + channel_doc(channels);
     if (batch) doc += ", for count vectors each with its own R (structure of arrays)";
-    Function f = make(name, doc, {{"R", 9, false, 1}, {"coeffs", count_, false, channels}, {"rotated", count_, true, channels}});
+    Function f = make(batch ? KernelKind::kBatch : KernelKind::kRotate, batch ? "rotate_batch" : "rotate", channels, doc,
+                      {{"R", 9, false, 1}, {"coeffs", count_, false, channels}, {"rotated", count_, true, channels}});
     f.batch = batch;
     Graph& g = f.graph;
     const int in = 1, out = 2;
     copy_band0_rotate_band1(f, in, out, channels);
     const std::vector<std::vector<int>> h = lobe_polynomials(g, /*transpose=*/false);
-    for (const optimizer::TableBand& band : table_.bands) {
+    for (const runtime::TableBand& band : table_.bands) {
       const int l = band.l, base = l * l;
       if (!live_[l]) {
         put_zeros(f, out, l);
@@ -222,7 +218,7 @@ class Builder {
       g.set_wide(wide_lobes_);
       for (int m = -l; m <= l; ++m) {
         std::vector<std::pair<double, int>> terms;
-        for (int d = 0; d < 2 * l + 1; ++d) terms.push_back({1.0, g.mul(h[band.lobes[d]][sh::index(l, m)], zhat[d])});
+        for (int d = 0; d < 2 * l + 1; ++d) terms.push_back({1.0, g.mul(h[band.lobes[d]][runtime::index(l, m)], zhat[d])});
         put(f, out, base + m + l, g.scale(legendre_.output_scale(l, m), g.linear(terms)));
       }
     }
@@ -233,13 +229,13 @@ class Builder {
   // rotated = A s with s the band's function sampled at R^T w_d: same result, the work
   // arranged as a renderer sampling a texture would.
   Function signal_tailored(int channels) const {
-    Function f = make("rotate_signal_tailored" + channel_suffix(channels) + "_order" + std::to_string(order_),
+    Function f = make(KernelKind::kSignalTailored, "rotate_signal_tailored", channels,
                       "rotated = A s, s = each band of f sampled at the inverse-rotated lobes R^T w_d" + channel_doc(channels),
                       {{"R", 9, false, 1}, {"coeffs", count_, false, channels}, {"rotated", count_, true, channels}});
     Graph& g = f.graph;
     copy_band0_rotate_band1(f, 1, 2, channels);
     const std::vector<std::vector<int>> h = lobe_polynomials(g, /*transpose=*/true);
-    for (const optimizer::TableBand& band : table_.bands) {
+    for (const runtime::TableBand& band : table_.bands) {
       const int l = band.l, base = l * l;
       if (!live_[l]) {
         put_zeros(f, 2, l);
@@ -251,7 +247,7 @@ class Builder {
       std::vector<int> samples(2 * l + 1);
       for (int d = 0; d < 2 * l + 1; ++d) {
         std::vector<std::pair<double, int>> terms;
-        for (int m = -l; m <= l; ++m) terms.push_back({1.0, g.mul(h[band.lobes[d]][sh::index(l, m)], weighted[m + l])});
+        for (int m = -l; m <= l; ++m) terms.push_back({1.0, g.mul(h[band.lobes[d]][runtime::index(l, m)], weighted[m + l])});
         samples[d] = g.linear(terms);
       }
       g.set_wide(false);  // each sample rounded once: float suffices for A s
@@ -270,7 +266,7 @@ class Builder {
   // (the standard rotation with f the unit vectors), packed as dense_matrix_offset says.
   Function rotation_matrices() const {
     const int size = dense_matrix_offset(order_);
-    Function f = make("rotation_matrices_order" + std::to_string(order_),
+    Function f = make(KernelKind::kRotationMatrices, "rotation_matrices", 1,
                       "M = the dense band matrices of R (band l at l(2l-1)(2l+1)/3, row-major): build once, apply many",
                       {{"R", 9, false, 1}, {"M", size, true, 1}});
     Graph& g = f.graph;
@@ -279,19 +275,19 @@ class Builder {
       for (int m = 0; m < side; ++m)
         for (int n = 0; n < side; ++n) {
           int value = g.constant(0);
-          if (live_[l]) value = l == 0 ? g.constant(1) : g.input(0, 3 * kAxisOfM[m] + kAxisOfM[n]);
+          if (live_[l]) value = l == 0 ? g.constant(1) : g.input(0, 3 * kBand1Axis[m] + kBand1Axis[n]);
           put(f, 1, dense_matrix_offset(l) + side * m + n, value);
         }
     }
     const std::vector<std::vector<int>> h = lobe_polynomials(g, /*transpose=*/false);
-    for (const optimizer::TableBand& band : table_.bands) {
+    for (const runtime::TableBand& band : table_.bands) {
       const int l = band.l, side = 2 * l + 1;
       for (int m = -l; m <= l; ++m)
         for (int n = 0; n < side; ++n) {
           std::vector<std::pair<double, int>> terms;
           if (live_[l])
             for (int d = 0; d < side; ++d)
-              terms.push_back({band.inverse(n, d) * lobe_scale(band, d), h[band.lobes[d]][sh::index(l, m)]});
+              terms.push_back({band.inverse(n, d) * lobe_scale(band, d), h[band.lobes[d]][runtime::index(l, m)]});
           put(f, 1, dense_matrix_offset(l) + side * (m + l) + n, g.scale(legendre_.output_scale(l, m), g.linear(terms)));
         }
     }
@@ -300,7 +296,7 @@ class Builder {
   }
 
   Function apply_rotation_matrices(int channels) const {
-    Function f = make("apply_rotation_matrices" + channel_suffix(channels) + "_order" + std::to_string(order_),
+    Function f = make(KernelKind::kApplyMatrices, "apply_rotation_matrices", channels,
                       "rotated = M coeffs, band by band, M from rotation_matrices" + channel_doc(channels),
                       {{"M", dense_matrix_offset(order_), false, 1},
                        {"coeffs", count_, false, channels},
@@ -323,7 +319,7 @@ class Builder {
   // has f_{l,m} = sqrt(4 pi / (2l+1)) zonal[l] y_l^m(a): rotating it is evaluating the SH at
   // R a, N^2 work and no lobes.
   Function zonal_rotation(int channels) const {
-    Function f = make("rotate_zonal" + channel_suffix(channels) + "_order" + std::to_string(order_),
+    Function f = make(KernelKind::kZonal, "rotate_zonal", channels,
                       "rotated = coefficients of the zonal function (axis, zonal[l] = its y_l^0 weight about +z) turned by R" +
                           channel_doc(channels),
                       {{"R", 9, false, 1}, {"axis", 3, false, 1}, {"zonal", order_, false, channels},
@@ -337,16 +333,20 @@ class Builder {
     const std::vector<int> y = unit_sh(g, v, live_, /*fold=*/[](int l) { return std::sqrt(4 * kPi / (2 * l + 1)); });
     for (int l = 0; l < order_; ++l)
       for (int m = -l; m <= l; ++m)
-        put(f, 3, sh::index(l, m), live_[l] ? g.mul(y[sh::index(l, m)], g.input(2, l, channels)) : g.constant(0));
+        put(f, 3, runtime::index(l, m), live_[l] ? g.mul(y[runtime::index(l, m)], g.input(2, l, channels)) : g.constant(0));
     return f;
   }
 
  private:
   static constexpr double kPi = 3.14159265358979323846;
 
-  Function make(const std::string& name, const std::string& doc, std::vector<Param> params) const {
+  // A function named <stem>[_rgb|_rgba]_orderN.
+  Function make(KernelKind kind, const std::string& stem, int channels, const std::string& doc, std::vector<Param> params) const {
     Function f;
-    f.name = name;
+    f.kind = kind;
+    f.channels = channels;
+    f.member = stem + channel_suffix(channels);
+    f.name = f.member + "_order" + std::to_string(order_);
     f.doc = doc;
     f.params = std::move(params);
     return f;
@@ -356,10 +356,10 @@ class Builder {
   }
   static void put(Function& f, int param, int element, int node) { f.outputs.push_back({param, element, node}); }
   void put_zeros(Function& f, int param, int l) const {
-    for (int m = -l; m <= l; ++m) put(f, param, sh::index(l, m), f.graph.constant(0));
+    for (int m = -l; m <= l; ++m) put(f, param, runtime::index(l, m), f.graph.constant(0));
   }
   // |u_d|^-l: band l's polynomials are homogeneous of degree l in the rescaled lobe u_d.
-  double lobe_scale(const optimizer::TableBand& band, int d) const {
+  double lobe_scale(const runtime::TableBand& band, int d) const {
     return std::pow(norm2(lobes_[band.lobes[d]].scaled), -0.5 * band.l);
   }
 
@@ -371,14 +371,14 @@ class Builder {
     std::vector<int> y(count_, -1);
     if (bands[0]) y[0] = g.constant(fold(0) * kInvSqrt4Pi);
     if (order_ > 1 && bands[1])
-      for (int m = -1; m <= 1; ++m) y[sh::index(1, m)] = g.scale(fold(1) * kSqrt3Over4Pi, v.c[kAxisOfM[m + 1]]);
+      for (int m = -1; m <= 1; ++m) y[runtime::index(1, m)] = g.scale(fold(1) * kSqrt3Over4Pi, v.c[kBand1Axis[m + 1]]);
     std::vector<bool> high = bands;
     for (int l = 0; l < std::min(order_, 2); ++l) high[l] = false;
     const std::vector<int> h = homogeneous_sh(g, v, 1.0, order_, high, legendre_);
     for (int l = 2; l < order_; ++l)
       if (high[l])
         for (int m = -l; m <= l; ++m)
-          y[sh::index(l, m)] = g.scale(fold(l) * legendre_.output_scale(l, m), h[sh::index(l, m)]);
+          y[runtime::index(l, m)] = g.scale(fold(l) * legendre_.output_scale(l, m), h[runtime::index(l, m)]);
     return y;
   }
 
@@ -394,37 +394,42 @@ class Builder {
     for (int m = -1; m <= 1; ++m) {
       std::vector<std::pair<double, int>> terms;
       for (int n = -1; n <= 1; ++n)
-        terms.push_back({1.0, g.mul(g.input(0, 3 * kAxisOfM[m + 1] + kAxisOfM[n + 1]), g.input(in, sh::index(1, n), channels))});
-      put(f, out, sh::index(1, m), g.linear(terms));
+        terms.push_back({1.0, g.mul(g.input(0, 3 * kBand1Axis[m + 1] + kBand1Axis[n + 1]), g.input(in, runtime::index(1, n), channels))});
+      put(f, out, runtime::index(1, m), g.linear(terms));
     }
   }
 
-  // Per lobe, the homogeneous polynomials of every live band that uses it, at R u_d (or R^T u_d).
-  // With wide lobes the graph is left wide: the caller narrows where float suffices.
+  // Per lobe, the homogeneous polynomials of every live band that uses it, at R u_d (or R^T u_d):
+  // the lobes rotated in the wide type from LobeStage::kDoubleRotation on, R projected and the SH
+  // wide too at kDouble. The graph is left at the SH's width: the caller narrows where float
+  // suffices.
   std::vector<std::vector<int>> lobe_polynomials(Graph& g, bool transpose) const {
-    g.set_wide(wide_lobes_);
+    g.set_wide(wide_rotation_);
     std::vector<int> r(9);
     for (int i = 0; i < 9; ++i) r[i] = g.input(0, i);
     if (wide_lobes_) r = orthonormalized_rotation(g);
     std::vector<std::vector<bool>> bands_of_lobe(lobes_.size(), std::vector<bool>(order_, false));
-    for (const optimizer::TableBand& band : table_.bands)
+    for (const runtime::TableBand& band : table_.bands)
       if (live_[band.l])
         for (int d : band.lobes) bands_of_lobe[d][band.l] = true;
     std::vector<std::vector<int>> h;
     for (size_t d = 0; d < lobes_.size(); ++d) {
+      g.set_wide(wide_rotation_);
       const Vec3 v = rotate(g, r, lobes_[d].scaled, transpose);
+      g.set_wide(wide_lobes_);
       h.push_back(homogeneous_sh(g, v, norm2(lobes_[d].scaled), order_, bands_of_lobe[d], legendre_));
     }
     return h;
   }
 
-  const optimizer::LobeTable& table_;
+  const runtime::LobeTable& table_;
   const std::vector<Lobe>& lobes_;
   int order_;
   int count_;
   Legendre legendre_;
   std::vector<bool> live_;  // bands not known to be zero
-  bool wide_lobes_;
+  bool wide_rotation_;  // the lobes are rotated in the wide type
+  bool wide_lobes_;     // ... and R projected, their SH and the sums over lobes too
 };
 
 }  // namespace
@@ -435,52 +440,74 @@ std::vector<int> Function::output_nodes() const {
   return nodes;
 }
 
-bool float_needs_wide_lobes(const optimizer::LobeTable& table) {
-  return float_lobe_error_model(table.order, table.worst_condition()) > kFloatRotationTarget;
+const char* kernel_kind_name(KernelKind kind) {
+  switch (kind) {
+    case KernelKind::kShEval: return "sh_eval";
+    case KernelKind::kLobeWeights: return "lobe_weights";
+    case KernelKind::kFromSamples: return "coefficients_from_samples";
+    case KernelKind::kRotate: return "rotate";
+    case KernelKind::kSignalTailored: return "rotate_signal_tailored";
+    case KernelKind::kBatch: return "rotate_batch";
+    case KernelKind::kRotationMatrices: return "rotation_matrices";
+    case KernelKind::kApplyMatrices: return "apply_rotation_matrices";
+    case KernelKind::kZonal: return "rotate_zonal";
+  }
+  return "?";
 }
 
-bool wide_lobes(const optimizer::LobeTable& table, LobePrecision precision) {
-  if (table.order <= 2) return false;
-  return precision == LobePrecision::kDouble || (precision == LobePrecision::kAuto && float_needs_wide_lobes(table));
-}
-
-std::string lobe_precision_name(LobePrecision precision) {
-  return precision == LobePrecision::kAuto ? "auto" : precision == LobePrecision::kFloat ? "float" : "double";
-}
-
-bool parse_lobe_precision(const std::string& text, LobePrecision& precision) {
-  for (LobePrecision p : {LobePrecision::kAuto, LobePrecision::kFloat, LobePrecision::kDouble})
-    if (text == lobe_precision_name(p)) {
-      precision = p;
+bool parse_kernel_kind(const std::string& name, KernelKind& kind) {
+  for (int k = 0; k <= static_cast<int>(KernelKind::kZonal); ++k)
+    if (name == kernel_kind_name(static_cast<KernelKind>(k))) {
+      kind = static_cast<KernelKind>(k);
       return true;
     }
   return false;
 }
 
-optimizer::LobeTable order2_table() {
-  optimizer::LobeTable table;
-  table.order = 2;
-  table.lobe_sharing = true;
-  return table;
+runtime::LobeStage automatic_lobe_stage(const runtime::LobeTable& table) {
+  using namespace runtime::tolerance;
+  return float_lobe_error_model(table.order, table.worst_condition()) > kFloatRotation ? runtime::LobeStage::kDouble
+                                                                                       : runtime::LobeStage::kFloat;
+}
+
+bool parse_lobe_stage_choice(const std::string& name, std::optional<runtime::LobeStage>& stage) {
+  runtime::LobeStage parsed = runtime::LobeStage::kFloat;
+  if (name == "auto") {
+    stage.reset();
+  } else if (runtime::parse_lobe_stage(name, parsed)) {
+    stage = parsed;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+std::string lobe_stage_choice_name(const std::optional<runtime::LobeStage>& stage) {
+  return stage ? runtime::lobe_stage_name(*stage) : "auto";
+}
+
+runtime::LobeStage lobe_stage_for(const runtime::LobeTable& table, const ModuleOptions& options) {
+  if (table.order <= 2) return runtime::LobeStage::kFloat;  // no lobes
+  return options.lobe_stage ? *options.lobe_stage : automatic_lobe_stage(table);
 }
 
 std::string channel_suffix(int channels) { return channels == 3 ? "_rgb" : channels == 4 ? "_rgba" : ""; }
 
 int dense_matrix_offset(int band) { return band * (2 * band - 1) * (2 * band + 1) / 3; }
 
-Module build_module(const optimizer::LobeTable& table, const ModuleOptions& options) {
+Module build_module(const runtime::LobeTable& table, const ModuleOptions& options) {
   Module module;
   module.order = table.order;
   module.table = table;
-  for (const optimizer::TableLobe& t : table.lobes) {
+  for (const runtime::TableLobe& t : table.lobes) {
     Lobe lobe;
-    std::copy(t.xyz, t.xyz + 3, lobe.unit);
-    scale_lobe(t.xyz, lobe.scaled);
+    std::copy(t.xyz.begin(), t.xyz.end(), lobe.unit);
+    scale_lobe(t.xyz.data(), lobe.scaled);
     lobe.source = t.source;
     module.lobes.push_back(lobe);
   }
-  module.wide_lobes = wide_lobes(module.table, options.lobe_precision);
-  const Builder builder(module.table, module.lobes, options.zero_bands, module.wide_lobes);
+  module.lobe_stage = lobe_stage_for(module.table, options);
+  const Builder builder(module.table, module.lobes, options.zero_bands, module.lobe_stage);
   auto wants = [](const std::vector<int>& list, int channels) {
     return std::find(list.begin(), list.end(), channels) != list.end();
   };
@@ -499,6 +526,26 @@ Module build_module(const optimizer::LobeTable& table, const ModuleOptions& opti
     if (wants(options.dense_channels, channels)) module.functions.push_back(builder.apply_rotation_matrices(channels));
   for (int channels : {1, 3, 4})
     if (wants(options.zonal_channels, channels)) module.functions.push_back(builder.zonal_rotation(channels));
+  return module;
+}
+
+double lanes_float_error_model(const runtime::LobeTable& table) {
+  double worst = 0;
+  for (const runtime::TableBand& band : table.bands)
+    worst = std::max(worst, runtime::band_amplification(runtime::band_matrix(table, band.l)));
+  return runtime::tolerance::kFloatEpsilon * (table.order - 1) * worst;
+}
+
+Module build_lanes_module(const runtime::LobeTable& table) {
+  using namespace runtime::tolerance;
+  Module module;
+  module.kind = ModuleKind::kLanesTables;
+  module.order = table.order;
+  module.table = table;
+  const double model = lanes_float_error_model(table);
+  module.lobe_stage = kLanesFloatMargin * model <= kFloatRotation           ? runtime::LobeStage::kFloat
+                      : kLanesLobesInDoubleMargin * model <= kFloatRotation ? runtime::LobeStage::kDoubleRotation
+                                                                            : runtime::LobeStage::kDouble;
   return module;
 }
 

@@ -11,27 +11,31 @@ namespace zhf::gen {
 // made by: zhf optimize --order 3 --objective amplification --out generated/lobes/lanes_order_3.json
 // Continuous directions (not SH zeros) minimising the float error amplification
 // a_l = sqrt((2l+1)/4pi) ||A_l||_2 with lobe sharing (band l uses lobes 0..2l). a_l per band: 1.248.
-// Float error model eps_f (N - 1) a_max = 1.5e-07; with margins 2.5 (all float) and 1.25 (lobes
-// in double) against the 1e-6 target: everything in float.
-inline constexpr int kLanesStageOrder3 = 0;  // 0 float, 1 lobes in double, 2 double
-inline constexpr double kLanesLobesOrder3[5][3] = {
-    {-0.20248801357724433, 0.11547128687519406, -0.9724530766391396},  // w_0
-    {0.23608485213655794, 0.916686057662912, -0.32241373152843233},  // w_1
-    {0.7187648413054102, 0.6233574021627065, 0.3079003931016821},  // w_2
-    {-0.6050789993430142, -0.2785182160298563, 0.7458599117083602},  // w_3
-    {-0.01238227639731273, 0.6765222225814916, 0.7363181116777037}  // w_4
-};
-
-// kLanesInverseOrder3[l - 2][m + l][d] = A_l = Y_l^-1, Y_l[d][m + l] = y_l^m(w_d), dense (no
-// structural zeros); zero beyond 2l + 1 rows and columns. Double, from the table's inverse.
-inline constexpr double kLanesInverseOrder3[1][5][5] = {
-    {  // l = 2
-        {0.41614010504761245, 0.48518520242609964, 1.5168094431247419, 0.840555078053188, 0.1477810948375806},
-        {-0.5397689294858494, -0.6664671754228226, 0.3137852474913831, 0.006484521099522761, 1.202134957589013},
-        {1.3018192679749312, -0.06941120440998842, -0.0872065011436998, 0.5267314595304262, 0.5055366058467873},
-        {0.8978231037411064, -0.028539439329626454, 0.5562035319498514, -1.346879020883191, -0.5905338325921065},
-        {-0.19719794086662834, -1.5227378669115703, 0.5366165968574466, 0.45343478661473063, -0.9655830890840513}
-    }
+// Float error model eps_f (N - 1) a_max = 1.5e-07; with margins 2.5 (float) and 1.25
+// (double-rotation) against the 1e-6 target, the lobe stage is float.
+template <int N>
+struct LanesTables;
+template <>
+struct LanesTables<3> {
+  static constexpr int kLobeStage = 0;  // runtime::LobeStage: float
+  static constexpr double kLobes[5][3] = {
+      {-0.20248801357724433, 0.11547128687519406, -0.9724530766391396},  // w_0
+      {0.23608485213655794, 0.916686057662912, -0.32241373152843233},  // w_1
+      {0.7187648413054102, 0.6233574021627065, 0.3079003931016821},  // w_2
+      {-0.6050789993430142, -0.2785182160298563, 0.7458599117083602},  // w_3
+      {-0.01238227639731273, 0.6765222225814916, 0.7363181116777037}  // w_4
+  };
+  // kInverse[l - 2][m + l][d] = A_l = Y_l^-1, Y_l[d][m + l] = y_l^m(w_d), dense (no structural
+  // zeros); zero beyond 2l + 1 rows and columns. Double, from the table's inverse.
+  static constexpr double kInverse[1][5][5] = {
+      {  // l = 2
+          {0.41614010504761245, 0.48518520242609964, 1.5168094431247419, 0.840555078053188, 0.1477810948375806},
+          {-0.5397689294858494, -0.6664671754228226, 0.3137852474913831, 0.006484521099522761, 1.202134957589013},
+          {1.3018192679749312, -0.06941120440998842, -0.0872065011436998, 0.5267314595304262, 0.5055366058467873},
+          {0.8978231037411064, -0.028539439329626454, 0.5562035319498514, -1.346879020883191, -0.5905338325921065},
+          {-0.19719794086662834, -1.5227378669115703, 0.5366165968574466, 0.45343478661473063, -0.9655830890840513}
+      }
+  };
 };
 
 }  // namespace zhf::gen

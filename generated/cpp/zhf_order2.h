@@ -12,8 +12,6 @@
 
 namespace zhf::gen {
 
-inline constexpr int kOrder2 = 2;
-
 // sh_eval_order2: y[index(l,m)] = y_l^m(dir) for every band, dir a unit vector.
 template <class T>
 inline void sh_eval_order2(const T dir[3], T y[4]) {
@@ -161,5 +159,24 @@ inline void rotate_batch_order2(std::size_t count, const T* R, const T* coeffs, 
     rotated[3 * count + v] = t29;
   }
 }
+
+// The functions above for generic code (runtime/rotator.h, zhf_kernels.h).
+template <int N>
+struct Kernels;
+template <>
+struct Kernels<2> {
+  static constexpr int kOrder = 2;
+  static constexpr int kLobeStage = 0;  // runtime::LobeStage: float
+  template <class T>
+  static void sh_eval(const T dir[3], T y[4]) { sh_eval_order2<T>(dir, y); }
+  template <class T>
+  static void rotate(const T R[9], const T coeffs[4], T rotated[4]) { rotate_order2<T>(R, coeffs, rotated); }
+  template <class T>
+  static void rotate_signal_tailored(const T R[9], const T coeffs[4], T rotated[4]) { rotate_signal_tailored_order2<T>(R, coeffs, rotated); }
+  template <class T>
+  static void rotate_rgb(const T R[9], const T coeffs[3][4], T rotated[3][4]) { rotate_rgb_order2<T>(R, coeffs, rotated); }
+  template <class T>
+  static void rotate_batch(std::size_t count, const T* R, const T* coeffs, T* rotated) { rotate_batch_order2<T>(count, R, coeffs, rotated); }
+};
 
 }  // namespace zhf::gen

@@ -2,8 +2,8 @@
 // Do not edit: change the generator or the lobe table and run `zhf generate`.
 // Operations per call (multiplies, adds; a vector operation counts once):
 //   sh_eval_order3: 13 multiplies, 4 adds
-//   AhatTransposeMultiply_order3: 6 multiplies, 4 adds
-//   AhatMultiply_order3: 6 multiplies, 4 adds
+//   lobe_weights_order3: 6 multiplies, 4 adds
+//   coefficients_from_samples_order3: 6 multiplies, 4 adds
 //   rotate_order3: 70 multiplies, 65 adds
 //   rotate_signal_tailored_order3: 70 multiplies, 65 adds
 //   rotate_rgb_order3: 160 multiplies, 125 adds
@@ -14,16 +14,13 @@
 
 namespace zhf::gen {
 
-inline constexpr int kOrder3 = 3;
-// Whether the rotations below run their lobe stage in double (see the derivation below).
-inline constexpr bool kLobeStageInDoubleOrder3 = false;
-
 // Lobe directions w_d (unit vectors) for order 3, from generated/lobes/order_3.json;
 // made by: zhf optimize --order 3 --seed 1 --out generated/lobes/order_3.json
 // lobe sharing: band l uses lobes 0..2l; 16 of 25 entries of A_l = Y_l^-1 are structural zeros.
 // The rotations evaluate SH at R u_d, u_d = w_d rescaled so its components are +-1 where possible,
 // with A_l's column d scaled by |u_d|^-l (band-l SH are homogeneous of degree l) and each
 // output's normalisation applied once after the sum over lobes.
+// Lobe stage in the kernel's type (zhf emit --lobe-stage): the float error model eps_f (N-1) k_max = 2.5e-07.
 //   w_0: root 2 of P_2^0; zero of cos(2 phi)
 //   w_1: equator (root 1 of P_1^0); root 1 of P_2^1; zero of sin(phi); zero of sin(2 phi)
 //   w_2: root 1 of P_2^0; zero of cos(2 phi)
@@ -68,9 +65,9 @@ inline void sh_eval_order3(const T dir[3], T y[9]) {
   y[8] = t27;
 }
 
-// AhatTransposeMultiply_order3: lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied.
+// lobe_weights_order3: lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied.
 template <class T>
-inline void AhatTransposeMultiply_order3(const T f[9], T z[9]) {
+inline void lobe_weights_order3(const T f[9], T z[9]) {
   const T t10 = f[4] - f[5];
   const T t12 = T(1.3729368492956533) * t10;
   const T t14 = T(1.8305824657275378) * f[8];
@@ -92,9 +89,9 @@ inline void AhatTransposeMultiply_order3(const T f[9], T z[9]) {
   z[8] = t24;
 }
 
-// AhatMultiply_order3: coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied.
+// coefficients_from_samples_order3: coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied.
 template <class T>
-inline void AhatMultiply_order3(const T s[9], T f[9]) {
+inline void coefficients_from_samples_order3(const T s[9], T f[9]) {
   const T t10 = s[4] + s[6];
   const T t12 = T(1.3729368492956533) * t10;
   const T t13 = s[4] + s[7];
@@ -881,5 +878,28 @@ inline void rotate_batch_order3(std::size_t count, const T* R, const T* coeffs, 
     rotated[8 * count + v] = t163;
   }
 }
+
+// The functions above for generic code (runtime/rotator.h, zhf_kernels.h).
+template <int N>
+struct Kernels;
+template <>
+struct Kernels<3> {
+  static constexpr int kOrder = 3;
+  static constexpr int kLobeStage = 0;  // runtime::LobeStage: float
+  template <class T>
+  static void sh_eval(const T dir[3], T y[9]) { sh_eval_order3<T>(dir, y); }
+  template <class T>
+  static void lobe_weights(const T f[9], T z[9]) { lobe_weights_order3<T>(f, z); }
+  template <class T>
+  static void coefficients_from_samples(const T s[9], T f[9]) { coefficients_from_samples_order3<T>(s, f); }
+  template <class T>
+  static void rotate(const T R[9], const T coeffs[9], T rotated[9]) { rotate_order3<T>(R, coeffs, rotated); }
+  template <class T>
+  static void rotate_signal_tailored(const T R[9], const T coeffs[9], T rotated[9]) { rotate_signal_tailored_order3<T>(R, coeffs, rotated); }
+  template <class T>
+  static void rotate_rgb(const T R[9], const T coeffs[3][9], T rotated[3][9]) { rotate_rgb_order3<T>(R, coeffs, rotated); }
+  template <class T>
+  static void rotate_batch(std::size_t count, const T* R, const T* coeffs, T* rotated) { rotate_batch_order3<T>(count, R, coeffs, rotated); }
+};
 
 }  // namespace zhf::gen

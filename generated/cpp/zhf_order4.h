@@ -2,8 +2,8 @@
 // Do not edit: change the generator or the lobe table and run `zhf generate`.
 // Operations per call (multiplies, adds; a vector operation counts once):
 //   sh_eval_order4: 30 multiplies, 8 adds
-//   AhatTransposeMultiply_order4: 24 multiplies, 15 adds
-//   AhatMultiply_order4: 18 multiplies, 16 adds
+//   lobe_weights_order4: 24 multiplies, 15 adds
+//   coefficients_from_samples_order4: 18 multiplies, 16 adds
 //   rotate_order4: 232 multiplies, 166 adds
 //   rotate_signal_tailored_order4: 227 multiplies, 166 adds
 //   rotate_rgb_order4: 470 multiplies, 332 adds
@@ -14,16 +14,13 @@
 
 namespace zhf::gen {
 
-inline constexpr int kOrder4 = 4;
-// Whether the rotations below run their lobe stage in double (see the derivation below).
-inline constexpr bool kLobeStageInDoubleOrder4 = false;
-
 // Lobe directions w_d (unit vectors) for order 4, from generated/lobes/order_4.json;
 // made by: zhf optimize --order 4 --seed 1 --out generated/lobes/order_4.json
 // lobe sharing: band l uses lobes 0..2l; 46 of 74 entries of A_l = Y_l^-1 are structural zeros.
 // The rotations evaluate SH at R u_d, u_d = w_d rescaled so its components are +-1 where possible,
 // with A_l's column d scaled by |u_d|^-l (band-l SH are homogeneous of degree l) and each
 // output's normalisation applied once after the sum over lobes.
+// Lobe stage in the kernel's type (zhf emit --lobe-stage): the float error model eps_f (N-1) k_max = 7e-07.
 //   w_0: north pole
 //   w_1: root 1 of P_3^1; zero of cos(3 phi)
 //   w_2: root 1 of P_3^1; zero of cos(3 phi)
@@ -100,9 +97,9 @@ inline void sh_eval_order4(const T dir[3], T y[16]) {
   y[15] = t54;
 }
 
-// AhatTransposeMultiply_order4: lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied.
+// lobe_weights_order4: lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied.
 template <class T>
-inline void AhatTransposeMultiply_order4(const T f[16], T z[16]) {
+inline void lobe_weights_order4(const T f[16], T z[16]) {
   const T t11 = T(1.5853309190424048) * f[6];
   const T t13 = T(0.9152912328637691) * f[8];
   const T t14 = t11 + t13;
@@ -160,9 +157,9 @@ inline void AhatTransposeMultiply_order4(const T f[16], T z[16]) {
   z[15] = t78;
 }
 
-// AhatMultiply_order4: coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied.
+// coefficients_from_samples_order4: coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied.
 template <class T>
-inline void AhatMultiply_order4(const T s[16], T f[16]) {
+inline void coefficients_from_samples_order4(const T s[16], T f[16]) {
   const T t10 = s[5] + s[6];
   const T t12 = T(-1.3211090992020038) * t10;
   const T t14 = T(1.0568872793616033) * s[8];
@@ -2323,5 +2320,28 @@ inline void rotate_batch_order4(std::size_t count, const T* R, const T* coeffs, 
     rotated[15 * count + v] = t490;
   }
 }
+
+// The functions above for generic code (runtime/rotator.h, zhf_kernels.h).
+template <int N>
+struct Kernels;
+template <>
+struct Kernels<4> {
+  static constexpr int kOrder = 4;
+  static constexpr int kLobeStage = 0;  // runtime::LobeStage: float
+  template <class T>
+  static void sh_eval(const T dir[3], T y[16]) { sh_eval_order4<T>(dir, y); }
+  template <class T>
+  static void lobe_weights(const T f[16], T z[16]) { lobe_weights_order4<T>(f, z); }
+  template <class T>
+  static void coefficients_from_samples(const T s[16], T f[16]) { coefficients_from_samples_order4<T>(s, f); }
+  template <class T>
+  static void rotate(const T R[9], const T coeffs[16], T rotated[16]) { rotate_order4<T>(R, coeffs, rotated); }
+  template <class T>
+  static void rotate_signal_tailored(const T R[9], const T coeffs[16], T rotated[16]) { rotate_signal_tailored_order4<T>(R, coeffs, rotated); }
+  template <class T>
+  static void rotate_rgb(const T R[9], const T coeffs[3][16], T rotated[3][16]) { rotate_rgb_order4<T>(R, coeffs, rotated); }
+  template <class T>
+  static void rotate_batch(std::size_t count, const T* R, const T* coeffs, T* rotated) { rotate_batch_order4<T>(count, R, coeffs, rotated); }
+};
 
 }  // namespace zhf::gen

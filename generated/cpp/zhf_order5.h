@@ -2,8 +2,8 @@
 // Do not edit: change the generator or the lobe table and run `zhf generate`.
 // Operations per call (multiplies, adds; a vector operation counts once):
 //   sh_eval_order5: 53 multiplies, 13 adds
-//   AhatTransposeMultiply_order5: 59 multiplies, 45 adds
-//   AhatMultiply_order5: 46 multiplies, 40 adds
+//   lobe_weights_order5: 59 multiplies, 45 adds
+//   coefficients_from_samples_order5: 46 multiplies, 40 adds
 //   rotate_order5: 557 multiplies, 365 adds
 //   rotate_signal_tailored_order5: 543 multiplies, 360 adds
 //   rotate_rgb_order5: 1049 multiplies, 735 adds
@@ -15,19 +15,15 @@
 
 namespace zhf::gen {
 
-inline constexpr int kOrder5 = 5;
-// Whether the rotations below run their lobe stage in double (see the derivation below).
-inline constexpr bool kLobeStageInDoubleOrder5 = true;
-
 // Lobe directions w_d (unit vectors) for order 5, from generated/lobes/order_5.json;
 // made by: zhf optimize --order 5 --seed 1 --out generated/lobes/order_5.json
 // lobe sharing: band l uses lobes 0..2l; 88 of 155 entries of A_l = Y_l^-1 are structural zeros.
 // The rotations evaluate SH at R u_d, u_d = w_d rescaled so its components are +-1 where possible,
 // with A_l's column d scaled by |u_d|^-l (band-l SH are homogeneous of degree l) and each
 // output's normalisation applied once after the sum over lobes.
-// Lobe stage in double: R is projected onto the rotations (one Newton step to its polar factor),
-// and the rotated lobes, their SH and the sums over lobes are double, because in float the
-// error model eps_f (N-1) k_max = 1.5e-06 exceeds the 1e-6 target (zhf emit --lobe-precision).
+// Lobe stage double: R is projected onto the rotations (one Newton step to its polar factor),
+// and the rotated lobes, their SH and the sums over lobes are double, because in float
+// the float error model eps_f (N-1) k_max = 1.5e-06 exceeds the 1e-6 target (zhf emit --lobe-stage).
 //   w_0: root 2 of P_3^1; zero of sin(3 phi)
 //   w_1: equator (root 1 of P_1^0); root 1 of P_2^1; root 2 of P_3^0; root 1 of P_3^2; root 2 of P_4^1; root 1 of P_4^3; zero of cos(phi); zero of sin(2 phi); zero of cos(3 phi); zero of sin(4 phi)
 //   w_2: root 1 of P_3^1; zero of sin(3 phi)
@@ -145,9 +141,9 @@ inline void sh_eval_order5(const T dir[3], T y[25]) {
   y[24] = t90;
 }
 
-// AhatTransposeMultiply_order5: lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied.
+// lobe_weights_order5: lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied.
 template <class T>
-inline void AhatTransposeMultiply_order5(const T f[25], T z[25]) {
+inline void lobe_weights_order5(const T f[25], T z[25]) {
   const T t11 = T(1.3211090992020031) * f[4];
   const T t13 = T(-2.2882280821594216) * f[7];
   const T t14 = t11 + t13;
@@ -279,9 +275,9 @@ inline void AhatTransposeMultiply_order5(const T f[25], T z[25]) {
   z[24] = t186;
 }
 
-// AhatMultiply_order5: coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied.
+// coefficients_from_samples_order5: coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied.
 template <class T>
-inline void AhatMultiply_order5(const T s[25], T f[25]) {
+inline void coefficients_from_samples_order5(const T s[25], T f[25]) {
   const T t10 = s[4] + s[7];
   const T t12 = T(1.3211090992020031) * t10;
   const T t14 = T(-1.0568872793616026) * s[5];
@@ -5101,5 +5097,28 @@ inline void rotate_batch_order5(std::size_t count, const T* R, const T* coeffs, 
     rotated[24 * count + v] = T(t1088);
   }
 }
+
+// The functions above for generic code (runtime/rotator.h, zhf_kernels.h).
+template <int N>
+struct Kernels;
+template <>
+struct Kernels<5> {
+  static constexpr int kOrder = 5;
+  static constexpr int kLobeStage = 2;  // runtime::LobeStage: double
+  template <class T>
+  static void sh_eval(const T dir[3], T y[25]) { sh_eval_order5<T>(dir, y); }
+  template <class T>
+  static void lobe_weights(const T f[25], T z[25]) { lobe_weights_order5<T>(f, z); }
+  template <class T>
+  static void coefficients_from_samples(const T s[25], T f[25]) { coefficients_from_samples_order5<T>(s, f); }
+  template <class T>
+  static void rotate(const T R[9], const T coeffs[25], T rotated[25]) { rotate_order5<T>(R, coeffs, rotated); }
+  template <class T>
+  static void rotate_signal_tailored(const T R[9], const T coeffs[25], T rotated[25]) { rotate_signal_tailored_order5<T>(R, coeffs, rotated); }
+  template <class T>
+  static void rotate_rgb(const T R[9], const T coeffs[3][25], T rotated[3][25]) { rotate_rgb_order5<T>(R, coeffs, rotated); }
+  template <class T>
+  static void rotate_batch(std::size_t count, const T* R, const T* coeffs, T* rotated) { rotate_batch_order5<T>(count, R, coeffs, rotated); }
+};
 
 }  // namespace zhf::gen

@@ -2,8 +2,8 @@
 // Do not edit: change the generator or the lobe table and run `zhf generate`.
 // Operations per call (multiplies, adds; a vector operation counts once):
 //   sh_eval_order6: 82 multiplies, 19 adds
-//   AhatTransposeMultiply_order6: 109 multiplies, 100 adds
-//   AhatMultiply_order6: 106 multiplies, 91 adds
+//   lobe_weights_order6: 109 multiplies, 100 adds
+//   coefficients_from_samples_order6: 106 multiplies, 91 adds
 //   rotate_order6: 965 multiplies, 652 adds
 //   rotate_signal_tailored_order6: 957 multiplies, 646 adds
 //   rotate_rgb_order6: 1815 multiplies, 1352 adds
@@ -15,19 +15,15 @@
 
 namespace zhf::gen {
 
-inline constexpr int kOrder6 = 6;
-// Whether the rotations below run their lobe stage in double (see the derivation below).
-inline constexpr bool kLobeStageInDoubleOrder6 = true;
-
 // Lobe directions w_d (unit vectors) for order 6, from generated/lobes/order_6.json;
 // made by: zhf optimize --order 6 --seed 1 --max-condition 8 --out generated/lobes/order_6.json
 // lobe sharing: band l uses lobes 0..2l; 142 of 276 entries of A_l = Y_l^-1 are structural zeros.
 // The rotations evaluate SH at R u_d, u_d = w_d rescaled so its components are +-1 where possible,
 // with A_l's column d scaled by |u_d|^-l (band-l SH are homogeneous of degree l) and each
 // output's normalisation applied once after the sum over lobes.
-// Lobe stage in double: R is projected onto the rotations (one Newton step to its polar factor),
-// and the rotated lobes, their SH and the sums over lobes are double, because in float the
-// error model eps_f (N-1) k_max = 1.7e-06 exceeds the 1e-6 target (zhf emit --lobe-precision).
+// Lobe stage double: R is projected onto the rotations (one Newton step to its polar factor),
+// and the rotated lobes, their SH and the sums over lobes are double, because in float
+// the float error model eps_f (N-1) k_max = 1.7e-06 exceeds the 1e-6 target (zhf emit --lobe-stage).
 //   w_0: root 1 of P_2^0; root 1 of P_5^2; zero of cos(2 phi); zero of sin(4 phi)
 //   w_1: equator (root 1 of P_1^0); root 1 of P_2^1; root 2 of P_3^0; root 1 of P_3^2; root 2 of P_4^1; root 1 of P_4^3; root 3 of P_5^0; root 2 of P_5^2; root 1 of P_5^4; zero of sin(phi); zero of sin(2 phi); zero of sin(3 phi); zero of sin(4 phi); zero of sin(5 phi)
 //   w_2: root 2 of P_2^0; root 3 of P_5^2; zero of cos(2 phi); zero of sin(4 phi)
@@ -195,9 +191,9 @@ inline void sh_eval_order6(const T dir[3], T y[36]) {
   y[35] = t135;
 }
 
-// AhatTransposeMultiply_order6: lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied.
+// lobe_weights_order6: lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied.
 template <class T>
-inline void AhatTransposeMultiply_order6(const T f[36], T z[36]) {
+inline void lobe_weights_order6(const T f[36], T z[36]) {
   const T t10 = f[5] + f[7];
   const T t12 = T(1.3729368492956537) * t10;
   const T t14 = T(1.8305824657275378) * f[8];
@@ -445,9 +441,9 @@ inline void AhatTransposeMultiply_order6(const T f[36], T z[36]) {
   z[35] = t352;
 }
 
-// AhatMultiply_order6: coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied.
+// coefficients_from_samples_order6: coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied.
 template <class T>
-inline void AhatMultiply_order6(const T s[36], T f[36]) {
+inline void coefficients_from_samples_order6(const T s[36], T f[36]) {
   const T t11 = T(1.8305824657275378) * s[7];
   const T t13 = T(0.9152912328637693) * s[8];
   const T t14 = t11 + t13;
@@ -8928,5 +8924,28 @@ inline void rotate_batch_order6(std::size_t count, const T* R, const T* coeffs, 
     rotated[35 * count + v] = T(t1970);
   }
 }
+
+// The functions above for generic code (runtime/rotator.h, zhf_kernels.h).
+template <int N>
+struct Kernels;
+template <>
+struct Kernels<6> {
+  static constexpr int kOrder = 6;
+  static constexpr int kLobeStage = 2;  // runtime::LobeStage: double
+  template <class T>
+  static void sh_eval(const T dir[3], T y[36]) { sh_eval_order6<T>(dir, y); }
+  template <class T>
+  static void lobe_weights(const T f[36], T z[36]) { lobe_weights_order6<T>(f, z); }
+  template <class T>
+  static void coefficients_from_samples(const T s[36], T f[36]) { coefficients_from_samples_order6<T>(s, f); }
+  template <class T>
+  static void rotate(const T R[9], const T coeffs[36], T rotated[36]) { rotate_order6<T>(R, coeffs, rotated); }
+  template <class T>
+  static void rotate_signal_tailored(const T R[9], const T coeffs[36], T rotated[36]) { rotate_signal_tailored_order6<T>(R, coeffs, rotated); }
+  template <class T>
+  static void rotate_rgb(const T R[9], const T coeffs[3][36], T rotated[3][36]) { rotate_rgb_order6<T>(R, coeffs, rotated); }
+  template <class T>
+  static void rotate_batch(std::size_t count, const T* R, const T* coeffs, T* rotated) { rotate_batch_order6<T>(count, R, coeffs, rotated); }
+};
 
 }  // namespace zhf::gen

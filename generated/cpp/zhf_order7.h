@@ -2,8 +2,8 @@
 // Do not edit: change the generator or the lobe table and run `zhf generate`.
 // Operations per call (multiplies, adds; a vector operation counts once):
 //   sh_eval_order7: 117 multiplies, 26 adds
-//   AhatTransposeMultiply_order7: 211 multiplies, 177 adds
-//   AhatMultiply_order7: 173 multiplies, 157 adds
+//   lobe_weights_order7: 211 multiplies, 177 adds
+//   coefficients_from_samples_order7: 173 multiplies, 157 adds
 //   rotate_order7: 1608 multiplies, 1011 adds
 //   rotate_signal_tailored_order7: 1564 multiplies, 988 adds
 //   rotate_rgb_order7: 3028 multiplies, 2177 adds
@@ -15,19 +15,15 @@
 
 namespace zhf::gen {
 
-inline constexpr int kOrder7 = 7;
-// Whether the rotations below run their lobe stage in double (see the derivation below).
-inline constexpr bool kLobeStageInDoubleOrder7 = true;
-
 // Lobe directions w_d (unit vectors) for order 7, from generated/lobes/order_7.json;
 // made by: zhf optimize --order 7 --seed 1 --out generated/lobes/order_7.json
 // lobe sharing: band l uses lobes 0..2l; 223 of 445 entries of A_l = Y_l^-1 are structural zeros.
 // The rotations evaluate SH at R u_d, u_d = w_d rescaled so its components are +-1 where possible,
 // with A_l's column d scaled by |u_d|^-l (band-l SH are homogeneous of degree l) and each
 // output's normalisation applied once after the sum over lobes.
-// Lobe stage in double: R is projected onto the rotations (one Newton step to its polar factor),
-// and the rotated lobes, their SH and the sums over lobes are double, because in float the
-// error model eps_f (N-1) k_max = 1.3e-05 exceeds the 1e-6 target (zhf emit --lobe-precision).
+// Lobe stage double: R is projected onto the rotations (one Newton step to its polar factor),
+// and the rotated lobes, their SH and the sums over lobes are double, because in float
+// the float error model eps_f (N-1) k_max = 1.3e-05 exceeds the 1e-6 target (zhf emit --lobe-stage).
 //   w_0: equator (root 1 of P_1^0); root 1 of P_2^1; root 2 of P_3^0; root 1 of P_3^2; root 2 of P_4^1; root 1 of P_4^3; root 3 of P_5^0; root 2 of P_5^2; root 1 of P_5^4; root 3 of P_6^1; root 2 of P_6^3; root 1 of P_6^5; zero of cos(phi); zero of sin(2 phi); zero of cos(3 phi); zero of sin(4 phi); zero of cos(5 phi); zero of sin(6 phi)
 //   w_1: root 1 of P_2^0; root 1 of P_5^2; zero of cos(phi); zero of sin(2 phi); zero of cos(3 phi); zero of sin(4 phi); zero of cos(5 phi); zero of sin(6 phi)
 //   w_2: root 1 of P_2^0; root 1 of P_5^2; zero of cos(3 phi); zero of sin(6 phi)
@@ -254,9 +250,9 @@ inline void sh_eval_order7(const T dir[3], T y[49]) {
   y[48] = t189;
 }
 
-// AhatTransposeMultiply_order7: lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied.
+// lobe_weights_order7: lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied.
 template <class T>
-inline void AhatTransposeMultiply_order7(const T f[49], T z[49]) {
+inline void lobe_weights_order7(const T f[49], T z[49]) {
   const T t11 = T(-1.2944172750371328) * f[5];
   const T t13 = T(-1.8305824657275378) * f[8];
   const T t14 = t11 + t13;
@@ -696,9 +692,9 @@ inline void AhatTransposeMultiply_order7(const T f[49], T z[49]) {
   z[48] = t646;
 }
 
-// AhatMultiply_order7: coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied.
+// coefficients_from_samples_order7: coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied.
 template <class T>
-inline void AhatMultiply_order7(const T s[49], T f[49]) {
+inline void coefficients_from_samples_order7(const T s[49], T f[49]) {
   const T t11 = T(-1.8305824657275378) * s[7];
   const T t13 = T(-0.9152912328637693) * s[8];
   const T t14 = t11 + t13;
@@ -14394,5 +14390,28 @@ inline void rotate_batch_order7(std::size_t count, const T* R, const T* coeffs, 
     rotated[48 * count + v] = T(t3098);
   }
 }
+
+// The functions above for generic code (runtime/rotator.h, zhf_kernels.h).
+template <int N>
+struct Kernels;
+template <>
+struct Kernels<7> {
+  static constexpr int kOrder = 7;
+  static constexpr int kLobeStage = 2;  // runtime::LobeStage: double
+  template <class T>
+  static void sh_eval(const T dir[3], T y[49]) { sh_eval_order7<T>(dir, y); }
+  template <class T>
+  static void lobe_weights(const T f[49], T z[49]) { lobe_weights_order7<T>(f, z); }
+  template <class T>
+  static void coefficients_from_samples(const T s[49], T f[49]) { coefficients_from_samples_order7<T>(s, f); }
+  template <class T>
+  static void rotate(const T R[9], const T coeffs[49], T rotated[49]) { rotate_order7<T>(R, coeffs, rotated); }
+  template <class T>
+  static void rotate_signal_tailored(const T R[9], const T coeffs[49], T rotated[49]) { rotate_signal_tailored_order7<T>(R, coeffs, rotated); }
+  template <class T>
+  static void rotate_rgb(const T R[9], const T coeffs[3][49], T rotated[3][49]) { rotate_rgb_order7<T>(R, coeffs, rotated); }
+  template <class T>
+  static void rotate_batch(std::size_t count, const T* R, const T* coeffs, T* rotated) { rotate_batch_order7<T>(count, R, coeffs, rotated); }
+};
 
 }  // namespace zhf::gen

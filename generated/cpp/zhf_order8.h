@@ -2,8 +2,8 @@
 // Do not edit: change the generator or the lobe table and run `zhf generate`.
 // Operations per call (multiplies, adds; a vector operation counts once):
 //   sh_eval_order8: 158 multiplies, 34 adds
-//   AhatTransposeMultiply_order8: 308 multiplies, 276 adds
-//   AhatMultiply_order8: 254 multiplies, 229 adds
+//   lobe_weights_order8: 308 multiplies, 276 adds
+//   coefficients_from_samples_order8: 254 multiplies, 229 adds
 //   rotate_order8: 2410 multiplies, 1501 adds
 //   rotate_signal_tailored_order8: 2357 multiplies, 1451 adds
 //   rotate_rgb_order8: 4504 multiplies, 3285 adds
@@ -15,19 +15,15 @@
 
 namespace zhf::gen {
 
-inline constexpr int kOrder8 = 8;
-// Whether the rotations below run their lobe stage in double (see the derivation below).
-inline constexpr bool kLobeStageInDoubleOrder8 = true;
-
 // Lobe directions w_d (unit vectors) for order 8, from generated/lobes/order_8.json;
 // made by: zhf optimize --order 8 --seed 1 --out generated/lobes/order_8.json
 // lobe sharing: band l uses lobes 0..2l; 333 of 670 entries of A_l = Y_l^-1 are structural zeros.
 // The rotations evaluate SH at R u_d, u_d = w_d rescaled so its components are +-1 where possible,
 // with A_l's column d scaled by |u_d|^-l (band-l SH are homogeneous of degree l) and each
 // output's normalisation applied once after the sum over lobes.
-// Lobe stage in double: R is projected onto the rotations (one Newton step to its polar factor),
-// and the rotated lobes, their SH and the sums over lobes are double, because in float the
-// error model eps_f (N-1) k_max = 1.6e-05 exceeds the 1e-6 target (zhf emit --lobe-precision).
+// Lobe stage double: R is projected onto the rotations (one Newton step to its polar factor),
+// and the rotated lobes, their SH and the sums over lobes are double, because in float
+// the float error model eps_f (N-1) k_max = 1.6e-05 exceeds the 1e-6 target (zhf emit --lobe-stage).
 //   w_0: root 2 of P_2^0; root 3 of P_5^2; zero of cos(phi); zero of sin(2 phi); zero of cos(3 phi); zero of sin(4 phi); zero of cos(5 phi); zero of sin(6 phi); zero of cos(7 phi)
 //   w_1: equator (root 1 of P_1^0); root 1 of P_2^1; root 2 of P_3^0; root 1 of P_3^2; root 2 of P_4^1; root 1 of P_4^3; root 3 of P_5^0; root 2 of P_5^2; root 1 of P_5^4; root 3 of P_6^1; root 2 of P_6^3; root 1 of P_6^5; root 4 of P_7^0; root 3 of P_7^2; root 2 of P_7^4; root 1 of P_7^6; zero of cos(2 phi); zero of sin(4 phi); zero of cos(6 phi)
 //   w_2: equator (root 1 of P_1^0); root 1 of P_2^1; root 2 of P_3^0; root 1 of P_3^2; root 2 of P_4^1; root 1 of P_4^3; root 3 of P_5^0; root 2 of P_5^2; root 1 of P_5^4; root 3 of P_6^1; root 2 of P_6^3; root 1 of P_6^5; root 4 of P_7^0; root 3 of P_7^2; root 2 of P_7^4; root 1 of P_7^6; zero of cos(phi); zero of sin(2 phi); zero of cos(3 phi); zero of sin(4 phi); zero of cos(5 phi); zero of sin(6 phi); zero of cos(7 phi)
@@ -322,9 +318,9 @@ inline void sh_eval_order8(const T dir[3], T y[64]) {
   y[63] = t252;
 }
 
-// AhatTransposeMultiply_order8: lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied.
+// lobe_weights_order8: lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied.
 template <class T>
-inline void AhatTransposeMultiply_order8(const T f[64], T z[64]) {
+inline void lobe_weights_order8(const T f[64], T z[64]) {
   const T t11 = T(-1.9416259125556994) * f[5];
   const T t13 = T(1.1209982432795857) * f[7];
   const T t14 = t11 + t13;
@@ -975,9 +971,9 @@ inline void AhatTransposeMultiply_order8(const T f[64], T z[64]) {
   z[63] = t953;
 }
 
-// AhatMultiply_order8: coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied.
+// coefficients_from_samples_order8: coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied.
 template <class T>
-inline void AhatMultiply_order8(const T s[64], T f[64]) {
+inline void coefficients_from_samples_order8(const T s[64], T f[64]) {
   const T t11 = T(-1.8305824657275378) * s[5];
   const T t13 = T(-0.9152912328637693) * s[7];
   const T t14 = t11 + t13;
@@ -21355,5 +21351,28 @@ inline void rotate_batch_order8(std::size_t count, const T* R, const T* coeffs, 
     rotated[63 * count + v] = T(t4579);
   }
 }
+
+// The functions above for generic code (runtime/rotator.h, zhf_kernels.h).
+template <int N>
+struct Kernels;
+template <>
+struct Kernels<8> {
+  static constexpr int kOrder = 8;
+  static constexpr int kLobeStage = 2;  // runtime::LobeStage: double
+  template <class T>
+  static void sh_eval(const T dir[3], T y[64]) { sh_eval_order8<T>(dir, y); }
+  template <class T>
+  static void lobe_weights(const T f[64], T z[64]) { lobe_weights_order8<T>(f, z); }
+  template <class T>
+  static void coefficients_from_samples(const T s[64], T f[64]) { coefficients_from_samples_order8<T>(s, f); }
+  template <class T>
+  static void rotate(const T R[9], const T coeffs[64], T rotated[64]) { rotate_order8<T>(R, coeffs, rotated); }
+  template <class T>
+  static void rotate_signal_tailored(const T R[9], const T coeffs[64], T rotated[64]) { rotate_signal_tailored_order8<T>(R, coeffs, rotated); }
+  template <class T>
+  static void rotate_rgb(const T R[9], const T coeffs[3][64], T rotated[3][64]) { rotate_rgb_order8<T>(R, coeffs, rotated); }
+  template <class T>
+  static void rotate_batch(std::size_t count, const T* R, const T* coeffs, T* rotated) { rotate_batch_order8<T>(count, R, coeffs, rotated); }
+};
 
 }  // namespace zhf::gen

@@ -2,8 +2,8 @@
 // Do not edit: change the generator or the lobe table and run `zhf generate`.
 // Operations per call (multiplies, adds; a vector operation counts once):
 //   sh_eval_order3: 13 multiplies, 4 adds
-//   AhatTransposeMultiply_order3: 6 multiplies, 4 adds
-//   AhatMultiply_order3: 6 multiplies, 4 adds
+//   lobe_weights_order3: 6 multiplies, 4 adds
+//   coefficients_from_samples_order3: 6 multiplies, 4 adds
 //   rotate_order3: 70 multiplies, 65 adds
 //   rotate_signal_tailored_order3: 70 multiplies, 65 adds
 //   rotate_rgb_order3: 70 multiplies, 65 adds
@@ -16,6 +16,7 @@
 // The rotations evaluate SH at R u_d, u_d = w_d rescaled so its components are +-1 where possible,
 // with A_l's column d scaled by |u_d|^-l (band-l SH are homogeneous of degree l) and each
 // output's normalisation applied once after the sum over lobes.
+// Lobe stage in the kernel's type (zhf emit --lobe-stage): the float error model eps_f (N-1) k_max = 2.5e-07.
 //   w_0: root 2 of P_2^0; zero of cos(2 phi)
 //   w_1: equator (root 1 of P_1^0); root 1 of P_2^1; zero of sin(phi); zero of sin(2 phi)
 //   w_2: root 1 of P_2^0; zero of cos(2 phi)
@@ -60,8 +61,8 @@ void sh_eval_order3(in float dir[3], out float y[9]) {
   y[8] = t27;
 }
 
-// AhatTransposeMultiply_order3: lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied.
-void AhatTransposeMultiply_order3(in float f[9], out float z[9]) {
+// lobe_weights_order3: lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied.
+void lobe_weights_order3(in float f[9], out float z[9]) {
   float t10 = f[4] - f[5];
   float t12 = 1.3729368f * t10;
   float t14 = 1.8305825f * f[8];
@@ -83,8 +84,8 @@ void AhatTransposeMultiply_order3(in float f[9], out float z[9]) {
   z[8] = t24;
 }
 
-// AhatMultiply_order3: coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied.
-void AhatMultiply_order3(in float s[9], out float f[9]) {
+// coefficients_from_samples_order3: coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied.
+void coefficients_from_samples_order3(in float s[9], out float f[9]) {
   float t10 = s[4] + s[6];
   float t12 = 1.3729368f * t10;
   float t13 = s[4] + s[7];

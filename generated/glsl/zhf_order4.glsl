@@ -2,8 +2,8 @@
 // Do not edit: change the generator or the lobe table and run `zhf generate`.
 // Operations per call (multiplies, adds; a vector operation counts once):
 //   sh_eval_order4: 30 multiplies, 8 adds
-//   AhatTransposeMultiply_order4: 24 multiplies, 15 adds
-//   AhatMultiply_order4: 18 multiplies, 16 adds
+//   lobe_weights_order4: 24 multiplies, 15 adds
+//   coefficients_from_samples_order4: 18 multiplies, 16 adds
 //   rotate_order4: 232 multiplies, 166 adds
 //   rotate_signal_tailored_order4: 227 multiplies, 166 adds
 //   rotate_rgb_order4: 232 multiplies, 166 adds
@@ -16,6 +16,7 @@
 // The rotations evaluate SH at R u_d, u_d = w_d rescaled so its components are +-1 where possible,
 // with A_l's column d scaled by |u_d|^-l (band-l SH are homogeneous of degree l) and each
 // output's normalisation applied once after the sum over lobes.
+// Lobe stage in the kernel's type (zhf emit --lobe-stage): the float error model eps_f (N-1) k_max = 7e-07.
 //   w_0: north pole
 //   w_1: root 1 of P_3^1; zero of cos(3 phi)
 //   w_2: root 1 of P_3^1; zero of cos(3 phi)
@@ -92,8 +93,8 @@ void sh_eval_order4(in float dir[3], out float y[16]) {
   y[15] = t54;
 }
 
-// AhatTransposeMultiply_order4: lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied.
-void AhatTransposeMultiply_order4(in float f[16], out float z[16]) {
+// lobe_weights_order4: lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied.
+void lobe_weights_order4(in float f[16], out float z[16]) {
   float t11 = 1.585331f * f[6];
   float t13 = 0.91529125f * f[8];
   float t14 = t11 + t13;
@@ -151,8 +152,8 @@ void AhatTransposeMultiply_order4(in float f[16], out float z[16]) {
   z[15] = t78;
 }
 
-// AhatMultiply_order4: coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied.
-void AhatMultiply_order4(in float s[16], out float f[16]) {
+// coefficients_from_samples_order4: coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied.
+void coefficients_from_samples_order4(in float s[16], out float f[16]) {
   float t10 = s[5] + s[6];
   float t12 = -1.321109f * t10;
   float t14 = 1.0568873f * s[8];

@@ -2,8 +2,8 @@
 // Do not edit: change the generator or the lobe table and run `zhf generate`.
 // Operations per call (multiplies, adds; a vector operation counts once):
 //   sh_eval_order6: 82 multiplies, 19 adds
-//   AhatTransposeMultiply_order6: 109 multiplies, 100 adds
-//   AhatMultiply_order6: 106 multiplies, 91 adds
+//   lobe_weights_order6: 109 multiplies, 100 adds
+//   coefficients_from_samples_order6: 106 multiplies, 91 adds
 //   rotate_order6: 965 multiplies, 652 adds
 //   rotate_signal_tailored_order6: 957 multiplies, 646 adds
 //   rotate_rgb_order6: 965 multiplies, 652 adds
@@ -16,9 +16,9 @@
 // The rotations evaluate SH at R u_d, u_d = w_d rescaled so its components are +-1 where possible,
 // with A_l's column d scaled by |u_d|^-l (band-l SH are homogeneous of degree l) and each
 // output's normalisation applied once after the sum over lobes.
-// Lobe stage in double: R is projected onto the rotations (one Newton step to its polar factor),
-// and the rotated lobes, their SH and the sums over lobes are double, because in float the
-// error model eps_f (N-1) k_max = 1.7e-06 exceeds the 1e-6 target (zhf emit --lobe-precision).
+// Lobe stage double: R is projected onto the rotations (one Newton step to its polar factor),
+// and the rotated lobes, their SH and the sums over lobes are double, because in float
+// the float error model eps_f (N-1) k_max = 1.7e-06 exceeds the 1e-6 target (zhf emit --lobe-stage).
 //   w_0: root 1 of P_2^0; root 1 of P_5^2; zero of cos(2 phi); zero of sin(4 phi)
 //   w_1: equator (root 1 of P_1^0); root 1 of P_2^1; root 2 of P_3^0; root 1 of P_3^2; root 2 of P_4^1; root 1 of P_4^3; root 3 of P_5^0; root 2 of P_5^2; root 1 of P_5^4; zero of sin(phi); zero of sin(2 phi); zero of sin(3 phi); zero of sin(4 phi); zero of sin(5 phi)
 //   w_2: root 2 of P_2^0; root 3 of P_5^2; zero of cos(2 phi); zero of sin(4 phi)
@@ -186,8 +186,8 @@ void sh_eval_order6(in float dir[3], out float y[36]) {
   y[35] = t135;
 }
 
-// AhatTransposeMultiply_order6: lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied.
-void AhatTransposeMultiply_order6(in float f[36], out float z[36]) {
+// lobe_weights_order6: lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied.
+void lobe_weights_order6(in float f[36], out float z[36]) {
   float t10 = f[5] + f[7];
   float t12 = 1.3729368f * t10;
   float t14 = 1.8305825f * f[8];
@@ -435,8 +435,8 @@ void AhatTransposeMultiply_order6(in float f[36], out float z[36]) {
   z[35] = t352;
 }
 
-// AhatMultiply_order6: coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied.
-void AhatMultiply_order6(in float s[36], out float f[36]) {
+// coefficients_from_samples_order6: coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied.
+void coefficients_from_samples_order6(in float s[36], out float f[36]) {
   float t11 = 1.8305825f * s[7];
   float t13 = 0.91529125f * s[8];
   float t14 = t11 + t13;

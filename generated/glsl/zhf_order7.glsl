@@ -2,8 +2,8 @@
 // Do not edit: change the generator or the lobe table and run `zhf generate`.
 // Operations per call (multiplies, adds; a vector operation counts once):
 //   sh_eval_order7: 117 multiplies, 26 adds
-//   AhatTransposeMultiply_order7: 211 multiplies, 177 adds
-//   AhatMultiply_order7: 173 multiplies, 157 adds
+//   lobe_weights_order7: 211 multiplies, 177 adds
+//   coefficients_from_samples_order7: 173 multiplies, 157 adds
 //   rotate_order7: 1608 multiplies, 1011 adds
 //   rotate_signal_tailored_order7: 1564 multiplies, 988 adds
 //   rotate_rgb_order7: 1608 multiplies, 1011 adds
@@ -16,9 +16,9 @@
 // The rotations evaluate SH at R u_d, u_d = w_d rescaled so its components are +-1 where possible,
 // with A_l's column d scaled by |u_d|^-l (band-l SH are homogeneous of degree l) and each
 // output's normalisation applied once after the sum over lobes.
-// Lobe stage in double: R is projected onto the rotations (one Newton step to its polar factor),
-// and the rotated lobes, their SH and the sums over lobes are double, because in float the
-// error model eps_f (N-1) k_max = 1.3e-05 exceeds the 1e-6 target (zhf emit --lobe-precision).
+// Lobe stage double: R is projected onto the rotations (one Newton step to its polar factor),
+// and the rotated lobes, their SH and the sums over lobes are double, because in float
+// the float error model eps_f (N-1) k_max = 1.3e-05 exceeds the 1e-6 target (zhf emit --lobe-stage).
 //   w_0: equator (root 1 of P_1^0); root 1 of P_2^1; root 2 of P_3^0; root 1 of P_3^2; root 2 of P_4^1; root 1 of P_4^3; root 3 of P_5^0; root 2 of P_5^2; root 1 of P_5^4; root 3 of P_6^1; root 2 of P_6^3; root 1 of P_6^5; zero of cos(phi); zero of sin(2 phi); zero of cos(3 phi); zero of sin(4 phi); zero of cos(5 phi); zero of sin(6 phi)
 //   w_1: root 1 of P_2^0; root 1 of P_5^2; zero of cos(phi); zero of sin(2 phi); zero of cos(3 phi); zero of sin(4 phi); zero of cos(5 phi); zero of sin(6 phi)
 //   w_2: root 1 of P_2^0; root 1 of P_5^2; zero of cos(3 phi); zero of sin(6 phi)
@@ -245,8 +245,8 @@ void sh_eval_order7(in float dir[3], out float y[49]) {
   y[48] = t189;
 }
 
-// AhatTransposeMultiply_order7: lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied.
-void AhatTransposeMultiply_order7(in float f[49], out float z[49]) {
+// lobe_weights_order7: lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied.
+void lobe_weights_order7(in float f[49], out float z[49]) {
   float t11 = -1.2944173f * f[5];
   float t13 = -1.8305825f * f[8];
   float t14 = t11 + t13;
@@ -686,8 +686,8 @@ void AhatTransposeMultiply_order7(in float f[49], out float z[49]) {
   z[48] = t646;
 }
 
-// AhatMultiply_order7: coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied.
-void AhatMultiply_order7(in float s[49], out float f[49]) {
+// coefficients_from_samples_order7: coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied.
+void coefficients_from_samples_order7(in float s[49], out float f[49]) {
   float t11 = -1.8305825f * s[7];
   float t13 = -0.91529125f * s[8];
   float t14 = t11 + t13;

@@ -2,8 +2,8 @@
 // Do not edit: change the generator or the lobe table and run `zhf generate`.
 // Operations per call (multiplies, adds; a vector operation counts once):
 //   sh_eval_order8: 158 multiplies, 34 adds
-//   AhatTransposeMultiply_order8: 308 multiplies, 276 adds
-//   AhatMultiply_order8: 254 multiplies, 229 adds
+//   lobe_weights_order8: 308 multiplies, 276 adds
+//   coefficients_from_samples_order8: 254 multiplies, 229 adds
 //   rotate_order8: 2410 multiplies, 1501 adds
 //   rotate_signal_tailored_order8: 2357 multiplies, 1451 adds
 //   rotate_rgb_order8: 2410 multiplies, 1501 adds
@@ -16,9 +16,9 @@
 // The rotations evaluate SH at R u_d, u_d = w_d rescaled so its components are +-1 where possible,
 // with A_l's column d scaled by |u_d|^-l (band-l SH are homogeneous of degree l) and each
 // output's normalisation applied once after the sum over lobes.
-// Lobe stage in double: R is projected onto the rotations (one Newton step to its polar factor),
-// and the rotated lobes, their SH and the sums over lobes are double, because in float the
-// error model eps_f (N-1) k_max = 1.6e-05 exceeds the 1e-6 target (zhf emit --lobe-precision).
+// Lobe stage double: R is projected onto the rotations (one Newton step to its polar factor),
+// and the rotated lobes, their SH and the sums over lobes are double, because in float
+// the float error model eps_f (N-1) k_max = 1.6e-05 exceeds the 1e-6 target (zhf emit --lobe-stage).
 //   w_0: root 2 of P_2^0; root 3 of P_5^2; zero of cos(phi); zero of sin(2 phi); zero of cos(3 phi); zero of sin(4 phi); zero of cos(5 phi); zero of sin(6 phi); zero of cos(7 phi)
 //   w_1: equator (root 1 of P_1^0); root 1 of P_2^1; root 2 of P_3^0; root 1 of P_3^2; root 2 of P_4^1; root 1 of P_4^3; root 3 of P_5^0; root 2 of P_5^2; root 1 of P_5^4; root 3 of P_6^1; root 2 of P_6^3; root 1 of P_6^5; root 4 of P_7^0; root 3 of P_7^2; root 2 of P_7^4; root 1 of P_7^6; zero of cos(2 phi); zero of sin(4 phi); zero of cos(6 phi)
 //   w_2: equator (root 1 of P_1^0); root 1 of P_2^1; root 2 of P_3^0; root 1 of P_3^2; root 2 of P_4^1; root 1 of P_4^3; root 3 of P_5^0; root 2 of P_5^2; root 1 of P_5^4; root 3 of P_6^1; root 2 of P_6^3; root 1 of P_6^5; root 4 of P_7^0; root 3 of P_7^2; root 2 of P_7^4; root 1 of P_7^6; zero of cos(phi); zero of sin(2 phi); zero of cos(3 phi); zero of sin(4 phi); zero of cos(5 phi); zero of sin(6 phi); zero of cos(7 phi)
@@ -313,8 +313,8 @@ void sh_eval_order8(in float dir[3], out float y[64]) {
   y[63] = t252;
 }
 
-// AhatTransposeMultiply_order8: lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied.
-void AhatTransposeMultiply_order8(in float f[64], out float z[64]) {
+// lobe_weights_order8: lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied.
+void lobe_weights_order8(in float f[64], out float z[64]) {
   float t11 = -1.941626f * f[5];
   float t13 = 1.1209983f * f[7];
   float t14 = t11 + t13;
@@ -965,8 +965,8 @@ void AhatTransposeMultiply_order8(in float f[64], out float z[64]) {
   z[63] = t953;
 }
 
-// AhatMultiply_order8: coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied.
-void AhatMultiply_order8(in float s[64], out float f[64]) {
+// coefficients_from_samples_order8: coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied.
+void coefficients_from_samples_order8(in float s[64], out float f[64]) {
   float t11 = -1.8305825f * s[5];
   float t13 = -0.91529125f * s[7];
   float t14 = t11 + t13;

@@ -2,8 +2,8 @@
 // Do not edit: change the generator or the lobe table and run `zhf generate`.
 // Operations per call (multiplies, adds; a vector operation counts once):
 //   sh_eval_order5: 53 multiplies, 13 adds
-//   AhatTransposeMultiply_order5: 59 multiplies, 45 adds
-//   AhatMultiply_order5: 46 multiplies, 40 adds
+//   lobe_weights_order5: 59 multiplies, 45 adds
+//   coefficients_from_samples_order5: 46 multiplies, 40 adds
 //   rotate_order5: 557 multiplies, 365 adds
 //   rotate_signal_tailored_order5: 543 multiplies, 360 adds
 //   rotate_rgb_order5: 557 multiplies, 365 adds
@@ -16,9 +16,9 @@
 // The rotations evaluate SH at R u_d, u_d = w_d rescaled so its components are +-1 where possible,
 // with A_l's column d scaled by |u_d|^-l (band-l SH are homogeneous of degree l) and each
 // output's normalisation applied once after the sum over lobes.
-// Lobe stage in double: R is projected onto the rotations (one Newton step to its polar factor),
-// and the rotated lobes, their SH and the sums over lobes are double, because in float the
-// error model eps_f (N-1) k_max = 1.5e-06 exceeds the 1e-6 target (zhf emit --lobe-precision).
+// Lobe stage double: R is projected onto the rotations (one Newton step to its polar factor),
+// and the rotated lobes, their SH and the sums over lobes are double, because in float
+// the float error model eps_f (N-1) k_max = 1.5e-06 exceeds the 1e-6 target (zhf emit --lobe-stage).
 //   w_0: root 2 of P_3^1; zero of sin(3 phi)
 //   w_1: equator (root 1 of P_1^0); root 1 of P_2^1; root 2 of P_3^0; root 1 of P_3^2; root 2 of P_4^1; root 1 of P_4^3; zero of cos(phi); zero of sin(2 phi); zero of cos(3 phi); zero of sin(4 phi)
 //   w_2: root 1 of P_3^1; zero of sin(3 phi)
@@ -136,8 +136,8 @@ void sh_eval_order5(float dir[3], out float y[25]) {
   y[24] = t90;
 }
 
-// AhatTransposeMultiply_order5: lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied.
-void AhatTransposeMultiply_order5(float f[25], out float z[25]) {
+// lobe_weights_order5: lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied.
+void lobe_weights_order5(float f[25], out float z[25]) {
   const float t11 = 1.321109f * f[4];
   const float t13 = -2.288228f * f[7];
   const float t14 = t11 + t13;
@@ -269,8 +269,8 @@ void AhatTransposeMultiply_order5(float f[25], out float z[25]) {
   z[24] = t186;
 }
 
-// AhatMultiply_order5: coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied.
-void AhatMultiply_order5(float s[25], out float f[25]) {
+// coefficients_from_samples_order5: coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied.
+void coefficients_from_samples_order5(float s[25], out float f[25]) {
   const float t10 = s[4] + s[7];
   const float t12 = 1.321109f * t10;
   const float t14 = -1.0568873f * s[5];

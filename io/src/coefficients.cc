@@ -1,17 +1,20 @@
 #include "zhf/io/coefficients.h"
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
+#include "zhf/io/numbers.h"
+#include "zhf/runtime/limits.h"
 
 namespace zhf::io {
 namespace {
 
 int order_of_count(size_t count) {
-  for (int n = 1; n <= kMaxCoefficientOrder; ++n)
+  for (int n = 1; n <= runtime::kMaxShOrder; ++n)
     if (static_cast<size_t>(n) * n == count) return n;
   return 0;
 }
@@ -24,7 +27,7 @@ void add_vector(CoefficientFile& out, std::vector<std::vector<double>> channels,
   const int order = order_of_count(count);
   if (order == 0)
     throw InputError(where + ": " + std::to_string(count) + " coefficients per channel is not N^2 for an order N <= " +
-                     std::to_string(kMaxCoefficientOrder));
+                     std::to_string(runtime::kMaxShOrder));
   if (out.order == 0) {
     out.order = order;
     out.channels = static_cast<int>(channels.size());
@@ -38,34 +41,36 @@ void add_vector(CoefficientFile& out, std::vector<std::vector<double>> channels,
   for (auto& c : channels) out.signals.push_back(std::move(c));
 }
 
-double finite_number(const nlohmann::json& v, const std::string& where) {
-  if (!v.is_number()) throw InputError(where + ": not a number");
-  const double x = v.get<double>();
-  if (!std::isfinite(x)) throw InputError(where + ": not finite");
+std::string format_number(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", x);
+  return text;
+}
+
+double checked(double x, const std::string& where) {
+  if (!(std::abs(x) <= kMaxCoefficientMagnitude))
+    throw InputError(where + ": " + format_number(x) + " is beyond the largest coefficient magnitude, 1e150");
   return x;
 }
 
 CoefficientFile parse_json(const std::string& text, const std::string& source, int channels) {
-  const nlohmann::json j = parse_json_text(text, source);
-  if (!j.is_array()) throw InputError(source + ": must be an array of coefficient vectors");
-  if (j.empty()) throw InputError(source + ": no coefficient vectors");
+  const runtime::json::Value root = runtime::json::parse(text, source);
+  const runtime::json::Field top(root, source);
+  top.expect(runtime::json::Value::Kind::kArray);
+  if (root.items.empty()) throw InputError(source + ": no coefficient vectors");
   CoefficientFile out;
-  for (size_t v = 0; v < j.size(); ++v) {
-    const std::string where = source + ": vector " + std::to_string(v);
-    const nlohmann::json& vec = j[v];
-    if (!vec.is_array() || vec.empty()) throw InputError(where + ": must be a non-empty array");
+  const std::vector<runtime::json::Field> vectors = top.items(1, root.items.size());
+  for (size_t v = 0; v < vectors.size(); ++v) {
+    const runtime::json::Field& vec = vectors[v];
+    vec.expect(runtime::json::Value::Kind::kArray);
+    if (vec.value().items.empty()) vec.fail("must be a non-empty array");
     std::vector<std::vector<double>> parts;
-    if (vec.front().is_array()) {
-      for (size_t c = 0; c < vec.size(); ++c) {
-        if (!vec[c].is_array() || vec[c].empty()) throw InputError(where + ", channel " + std::to_string(c) + ": must be a non-empty array of numbers");
-        parts.emplace_back();
-        for (size_t i = 0; i < vec[c].size(); ++i)
-          parts.back().push_back(finite_number(vec[c][i], where + ", channel " + std::to_string(c) + ", entry " + std::to_string(i)));
-      }
-    } else {
+    const bool multi = vec.value().items.front().kind == runtime::json::Value::Kind::kArray;
+    for (const runtime::json::Field& part : multi ? vec.items(1, kMaxChannels) : std::vector<runtime::json::Field>{vec}) {
       parts.emplace_back();
-      for (size_t i = 0; i < vec.size(); ++i) parts.back().push_back(finite_number(vec[i], where + ", entry " + std::to_string(i)));
+      for (const runtime::json::Field& x : part.items(1, kMaxCoefficientCount)) parts.back().push_back(checked(x.number(), source + ": " + x.where()));
     }
+    const std::string where = source + ": vector " + std::to_string(v);
     if (channels > 0 && static_cast<int>(parts.size()) != channels)
       throw InputError(where + ": " + std::to_string(parts.size()) + " channels, --channels says " + std::to_string(channels));
     add_vector(out, std::move(parts), where);
@@ -86,11 +91,9 @@ CoefficientFile parse_text(const std::string& text, const std::string& source, i
     std::vector<double> values;
     std::string token;
     while (tokens >> token) {
-      char* end = nullptr;
-      const double x = std::strtod(token.c_str(), &end);
-      if (end == token.c_str() || *end != '\0') throw InputError(where + ": '" + token + "' is not a number");
-      if (!std::isfinite(x)) throw InputError(where + ": '" + token + "' is not finite");
-      values.push_back(x);
+      const ParsedNumber x = parse_number(token);
+      if (!x.value) throw InputError(where + ": '" + excerpt(token) + "' " + x.problem);
+      values.push_back(checked(*x.value, where));
     }
     if (values.size() % channels != 0)
       throw InputError(where + ": " + std::to_string(values.size()) + " numbers do not split into " + std::to_string(channels) + " channels");
@@ -112,7 +115,7 @@ CoefficientFile parse_coefficients(const std::string& text, const std::string& s
 }
 
 CoefficientFile read_coefficients(const std::string& path, int channels) {
-  return parse_coefficients(read_text_file(path), path, channels);
+  return parse_coefficients(read_text_file(path, runtime::kMaxCoefficientBytes), path, channels);
 }
 
 }  // namespace zhf::io

@@ -1,97 +1,178 @@
 #include "zhf/io/files.h"
 
 #include <fcntl.h>
+#include <limits.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <cmath>
+#include <charconv>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
-#include <sstream>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
 #include "zhf/io/errors.h"
+#include "zhf/io/private_dir.h"
+#include "zhf/runtime/read_file.h"
 
 namespace zhf::io {
+namespace {
 
-PendingFile::PendingFile(std::string destination) : destination_(std::move(destination)) {
-  std::string pattern = destination_ + ".tmp.XXXXXX";
+std::string error_text() { return std::strerror(errno); }
+
+std::string directory_of(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  if (slash == std::string::npos) return ".";
+  return slash == 0 ? "/" : path.substr(0, slash);
+}
+
+// The path a write to `path` lands on: symlinks followed (a dangling one names the file to create).
+std::string resolve_symlinks(const std::string& path) {
+  std::string current = path;
+  for (int hop = 0; hop < 40; ++hop) {
+    struct stat st {};
+    if (lstat(current.c_str(), &st) != 0 || !S_ISLNK(st.st_mode)) return current;
+    char target[PATH_MAX];
+    const ssize_t length = readlink(current.c_str(), target, sizeof target - 1);
+    if (length < 0) throw OutputError(path + ": cannot read the symbolic link: " + error_text());
+    target[length] = '\0';
+    current = target[0] == '/' ? std::string(target) : directory_of(current) + "/" + target;
+  }
+  throw OutputError(path + ": too many levels of symbolic links");
+}
+
+void write_all(int fd, const char* data, size_t size, const std::string& name) {
+  while (size > 0) {
+    const ssize_t written = ::write(fd, data, size);
+    if (written < 0) {
+      if (errno == EINTR) continue;
+      throw OutputError(name + ": write failed: " + error_text());
+    }
+    data += written;
+    size -= static_cast<size_t>(written);
+  }
+}
+
+mode_t creation_mode() {
+  const mode_t mask = umask(0);
+  umask(mask);
+  return 0666 & ~mask;
+}
+
+}  // namespace
+
+std::string read_text_file(const std::string& path, std::size_t max_bytes) { return runtime::read_file(path, max_bytes); }
+
+runtime::json::Value read_json_file(const std::string& path, std::size_t max_bytes) {
+  return runtime::json::parse(read_text_file(path, max_bytes), path);
+}
+
+PendingFile::PendingFile(const std::string& destination) : destination_(resolve_symlinks(destination)) {
+  struct stat st {};
+  const bool exists = stat(destination_.c_str(), &st) == 0;
+  if (exists && S_ISDIR(st.st_mode)) throw OutputError(destination + ": is a directory");
+  const bool through = exists && !S_ISREG(st.st_mode);
+  std::string pattern;
+  if (through) {
+    private_dir_ = make_private_dir("zhf-out");
+    pattern = private_dir_ + "/out.XXXXXX";
+  } else {
+    pattern = destination_ + ".tmp.XXXXXX";
+  }
   std::vector<char> name(pattern.begin(), pattern.end());
   name.push_back('\0');
   fd_ = mkstemp(name.data());
-  if (fd_ < 0) throw OutputError(destination_ + ": cannot create a temporary file beside it: " + std::strerror(errno));
+  if (fd_ < 0) {
+    const std::string why = error_text();
+    if (!private_dir_.empty()) rmdir(private_dir_.c_str());
+    throw OutputError(destination + ": cannot create a temporary file beside it: " + why);
+  }
   temp_ = name.data();
-  // mkstemp makes the file 0600; give it the mode a plain create would have had.
-  const mode_t mask = umask(0);
-  umask(mask);
-  fchmod(fd_, 0666 & ~mask);
+  // mkstemp makes the file 0600; give it the mode of the file it replaces, or of a plain create.
+  fchmod(fd_, exists && !through ? (st.st_mode & 07777) : creation_mode());
 }
 
 PendingFile::~PendingFile() {
   if (fd_ >= 0) ::close(fd_);
   if (!committed_) std::remove(temp_.c_str());
+  if (!private_dir_.empty()) {
+    if (committed_) std::remove(temp_.c_str());
+    rmdir(private_dir_.c_str());
+  }
 }
+
+void PendingFile::write(const std::string& text) { write_all(fd_, text.data(), text.size(), destination_); }
 
 void PendingFile::commit() {
   // fsync flushes the file whoever wrote it: zhf through fd_, or another program by name.
   const bool flushed = fsync(fd_) == 0;
   const bool closed = ::close(fd_) == 0;
   fd_ = -1;
-  if (!flushed || !closed) throw OutputError(destination_ + ": flush failed: " + std::strerror(errno));
-  if (std::rename(temp_.c_str(), destination_.c_str()) != 0)
-    throw OutputError(destination_ + ": cannot move the new file into place: " + std::strerror(errno));
+  if (!flushed || !closed) throw OutputError(destination_ + ": flush failed: " + error_text());
+  if (private_dir_.empty()) {
+    if (std::rename(temp_.c_str(), destination_.c_str()) != 0)
+      throw OutputError(destination_ + ": cannot move the new file into place: " + error_text());
+    committed_ = true;
+    return;
+  }
+  // A FIFO or device: its bytes go through it; it stays what it is.
+  const std::string text = runtime::read_file(temp_, size_t(1) << 40);
+  const int out = ::open(destination_.c_str(), O_WRONLY | O_CLOEXEC);
+  if (out < 0) throw OutputError(destination_ + ": cannot open for writing: " + error_text());
+  try {
+    write_all(out, text.data(), text.size(), destination_);
+  } catch (...) {
+    ::close(out);
+    throw;
+  }
+  ::close(out);
   committed_ = true;
 }
 
 void write_file_atomically(const std::string& path, const std::string& content) {
   PendingFile file(path);
-  const char* data = content.data();
-  size_t left = content.size();
-  while (left > 0) {
-    const ssize_t written = ::write(file.fd(), data, left);
-    if (written < 0) {
-      if (errno == EINTR) continue;
-      throw OutputError(path + ": write failed: " + std::strerror(errno));
-    }
-    data += written;
-    left -= static_cast<size_t>(written);
-  }
+  file.write(content);
   file.commit();
 }
 
-std::string read_text_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open: " + std::strerror(errno));
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) throw InputError(path + ": read failed");
-  return buffer.str();
-}
-
-nlohmann::json read_json_file(const std::string& path) { return parse_json_text(read_text_file(path), path); }
-
-nlohmann::json parse_json_text(const std::string& text, const std::string& path) {
-  if (text.find_first_not_of(" \t\r\n") == std::string::npos) throw InputError(path + ": file is empty");
-  try {
-    return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) {
-    // e.what() is "[json.exception.parse_error.101] parse error at line 3, column 5: ...";
-    // out_of_range.406 is a number too large for a double ("1e400").
-    std::string what = e.what();
-    const auto pos = what.find("] ");
-    if (pos != std::string::npos) what = what.substr(pos + 2);
-    throw InputError(path + ": not valid JSON: " + what);
+nlohmann::ordered_json to_ordered_json(const runtime::json::Value& value) {
+  using Kind = runtime::json::Value::Kind;
+  switch (value.kind) {
+    case Kind::kNull: return nullptr;
+    case Kind::kBool: return value.boolean;
+    case Kind::kNumber: {
+      long long integer = 0;
+      const auto [end, error] = std::from_chars(value.text.data(), value.text.data() + value.text.size(), integer);
+      if (value.integral && error == std::errc() && end == value.text.data() + value.text.size()) return integer;
+      return value.number;
+    }
+    case Kind::kString: return value.text;
+    case Kind::kArray: {
+      nlohmann::ordered_json out = nlohmann::ordered_json::array();
+      for (const auto& item : value.items) out.push_back(to_ordered_json(item));
+      return out;
+    }
+    case Kind::kObject: {
+      nlohmann::ordered_json out = nlohmann::ordered_json::object();
+      for (const auto& [key, item] : value.members) out[key] = to_ordered_json(item);
+      return out;
+    }
   }
+  return nullptr;
 }
 
 namespace {
 
 bool is_flat_numeric_array(const nlohmann::ordered_json& value) {
   if (!value.is_array() || value.empty()) return false;
-  for (const auto& item : value)
+  for (const auto& item : value) {
     if (!item.is_number()) return false;
+    if (item.is_number_float() && !std::isfinite(item.get<double>()))
+      throw std::logic_error("json_text: a non-finite number has no JSON form");
+  }
   return true;
 }
 
@@ -115,6 +196,8 @@ void write_json(const nlohmann::ordered_json& value, int indent, std::string& ou
     }
     out += std::string(indent, ' ') + "]";
   } else {
+    if (value.is_number_float() && !std::isfinite(value.get<double>()))
+      throw std::logic_error("json_text: a non-finite number has no JSON form");
     std::string flat = value.dump();
     if (is_flat_numeric_array(value)) {
       // dump() gives "[1,2,3]"; a space after each comma reads better.

@@ -7,7 +7,7 @@
 #include <nlopt.hpp>
 
 #include "search_support.h"
-#include "zhf/sh/eval.h"
+#include "zhf/runtime/sh_eval.h"
 
 namespace zhf::optimizer {
 namespace {
@@ -25,7 +25,7 @@ double log_sparsity(const std::vector<double>& x, const Problem& p) {
   const int order = p.evaluator->order();
   const bool sharing = p.evaluator->lobe_sharing();
   std::vector<std::array<double, 3>> dirs(p.lobes);
-  for (int i = 0; i < p.lobes; ++i) sh::direction_from_angles(x[2 * i], x[2 * i + 1], dirs[i].data());
+  for (int i = 0; i < p.lobes; ++i) runtime::direction_from_angles(x[2 * i], x[2 * i + 1], dirs[i].data());
   double total = 0;
   std::vector<double> row;
   for (int l = 2; l < order; ++l) {
@@ -33,7 +33,7 @@ double log_sparsity(const std::vector<double>& x, const Problem& p) {
     Eigen::MatrixXd y(size, size);
     row.resize(size);
     for (int d = 0; d < size; ++d) {
-      sh::eval_band(l, dirs[lobe_index(l, d, sharing)].data(), row.data());
+      runtime::eval_band(l, dirs[runtime::lobe_index(l, d, sharing)].data(), row.data());
       for (int k = 0; k < size; ++k) y(d, k) = row[k];
     }
     Eigen::PartialPivLU<Eigen::MatrixXd> lu(y);
@@ -74,7 +74,7 @@ std::vector<ContinuousStart> continuous_search(const LobeEvaluator& evaluator, c
     start.objective = value;
     for (int i = 0; i < problem.lobes; ++i) {
       double xyz[3];
-      sh::direction_from_angles(x[2 * i], x[2 * i + 1], xyz);
+      runtime::direction_from_angles(x[2 * i], x[2 * i + 1], xyz);
       start.snapped.push_back(candidates::find_direction(evaluator.candidates(), xyz, 4.0));
     }
     start.fitness = evaluator.evaluate(start.snapped);

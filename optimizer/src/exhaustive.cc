@@ -12,8 +12,8 @@ using Clock = std::chrono::steady_clock;
 std::vector<std::pair<int, int>> symmetric_groups(const LobeEvaluator& evaluator) {
   std::vector<std::pair<int, int>> groups;
   for (int l = 2; l < evaluator.order(); ++l) {
-    const int begin = evaluator.lobe_sharing() ? (l == 2 ? 0 : 2 * l - 1) : lobe_index(l, 0, false);
-    const int end = lobe_index(l, 2 * l, evaluator.lobe_sharing()) + 1;
+    const int begin = evaluator.lobe_sharing() ? (l == 2 ? 0 : 2 * l - 1) : runtime::lobe_index(l, 0, false);
+    const int end = runtime::lobe_index(l, 2 * l, evaluator.lobe_sharing()) + 1;
     groups.push_back({begin, end});
   }
   return groups;

@@ -7,14 +7,9 @@
 #include <Eigen/LU>
 #include <Eigen/SVD>
 
-#include "zhf/sh/eval.h"
-#include "zhf/sh/index.h"
+#include "zhf/runtime/sh_eval.h"
 
 namespace zhf::optimizer {
-
-int lobe_count(int order, bool lobe_sharing) { return lobe_sharing ? 2 * order - 1 : order * order - 4; }
-
-int lobe_index(int l, int d, bool lobe_sharing) { return lobe_sharing ? d : l * l - 4 + d; }
 
 bool better(const Fitness& a, const Fitness& b) {
   if (a.feasible != b.feasible) return a.feasible;
@@ -27,7 +22,7 @@ bool better(const Fitness& a, const Fitness& b) {
 }
 
 int zero_small_entries(Eigen::MatrixXd& inverse) {
-  const double threshold = kZeroRelative * inverse.cwiseAbs().maxCoeff();
+  const double threshold = runtime::tolerance::kZeroRelative * inverse.cwiseAbs().maxCoeff();
   int zeros = 0;
   for (int i = 0; i < inverse.rows(); ++i)
     for (int j = 0; j < inverse.cols(); ++j)
@@ -55,24 +50,24 @@ int multiply_cost(const Eigen::MatrixXd& inverse) {
 LobeEvaluator::LobeEvaluator(const candidates::CandidateSet& set, bool lobe_sharing, double max_condition,
                              size_t max_tabulated_values)
     : candidates_(set), order_(set.order), lobe_sharing_(lobe_sharing), max_condition_(max_condition) {
-  const int count = sh::coefficient_count(order_);
+  const int count = runtime::coefficient_count(order_);
   // The default bound tabulates every order up to 16; order 32 has 6.4 million candidates (52 GB
   // of values) and evaluates on demand.
   if (set.directions.size() * count > max_tabulated_values) return;
   sh_.resize(set.directions.size() * count);
-  for (size_t c = 0; c < set.directions.size(); ++c) sh::eval_sh(order_, set.directions[c].xyz, &sh_[c * count]);
+  for (size_t c = 0; c < set.directions.size(); ++c) runtime::eval_sh(order_, set.directions[c].xyz, &sh_[c * count]);
 }
 
 Eigen::MatrixXd LobeEvaluator::band_matrix(const Genome& genes, int l) const {
   const int size = 2 * l + 1;
-  const int count = sh::coefficient_count(order_);
+  const int count = runtime::coefficient_count(order_);
   Eigen::MatrixXd y(size, size);
-  std::vector<double> values(sh_.empty() ? sh::coefficient_count(l + 1) : 0);
+  std::vector<double> values(sh_.empty() ? runtime::coefficient_count(l + 1) : 0);
   for (int d = 0; d < size; ++d) {
-    const int candidate = genes[lobe_index(l, d, lobe_sharing_)];
+    const int candidate = genes[runtime::lobe_index(l, d, lobe_sharing_)];
     const double* row = nullptr;
     if (sh_.empty()) {
-      sh::eval_sh(l + 1, candidates_.directions[candidate].xyz, values.data());
+      runtime::eval_sh(l + 1, candidates_.directions[candidate].xyz, values.data());
       row = &values[l * l];
     } else {
       row = &sh_[size_t(candidate) * count + l * l];
@@ -91,7 +86,7 @@ Fitness LobeEvaluator::evaluate(const Genome& genes) const {
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(gram, Eigen::EigenvaluesOnly);
     const double lo = eigen.eigenvalues()(0), hi = eigen.eigenvalues()(gram.rows() - 1);
     const double condition = lo > 0 ? std::sqrt(hi / lo) : INFINITY;
-    if (!(condition <= kSingularCondition)) {
+    if (!(condition <= runtime::tolerance::kSingularCondition)) {
       fitness.invertible = false;
       fitness.feasible = false;
       fitness.worst_condition = INFINITY;
@@ -111,7 +106,7 @@ std::vector<BandAnalysis> LobeEvaluator::analyze(const Genome& genes) const {
   for (int l = 2; l < order_; ++l) {
     BandAnalysis band;
     band.l = l;
-    for (int d = 0; d < 2 * l + 1; ++d) band.lobes.push_back(lobe_index(l, d, lobe_sharing_));
+    for (int d = 0; d < 2 * l + 1; ++d) band.lobes.push_back(runtime::lobe_index(l, d, lobe_sharing_));
     band.y = band_matrix(genes, l);
     Eigen::JacobiSVD<Eigen::MatrixXd> svd(band.y);
     const auto& s = svd.singularValues();
@@ -127,13 +122,48 @@ Fitness LobeEvaluator::fitness_of(const std::vector<BandAnalysis>& bands) const 
   Fitness fitness;
   fitness.invertible = true;
   for (const BandAnalysis& band : bands) {
-    if (!(band.condition <= kSingularCondition)) fitness.invertible = false;
+    if (!(band.condition <= runtime::tolerance::kSingularCondition)) fitness.invertible = false;
     fitness.zeros += band.zeros;
     fitness.worst_condition = std::max(fitness.worst_condition, band.condition);
     fitness.multiplies += multiply_cost(band.inverse);
   }
   fitness.feasible = fitness.invertible && fitness.worst_condition <= max_condition_;
   return fitness;
+}
+
+runtime::Matrix to_matrix(const Eigen::MatrixXd& m) {
+  runtime::Matrix out(static_cast<int>(m.rows()), static_cast<int>(m.cols()));
+  for (int i = 0; i < out.rows; ++i)
+    for (int j = 0; j < out.cols; ++j) out(i, j) = m(i, j);
+  return out;
+}
+
+runtime::LobeTable make_table(const LobeEvaluator& evaluator, const Genome& genes, runtime::json::Value provenance) {
+  runtime::LobeTable table;
+  table.order = evaluator.order();
+  table.lobe_sharing = evaluator.lobe_sharing();
+  for (int c : genes) {
+    const candidates::Direction& d = evaluator.candidates().directions.at(c);
+    runtime::TableLobe lobe;
+    lobe.theta = d.theta;
+    lobe.phi = d.phi;
+    std::copy(d.xyz, d.xyz + 3, lobe.xyz.begin());
+    for (size_t k = 0; k < d.sources.size(); ++k) lobe.source += (k ? "; " : "") + d.sources[k];
+    table.lobes.push_back(lobe);
+  }
+  for (const BandAnalysis& analysis : evaluator.analyze(genes)) {
+    runtime::TableBand band;
+    band.l = analysis.l;
+    band.lobes = analysis.lobes;
+    band.inverse = to_matrix(analysis.inverse);
+    band.zeros = analysis.zeros;
+    band.condition = analysis.condition;
+    table.zeros += band.zeros;
+    table.entries += static_cast<int>(analysis.inverse.size());
+    table.bands.push_back(std::move(band));
+  }
+  table.provenance = std::move(provenance);
+  return table;
 }
 
 }  // namespace zhf::optimizer

@@ -6,8 +6,7 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "zhf/sh/eval.h"
-#include "zhf/sh/index.h"
+#include "zhf/runtime/sh_eval.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
 
@@ -46,7 +45,7 @@ ZonalFit fit_zonal(const Eigen::VectorXd& f) {
   const int order = order_of(f);
   ZonalFit fit;
   fit.weights.assign(order, 0.0);
-  fit.weights[0] = f[0] * std::sqrt(4 * kPi);
+  fit.weights[0] = f[0];  // y_0^0 is constant: f_00 = sqrt(4 pi) zonal[0] y_0^0 = zonal[0]
   const double energy = f.size() > 1 ? f.tail(f.size() - 1).squaredNorm() : 0.0;
   if (energy == 0) {
     fit.constant = true;
@@ -70,9 +69,9 @@ ZonalFit fit_zonal(const Eigen::VectorXd& f) {
   // Orient: y_l(-a) = (-1)^l y_l(a), so an odd band's weight fixes the sign.
   auto weight = [&](int l) {
     std::vector<double> y(static_cast<size_t>(order) * order);
-    eval_sh(order, fit.axis.data(), y.data());
+    runtime::eval_sh(order, fit.axis.data(), y.data());
     double dot = 0;
-    for (int m = -l; m <= l; ++m) dot += f[index(l, m)] * y[index(l, m)];
+    for (int m = -l; m <= l; ++m) dot += f[runtime::index(l, m)] * y[runtime::index(l, m)];
     return dot * std::sqrt(4 * kPi / (2 * l + 1));
   };
   bool oriented = false;

@@ -2,44 +2,21 @@
 #include <stdexcept>
 #include <string>
 
-#include "zhf/sh/eval.h"
+#include "zhf/runtime/limits.h"
+#include "zhf/runtime/sh_eval.h"
 #include "zhf/sh/legendre.h"
 
 namespace zhf::sh {
 
-namespace {
-
-template <class T>
-T legendre_q_t(int l, int m, T z) {
-  if (m < 0 || m > l) return 0;
-  T q_mm = T(kInvSqrt4Pi);
-  for (int k = 1; k <= m; ++k) q_mm *= std::sqrt(T(2 * k + 1) / T(2 * k));
-  if (l == m) return q_mm;
-  T q_prev = q_mm;
-  T q = std::sqrt(T(2 * m + 3)) * z * q_mm;
-  for (int n = m + 2; n <= l; ++n) {
-    const T a = std::sqrt(T(4 * n * n - 1) / T(n * n - m * m));
-    const T b = std::sqrt(T((n - 1) * (n - 1) - m * m) / T(4 * (n - 1) * (n - 1) - 1));
-    const T next = a * (z * q - b * q_prev);
-    q_prev = q;
-    q = next;
-  }
-  return q;
-}
-
-}  // namespace
-
-double legendre_q(int l, int m, double z) { return legendre_q_t<double>(l, m, z); }
-
 double legendre_q_derivative(int l, int m, double z) {
   if (m >= l) return 0.0;
-  return std::sqrt(double(l + m + 1) * double(l - m)) * legendre_q(l, m + 1, z);
+  return std::sqrt(double(l + m + 1) * double(l - m)) * runtime::legendre_q<double>(l, m + 1, z);
 }
 
 namespace {
 
 // f(theta) = Q_l^m(cos theta): same roots in (0, pi) as P_l^m(cos theta).
-double q_of_theta(int l, int m, double theta) { return legendre_q(l, m, std::cos(theta)); }
+double q_of_theta(int l, int m, double theta) { return runtime::legendre_q<double>(l, m, std::cos(theta)); }
 
 double polish_root(int l, int m, double lo, double hi) {
   double f_lo = q_of_theta(l, m, lo);
@@ -60,8 +37,8 @@ double polish_root(int l, int m, double lo, double hi) {
   const Wide derivative_scale = std::sqrt(Wide(l + m + 1) * Wide(l - m));
   for (int it = 0; it < 6; ++it) {
     const Wide z = std::cos(theta);
-    const Wide f = legendre_q_t<Wide>(l, m, z);
-    const Wide df = -std::sin(theta) * derivative_scale * legendre_q_t<Wide>(l, m + 1, z);
+    const Wide f = runtime::legendre_q<Wide>(l, m, z);
+    const Wide df = -std::sin(theta) * derivative_scale * runtime::legendre_q<Wide>(l, m + 1, z);
     if (f == 0 || df == 0) break;
     const Wide step = f / df;
     if (!(std::abs(step) < 1e-10L)) break;  // only a polish: never leave the bracket
@@ -73,8 +50,8 @@ double polish_root(int l, int m, double lo, double hi) {
 }  // namespace
 
 std::vector<double> legendre_roots_theta(int l, int m) {
-  if (l < 0 || m < 0 || m > l || l > kMaxOrder) {
-    throw std::invalid_argument("legendre_roots_theta: need 0 <= m <= l <= " + std::to_string(kMaxOrder));
+  if (l < 0 || m < 0 || m > l || l > runtime::kMaxShOrder) {
+    throw std::invalid_argument("legendre_roots_theta: need 0 <= m <= l <= " + std::to_string(runtime::kMaxShOrder));
   }
   // P_l^m(cos theta) has parity (-1)^(l-m) about the equator, so the roots are found in
   // (0, pi/2), mirrored exactly, and pi/2 itself is a root when l-m is odd.

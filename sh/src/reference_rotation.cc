@@ -3,8 +3,8 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "zhf/sh/eval.h"
-#include "zhf/sh/index.h"
+#include "zhf/runtime/rotation.h"
+#include "zhf/runtime/sh_eval.h"
 #include "zhf/sh/legendre.h"
 
 namespace zhf::sh {
@@ -56,7 +56,7 @@ BandMatrices ivanic_ruedenberg(const Matrix3& r, int order) {
   bands.push_back(Eigen::MatrixXd::Ones(1, 1));
   if (order == 1) return bands;
   // Band 1 is c (y, z, x): its matrix is R restricted to the axes in that order.
-  const int axis_of_m[3] = {1, 2, 0};
+  const int* axis_of_m = runtime::kBand1Axis;
   Eigen::MatrixXd band1(3, 3);
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) band1(i, j) = r(axis_of_m[i], axis_of_m[j]);
@@ -109,20 +109,20 @@ BandMatrices quadrature_rotation(const Matrix3& r, int order) {
   gauss_legendre(order, nodes, weights);
   const int phi_count = 2 * order;
   const double pi = 3.14159265358979323846;
-  std::vector<double> y_at(coefficient_count(order)), y_back(coefficient_count(order));
+  std::vector<double> y_at(runtime::coefficient_count(order)), y_back(runtime::coefficient_count(order));
   for (size_t k = 0; k < nodes.size(); ++k) {
     const double sin_theta = std::sqrt(std::max(0.0, 1 - nodes[k] * nodes[k]));
     for (int j = 0; j < phi_count; ++j) {
       const double phi = 2 * pi * j / phi_count;
       const Eigen::Vector3d w(sin_theta * std::cos(phi), sin_theta * std::sin(phi), nodes[k]);
       const Eigen::Vector3d back = r.transpose() * w;
-      eval_sh(order, w.data(), y_at.data());
-      eval_sh(order, back.data(), y_back.data());
+      runtime::eval_sh(order, w.data(), y_at.data());
+      runtime::eval_sh(order, back.data(), y_back.data());
       const double weight = weights[k] * 2 * pi / phi_count;
       for (int l = 0; l < order; ++l) {
         for (int a = -l; a <= l; ++a) {
-          const double wa = weight * y_at[index(l, a)];
-          for (int b = -l; b <= l; ++b) bands[l](a + l, b + l) += wa * y_back[index(l, b)];
+          const double wa = weight * y_at[runtime::index(l, a)];
+          for (int b = -l; b <= l; ++b) bands[l](a + l, b + l) += wa * y_back[runtime::index(l, b)];
         }
       }
     }

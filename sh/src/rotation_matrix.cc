@@ -1,20 +1,15 @@
 #include "zhf/sh/rotation_matrix.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/Geometry>
-#include <Eigen/SVD>
 
 namespace zhf::sh {
 
 Matrix3 rotation_about_axis(const Eigen::Vector3d& axis, double angle) {
-  return Matrix3(Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix());
-}
-
-Matrix3 rotation_from_zyz(double alpha, double beta, double gamma) {
-  const Eigen::Vector3d z = Eigen::Vector3d::UnitZ();
-  const Eigen::Vector3d y = Eigen::Vector3d::UnitY();
-  return rotation_about_axis(z, alpha) * rotation_about_axis(y, beta) * rotation_about_axis(z, gamma);
+  const Eigen::Vector3d u = axis.normalized();
+  return to_eigen(runtime::rotation_about_unit_axis(u.data(), angle));
 }
 
 Matrix3 random_rotation(std::mt19937_64& rng) {
@@ -36,22 +31,36 @@ Eigen::Vector3d random_direction(std::mt19937_64& rng) {
   return v.normalized();
 }
 
-RotationDefect measure_rotation_defect(const Matrix3& m) {
-  RotationDefect defect;
-  defect.finite = m.allFinite();
-  if (!defect.finite) return defect;
-  defect.orthonormality = (m * m.transpose() - Matrix3::Identity()).cwiseAbs().maxCoeff();
-  defect.determinant = m.determinant();
-  return defect;
-}
-
-Matrix3 nearest_rotation(const Matrix3& m) {
-  Eigen::JacobiSVD<Eigen::Matrix3d> svd(m, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d u = svd.matrixU();
-  const Eigen::Matrix3d v = svd.matrixV();
-  // Flip the axis of least stretch if needed so the result is proper (det +1).
-  if ((u * v.transpose()).determinant() < 0) u.col(2) = -u.col(2);
-  return Matrix3(u * v.transpose());
+std::vector<std::pair<std::string, Matrix3>> extreme_rotations(const std::vector<Eigen::Vector3d>& lobes) {
+  const double pi = runtime::kPi;
+  std::vector<std::pair<std::string, Matrix3>> out = {
+      {"identity", Matrix3::Identity()},
+      {"180 about x", rotation_about_axis(Eigen::Vector3d::UnitX(), pi)},
+      {"180 about y", rotation_about_axis(Eigen::Vector3d::UnitY(), pi)},
+      {"180 about z", rotation_about_axis(Eigen::Vector3d::UnitZ(), pi)},
+      {"180 about (1,1,0)", rotation_about_axis(Eigen::Vector3d(1, 1, 0), pi)},
+      {"180 about (1,1,1)", rotation_about_axis(Eigen::Vector3d(1, 1, 1), pi)},
+      {"zyz beta=0", rotation_from_zyz(0.4, 0.0, -1.3)},
+      {"zyz beta=pi", rotation_from_zyz(0.4, pi, -1.3)},
+      {"zyz beta=1e-9", rotation_from_zyz(2.0, 1e-9, 0.5)},
+      {"1e-7 rad", rotation_about_axis(Eigen::Vector3d(0.3, -0.2, 0.9), 1e-7)},
+      {"1e-8 rad about z", rotation_about_axis(Eigen::Vector3d::UnitZ(), 1e-8)},
+  };
+  // The turn carrying unit a onto unit b (none needed when they already agree).
+  auto carry = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) -> std::pair<bool, Matrix3> {
+    const Eigen::Vector3d axis = a.cross(b);
+    if (axis.norm() < 1e-12) return {false, Matrix3::Identity()};
+    return {true, rotation_about_axis(axis, std::acos(std::clamp(a.dot(b), -1.0, 1.0)))};
+  };
+  for (std::size_t d = 0; d < lobes.size() && d < 3; ++d) {
+    const auto [needed, r] = carry(lobes[d], Eigen::Vector3d::UnitZ());
+    if (needed) out.push_back({"lobe " + std::to_string(d) + " onto the pole", r});
+  }
+  if (lobes.size() >= 2) {
+    const auto [needed, r] = carry(lobes[0], lobes[1]);
+    if (needed) out.push_back({"lobe 0 onto lobe 1", r});
+  }
+  return out;
 }
 
 }  // namespace zhf::sh

@@ -15,8 +15,6 @@
 
 namespace zhf::candidates {
 
-inline constexpr int kMinOrder = 3;
-inline constexpr int kMaxOrder = 64;
 // Theta values closer than this are one value (roots of different P_l^m meet only at pi/2,
 // which is set exactly; anything closer than 1e-12 that is not the same value would be a bug).
 inline constexpr double kThetaMergeTolerance = 1e-12;
@@ -42,7 +40,8 @@ struct CandidateSet {
   std::vector<Direction> directions;   // north pole, theta-major rows, south pole
 };
 
-// Throws std::invalid_argument naming the order when it is outside [kMinOrder, kMaxOrder].
+// Throws std::invalid_argument naming the order when it is outside
+// [runtime::kMinSearchOrder, runtime::kMaxSearchOrder].
 CandidateSet enumerate_candidates(int order);
 
 // Exact phi zeros as reduced fractions num/den of pi in (-1, 1].

@@ -3,24 +3,27 @@
 
 #include <atomic>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
-#include "zhf/codegen/emitter.h"
+#include "zhf/codegen/backend.h"
+#include "zhf/codegen/manifest.h"
 
 namespace zhf::codegen {
 
 struct GenerateOptions {
-  std::string tables_dir;           // holds order_N.json for N >= 3
+  std::string tables_dir;           // holds order_N.json (N >= 3) and lanes_order_N.json
   std::string out_dir;
   std::vector<int> orders = {2, 3, 4, 5, 6, 7, 8};
-  std::vector<std::string> languages = {"cpp", "hlsl", "glsl"};
+  std::vector<Language> languages = all_languages();
   Precision precision = Precision::kFloat;
   ModuleOptions module;
   std::map<int, ModuleOptions> module_per_order;  // overrides module where present (scene specs)
-  nlohmann::ordered_json scene;                   // recorded in the manifest when not null
+  std::optional<nlohmann::ordered_json> scene;    // recorded in the manifest; a scene's tree gets
+                                                  // no lanes tables and no dispatch header
   std::string command = "zhf generate";  // recorded in banners and the manifest
   const std::atomic<bool>* stop = nullptr;
 };
@@ -41,16 +44,16 @@ struct GenerateResult {
   bool interrupted = false;
 };
 
-// Writes out_dir/{lobes,cpp,hlsl,glsl}/... and out_dir/manifest.json. Everything is emitted
-// into a staging directory first and moved into place only when complete. Refuses (OutputError)
-// a non-empty out_dir that has no zhf manifest.json, and never deletes a file it did not write.
+// Writes out_dir/{lobes,cpp,hlsl,glsl}/... and out_dir/manifest.json, all or nothing: every file
+// is staged first and moved into place only when all are complete. It writes only into an empty
+// or missing directory, or a zhf tree (a readable zhf manifest), and replaces an existing file only
+// when the old manifest lists it with its current bytes or the new bytes are the same; anything
+// else (a user's file, a directory or FIFO where a file goes) is refused before anything is
+// written (OutputError). One generate at a time writes a directory: a second is refused.
 GenerateResult generate(const GenerateOptions& options);
 
-// The emitted module for one table and language, without writing anything.
-EmittedFile emit_file(const optimizer::LobeTable& table, const std::string& language, const EmitOptions& options,
+// The emitted file for one table and language, without writing anything.
+EmittedFile emit_file(const runtime::LobeTable& table, Language language, const EmitOptions& options,
                       const ModuleOptions& module_options);
-
-// 64-bit FNV-1a of the bytes, as 16 hex digits (the manifest's content hash).
-std::string content_hash(const std::string& bytes);
 
 }  // namespace zhf::codegen

@@ -6,17 +6,18 @@
 // and with band-l SH homogeneous of degree l (r^2 = |u_d|^2 is a compile-time constant),
 //   f'_{l,m} = K_{l,m} sum_d H_{l,m}(R u_d) zhat_{l,d},
 //   zhat_{l,d} = sum_m' (A_l[m'][d] / |u_d|^l) f_{l,m'}   (sparse: A^T with scale folded in)
-// where H are the scaled Legendre-times-(x+iy)^m polynomials of eval.h and K_{l,m} collects
+// where H are the scaled Legendre-times-(x+iy)^m polynomials of runtime/sh_eval.h and K_{l,m} collects
 // every normalisation: one multiply per output instead of one per lobe.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <tuple>
 #include <vector>
 
 #include "zhf/codegen/expr.h"
-#include "zhf/codegen/float_model.h"
-#include "zhf/optimizer/lobe_table.h"
+#include "zhf/runtime/lobe_stage.h"
+#include "zhf/runtime/lobe_table.h"
 
 namespace zhf::codegen {
 
@@ -33,8 +34,27 @@ struct Output {
   int node = 0;
 };
 
+// What an emitted function computes; the manifest records it, so nothing downstream (verify,
+// the benchmarks, the runtime's dispatch) ever recovers it from a name.
+enum class KernelKind {
+  kShEval,              // sh_eval_orderN(dir, y): every band at a unit direction
+  kLobeWeights,         // lobe_weights_orderN(f, z): z = A^T f per band >= 2
+  kFromSamples,         // coefficients_from_samples_orderN(s, f): f = A s per band >= 2
+  kRotate,              // rotate[_rgb|_rgba]_orderN(R, coeffs, rotated)
+  kSignalTailored,      // rotate_signal_tailored[_rgb|_rgba]_orderN(R, coeffs, rotated)
+  kBatch,               // rotate_batch_orderN(count, R, coeffs, rotated), structure of arrays (C++)
+  kRotationMatrices,    // rotation_matrices_orderN(R, M): the dense band matrices
+  kApplyMatrices,       // apply_rotation_matrices[_rgb|_rgba]_orderN(M, coeffs, rotated)
+  kZonal,               // rotate_zonal[_rgb|_rgba]_orderN(R, axis, zonal, rotated)
+};
+const char* kernel_kind_name(KernelKind kind);
+bool parse_kernel_kind(const std::string& name, KernelKind& kind);
+
 struct Function {
   std::string name;
+  std::string member;      // the name without "_orderN": its name in the Kernels<N> trait
+  KernelKind kind = KernelKind::kRotate;
+  int channels = 1;
   std::string doc;         // one line: what it computes
   std::vector<Param> params;
   Graph graph;
@@ -50,42 +70,44 @@ struct Lobe {
   std::string source;
 };
 
+// What a module is printed as: the rotation kernels of a sparse table, or the constant tables
+// of the lobe-parallel kernel (runtime/lanes.h) from a lanes table.
+enum class ModuleKind { kKernels, kLanesTables };
+
 struct Module {
+  ModuleKind kind = ModuleKind::kKernels;
   int order = 0;
-  optimizer::LobeTable table;
+  runtime::LobeTable table;
   std::vector<Lobe> lobes;
   std::vector<Function> functions;
-  bool wide_lobes = false;  // the rotations' lobe stage runs in double
+  runtime::LobeStage lobe_stage = runtime::LobeStage::kFloat;  // of the rotations (kernels), or of lanes.h
 };
-
-// Where the lobe stage of the rotations runs: in double for float kernels whose table's error
-// model misses kFloatRotationTarget (auto), always, or in the kernel's own type (float: fastest,
-// error up to the model).
-enum class LobePrecision { kAuto, kFloat, kDouble };
 
 // Which functions a module holds. The defaults are generated/'s; a scene spec narrows them.
 // Channel counts are 1, 3 (suffix _rgb) or 4 (_rgba); multi-channel functions share the
 // per-rotation work across channels.
 struct ModuleOptions {
   bool sh_eval = true;
-  bool lobe_multiplies = true;                   // AhatTransposeMultiply / AhatMultiply (orders >= 3)
+  bool lobe_multiplies = true;                   // lobe_weights / coefficients_from_samples (orders >= 3)
   std::vector<int> standard_channels = {1, 3};   // rotate[_rgb|_rgba]
   std::vector<int> tailored_channels = {1};      // rotate_signal_tailored[_rgb|_rgba]
   bool batch = true;                             // rotate_batch, emitted by backends that support it
   std::vector<int> dense_channels;               // rotation_matrices + apply_rotation_matrices[_rgb|_rgba]
   std::vector<int> zonal_channels;               // rotate_zonal[_rgb|_rgba]
   std::vector<int> zero_bands;                   // known zero: their outputs are 0 and cost nothing
-  LobePrecision lobe_precision = LobePrecision::kAuto;
+  // Where float rotations run their lobe stage (runtime/lobe_stage.h); none: automatic, the
+  // cheapest stage whose float error model meets tolerance::kFloatRotation.
+  std::optional<runtime::LobeStage> lobe_stage;
 };
 
-// Whether float kernels must run the lobe stage (R's projection onto the rotations, the
-// rotated lobes, their SH, the sums over lobes) in double to stay within the target.
-bool float_needs_wide_lobes(const optimizer::LobeTable& table);
-// The lobe precision resolved for a table: true for double.
-bool wide_lobes(const optimizer::LobeTable& table, LobePrecision precision);
-// "auto", "float", "double"; parse returns false on anything else.
-std::string lobe_precision_name(LobePrecision precision);
-bool parse_lobe_precision(const std::string& text, LobePrecision& precision);
+// The lobe stage `auto` picks for a table's rotation kernels: float where eps_f (N-1) k_max meets
+// the float target, else double (R projected, the whole lobe stage in double).
+runtime::LobeStage automatic_lobe_stage(const runtime::LobeTable& table);
+// "auto" (none: automatic_lobe_stage) or a stage's name (runtime/lobe_stage.h); false otherwise.
+bool parse_lobe_stage_choice(const std::string& name, std::optional<runtime::LobeStage>& stage);
+std::string lobe_stage_choice_name(const std::optional<runtime::LobeStage>& stage);
+// The one a module of this table gets with these options.
+runtime::LobeStage lobe_stage_for(const runtime::LobeTable& table, const ModuleOptions& options);
 
 // "", "_rgb" or "_rgba".
 std::string channel_suffix(int channels);
@@ -93,10 +115,12 @@ std::string channel_suffix(int channels);
 // l(2l-1)(2l+1)/3.
 int dense_matrix_offset(int band);
 
-// Order 2 needs no table: pass a table with order 2 and no lobes.
-Module build_module(const optimizer::LobeTable& table, const ModuleOptions& options);
+// Order 2 needs no table: pass runtime::lobe_free_table().
+Module build_module(const runtime::LobeTable& table, const ModuleOptions& options);
 
-// The lobe-free order-2 table.
-optimizer::LobeTable order2_table();
+// The lanes tables' module: the table, and the cheapest lobe stage whose float error model
+// eps_f (N-1) a_max times its margin (runtime/tolerances.h) meets the float target.
+Module build_lanes_module(const runtime::LobeTable& table);
+double lanes_float_error_model(const runtime::LobeTable& table);
 
 }  // namespace zhf::codegen

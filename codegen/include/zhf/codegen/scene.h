@@ -4,8 +4,8 @@
 //     "format": "zhf-scene-1",
 //     "targets": ["glsl"],            // any of cpp, hlsl, glsl
 //     "precision": "float",           // float or double (shaders; C++ kernels are templates)
-//     "lobe_precision": "auto",       // auto, float or double: where float kernels run the lobe
-//                                     // stage (codegen/kernels.h, LobePrecision); optional
+//     "lobe_stage": "auto",           // auto, float, double-rotation or double: where float
+//                                     // kernels run the lobe stage (runtime/lobe_stage.h); optional
 //     "signals": [
 //       {"name": "lighting", "order": 3, "channels": 3, "variants": ["standard"]},
 //       {"name": "transfer", "order": 5, "channels": 1, "variants": ["signal-tailored"],
@@ -20,12 +20,14 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
-#include "zhf/codegen/emitter.h"
+#include "zhf/codegen/backend.h"
+#include "zhf/runtime/json.h"
 
 namespace zhf::codegen {
 
@@ -38,9 +40,9 @@ struct SceneSignal {
 };
 
 struct Scene {
-  std::vector<std::string> targets;
+  std::vector<Language> targets;
   Precision precision = Precision::kFloat;
-  LobePrecision lobe_precision = LobePrecision::kAuto;
+  std::optional<runtime::LobeStage> lobe_stage;  // none: auto
   std::vector<SceneSignal> signals;
 
   std::vector<int> orders() const;                   // sorted, unique
@@ -49,11 +51,11 @@ struct Scene {
 };
 
 inline constexpr const char* kSceneFormat = "zhf-scene-1";
-inline constexpr int kMaxSceneOrder = 12;  // the highest checked-in lobe table
+inline constexpr int kMaxSceneSignals = 256;
 
 // Throws io::InputError naming the file and field, e.g. "scene.json: signals[1].channels: must
 // be 1, 3 or 4 (got 2)".
-Scene parse_scene(const nlohmann::json& j, const std::string& source);
+Scene parse_scene(const runtime::json::Value& root, const std::string& source);
 Scene read_scene(const std::string& path);
 
 }  // namespace zhf::codegen

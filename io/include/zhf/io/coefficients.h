@@ -6,8 +6,10 @@
 //    the C channels one after another (all N^2 of channel 0, then channel 1, ...). Blank lines
 //    and lines starting with '#' are skipped.
 // Every vector has the same length; N^2 must be a square; every number must be finite.
+// Numbers are read exactly as JSON (text layout: decimal or exponent form, an optional leading +).
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -19,7 +21,11 @@ struct CoefficientFile {
   std::vector<std::vector<double>> signals;  // one per vector and channel, N^2 each
 };
 
-inline constexpr int kMaxCoefficientOrder = 64;
+// Orders up to runtime::kMaxShOrder; files up to runtime::kMaxCoefficientBytes. Magnitudes up to
+// 1e150, so squares and their sums (band energies) stay finite.
+inline constexpr double kMaxCoefficientMagnitude = 1e150;
+inline constexpr std::size_t kMaxChannels = 4;
+inline constexpr std::size_t kMaxCoefficientCount = 64 * 64;
 
 // channels: 0 to take it from the JSON nesting (text then means 1). Throws InputError naming
 // the source and the vector (line for text) that is wrong.

@@ -1,50 +1,62 @@
-// File reading and all-or-nothing writing.
+// Reading inputs and writing outputs by zhf's rules (docs/usage.md, "Files"):
+// - every input is read with a size bound for its kind (runtime/limits.h) and JSON through the
+//   one strict reader (runtime/json.h);
+// - an output is written whole or not at all: to a temporary file in the target's own directory,
+//   flushed, then renamed over the target; a symlink is resolved and the file it names replaced;
+//   a target that exists and is not a regular file (a FIFO, /dev/stdout, a device) is written
+//   through, never replaced; a directory is refused.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "zhf/runtime/json.h"
+
 namespace zhf::io {
 
-// Writes content to a temporary file beside path, flushes it to disk and renames it over
-// path, so readers see either the old file or the complete new one. Throws OutputError.
-void write_file_atomically(const std::string& path, const std::string& content);
+// The whole file, at most max_bytes (InputError otherwise).
+std::string read_text_file(const std::string& path, std::size_t max_bytes);
+// The file parsed as JSON (InputError naming the file, line and column otherwise).
+runtime::json::Value read_json_file(const std::string& path, std::size_t max_bytes);
 
-// A new empty file beside a destination (destination.tmp.XXXXXX, unique, so concurrent runs
-// never share one) that becomes the destination only on commit(); otherwise the destructor
-// removes it. For files another program writes by name (gnuplot); zhf's own output goes
-// through write_file_atomically. Throws OutputError naming the destination.
+// A new empty file that becomes the destination only on commit(); otherwise the destructor
+// removes it. Unique (concurrent runs never share one). For a regular (or missing) destination
+// it sits beside it, so the commit is one rename; for a FIFO or device it sits in a private
+// temporary directory and the commit copies its bytes through. Throws OutputError naming the
+// destination.
 class PendingFile {
  public:
-  explicit PendingFile(std::string destination);
+  explicit PendingFile(const std::string& destination);
   ~PendingFile();
   PendingFile(const PendingFile&) = delete;
   PendingFile& operator=(const PendingFile&) = delete;
 
   const std::string& path() const { return temp_; }
   int fd() const { return fd_; }  // open for writing until commit()
-  // Flushes to disk, closes and renames over the destination.
+  // Writes all of text to the file (for zhf's own outputs; another program writes by path()).
+  void write(const std::string& text);
+  // Flushes to disk, closes and moves (or copies) the bytes to the destination.
   void commit();
 
  private:
-  std::string destination_;
+  std::string destination_;  // symlinks resolved
   std::string temp_;
+  std::string private_dir_;  // holds temp_ when the destination is written through
   int fd_ = -1;
   bool committed_ = false;
 };
 
-// Throws InputError naming the path when it is missing or unreadable.
-std::string read_text_file(const std::string& path);
-
-// Throws InputError naming the path (and line/column) when it is empty or not valid JSON.
-nlohmann::json read_json_file(const std::string& path);
-// The same for text already in memory; path only names it in errors.
-nlohmann::json parse_json_text(const std::string& text, const std::string& path);
+// PendingFile with content: the common case.
+void write_file_atomically(const std::string& path, const std::string& content);
 
 // JSON text as zhf writes it everywhere: two-space indent, arrays of numbers on one line
 // (matrix rows stay readable), keys in insertion order, numbers round-trip exact, trailing
 // newline.
 std::string json_text(const nlohmann::ordered_json& value);
+// A value read by runtime/json.h, for writing back (integers stay integers, numbers keep their
+// value exactly).
+nlohmann::ordered_json to_ordered_json(const runtime::json::Value& value);
 
 }  // namespace zhf::io

@@ -7,26 +7,19 @@
 #include <Eigen/Core>
 
 #include "zhf/candidates/candidates.h"
+#include "zhf/runtime/lobe_table.h"
+#include "zhf/runtime/tolerances.h"
 
 namespace zhf::optimizer {
 
-// An entry of A_l is a structural zero when |a| <= kZeroRelative * max|A_l|; it is then
-// stored as an exact 0.
-inline constexpr double kZeroRelative = 1e-10;
+// The default bound on each band's condition number (--max-condition).
 inline constexpr double kDefaultMaxCondition = 50;
-// Beyond this a lobe matrix is treated as singular: zero detection at 1e-10 is meaningless
-// once rounding (condition x 1e-16) reaches it.
-inline constexpr double kSingularCondition = 1e6;
 
-// Lobe d of band l is genes[lobe_index(l, d)]: with sharing band l uses lobes 0..2l of one
-// list of 2N-1; without, each band has its own 2l+1 lobes (N^2 - 4 in all).
-int lobe_count(int order, bool lobe_sharing);
-int lobe_index(int l, int d, bool lobe_sharing);
-
-using Genome = std::vector<int>;  // one candidate index per lobe
+// One candidate index per lobe: lobe d of band l is genes[runtime::lobe_index(l, d, sharing)].
+using Genome = std::vector<int>;
 
 struct Fitness {
-  bool invertible = false;    // every Y_l has condition <= kSingularCondition
+  bool invertible = false;    // every Y_l has condition <= tolerance::kSingularCondition
   bool feasible = false;      // ... and <= the bound
   int zeros = 0;              // summed over bands 2..N-1
   double worst_condition = 0;
@@ -61,7 +54,7 @@ class LobeEvaluator {
 
   int order() const { return order_; }
   bool lobe_sharing() const { return lobe_sharing_; }
-  int genes() const { return lobe_count(order_, lobe_sharing_); }
+  int genes() const { return runtime::lobe_count(order_, lobe_sharing_); }
   double max_condition() const { return max_condition_; }
   const candidates::CandidateSet& candidates() const { return candidates_; }
 
@@ -81,7 +74,12 @@ class LobeEvaluator {
   std::vector<double> sh_;  // y at every candidate: sh_[c * N^2 + index(l, m)]; empty: on demand
 };
 
-// Exact zeros: entries at or below kZeroRelative * max|A| set to 0; returns their count.
+// The table of a lobe set: the lobes' angles, directions and sources, each band's A_l with its
+// exact zeros and condition, and the provenance given (an object).
+runtime::Matrix to_matrix(const Eigen::MatrixXd& m);
+runtime::LobeTable make_table(const LobeEvaluator& evaluator, const Genome& genes, runtime::json::Value provenance);
+
+// Exact zeros: entries at or below tolerance::kZeroRelative * max|A| set to 0; returns their count.
 int zero_small_entries(Eigen::MatrixXd& inverse);
 
 }  // namespace zhf::optimizer

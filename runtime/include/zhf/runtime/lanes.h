@@ -6,53 +6,30 @@
 // It uses its own lobe tables (generated zhf_lanes_orderN.h): continuous directions chosen for
 // the least float error amplification, not the sparse tables' SH zeros, since a dense SIMD A_l s
 // costs less here than the sparse scalar one. With them each step runs in float where the
-// float error model allows (kLanesStageOrderN), which halves the work per lane.
-// The fast choice for one vector per rotation where the build targets AVX2 or wider
-// (-O3 -mavx2 -mfma, or -march=native); with SSE2 only, compare with zhf bench.
+// float error model allows (LanesTables<N>::kLobeStage), which halves the work per lane.
+// The fast choice for one vector per rotation where the build targets AVX2 or wider; zhf_kernels.h
+// picks it where zhf bench measured it faster (docs/performance.md).
+// Accuracy: within 1e-6 of the reference on random unit inputs at the default stage (tested).
 #pragma once
 
 #include <cstddef>
 #include <cstring>
-#include <stdexcept>
-#include <string>
 #include <type_traits>
 #include <utility>
 
-#include "zhf/runtime/polar_step.h"
-#include "zhf_lanes_order3.h"
-#include "zhf_lanes_order4.h"
-#include "zhf_lanes_order5.h"
-#include "zhf_lanes_order6.h"
-#include "zhf_lanes_order7.h"
-#include "zhf_lanes_order8.h"
-#include "zhf_order3.h"
-#include "zhf_order4.h"
-#include "zhf_order5.h"
-#include "zhf_order6.h"
-#include "zhf_order7.h"
-#include "zhf_order8.h"
+#include "zhf/runtime/lobe_stage.h"
+#include "zhf/runtime/rotation.h"
+#include "zhf/runtime/rotator.h"
+
+namespace zhf::gen {
+// The lobe directions and dense inverses of one order, specialised in zhf_lanes_orderN.h:
+// kLobeStage (the cheapest LobeStage the float error model allows), kLobes[2N-1][3] and
+// kInverse[N-2][2N-1][2N-1].
+template <int N>
+struct LanesTables;
+}  // namespace zhf::gen
 
 namespace zhf::runtime {
-
-template <int N>
-struct GeneratedOrder;
-#define ZHF_GENERATED_ORDER(N)                                                                  \
-  template <>                                                                                   \
-  struct GeneratedOrder<N> {                                                                    \
-    static constexpr int kStage = gen::kLanesStageOrder##N;                                     \
-    static constexpr const double (&kLobes)[2 * N - 1][3] = gen::kLanesLobesOrder##N;           \
-    static constexpr const double (&kInverse)[N - 2][2 * N - 1][2 * N - 1] =                    \
-        gen::kLanesInverseOrder##N;                                                             \
-    template <class T>                                                                          \
-    static void sh_eval(const T dir[3], T y[N * N]) { gen::sh_eval_order##N<T>(dir, y); }       \
-  };
-ZHF_GENERATED_ORDER(3)
-ZHF_GENERATED_ORDER(4)
-ZHF_GENERATED_ORDER(5)
-ZHF_GENERATED_ORDER(6)
-ZHF_GENERATED_ORDER(7)
-ZHF_GENERATED_ORDER(8)
-#undef ZHF_GENERATED_ORDER
 
 namespace lanes_detail {
 
@@ -72,9 +49,9 @@ constexpr LobeColumns<N, W> lobe_columns() {
   LobeColumns<N, W> c{};
   for (int d = 0; d < padded_lobes(N); ++d) {
     const int lobe = d < 2 * N - 1 ? d : 0;
-    c.x[d] = W(GeneratedOrder<N>::kLobes[lobe][0]);
-    c.y[d] = W(GeneratedOrder<N>::kLobes[lobe][1]);
-    c.z[d] = W(GeneratedOrder<N>::kLobes[lobe][2]);
+    c.x[d] = W(gen::LanesTables<N>::kLobes[lobe][0]);
+    c.y[d] = W(gen::LanesTables<N>::kLobes[lobe][1]);
+    c.z[d] = W(gen::LanesTables<N>::kLobes[lobe][2]);
   }
   return c;
 }
@@ -102,7 +79,7 @@ constexpr DenseColumns<N, T> dense_columns() {
   DenseColumns<N, T> c{};
   for (int b = 0; b < N - 2; ++b)
     for (int d = 0; d < 2 * N - 1; ++d)
-      for (int row = 0; row < 2 * N - 1; ++row) c.columns[b][d][row] = T(GeneratedOrder<N>::kInverse[b][row][d]);
+      for (int row = 0; row < 2 * N - 1; ++row) c.columns[b][d][row] = T(gen::LanesTables<N>::kInverse[b][row][d]);
   return c;
 }
 
@@ -144,23 +121,23 @@ inline void band_samples(const W* f, const W* y, W (*s)[padded_lobes(N)], int d,
 
 }  // namespace lanes_detail
 
-// rotated = coefficients of f(R^T w), R row-major mapping v to R v; orders 3..8. Flattened so
-// the SH evaluation is inlined into the lobe loop at every order (the loop body must be
-// straight-line code to vectorize).
-// kStage says where each step runs (0: all in float; 1: the lobes rotated in double; 2: R
-// projected onto the rotations and the whole lobe stage in double); the default is the
-// generated table's choice (zhf_lanes_orderN.h, from an error model against the 1e-6 target).
-// A s runs in T.
-template <int N, class T, int kStage = GeneratedOrder<N>::kStage>
+// rotated = coefficients of f(R^T w), R row-major mapping v to R v; orders 3..8 (include
+// zhf_orderN.h and zhf_lanes_orderN.h). Flattened so the SH evaluation is inlined into the lobe
+// loop at every order (the loop body must be straight-line code to vectorize).
+// kStage is a LobeStage; the default is the table's (zhf_lanes_orderN.h, from the error model
+// against the 1e-6 target). A s runs in T.
+template <int N, class T, int kStage = gen::LanesTables<N>::kLobeStage>
 [[gnu::flatten]] inline void rotate_lanes(const T R[9], const T coeffs[N * N], T rotated[N * N]) {
   using namespace lanes_detail;
-  using W = std::conditional_t<kStage == 2, std::common_type_t<T, double>, T>;
-  using Rotated = std::conditional_t<kStage >= 1, std::common_type_t<T, double>, T>;
+  constexpr bool kRotationInDouble = kStage >= int(LobeStage::kDoubleRotation);
+  constexpr bool kAllInDouble = kStage == int(LobeStage::kDouble);
+  using W = std::conditional_t<kAllInDouble, std::common_type_t<T, double>, T>;
+  using Rotated = std::conditional_t<kRotationInDouble, std::common_type_t<T, double>, T>;
   constexpr int kLanes = padded_lobes(N);
   static constexpr LobeColumns<N, Rotated> kColumns = lobe_columns<N, Rotated>();
   static constexpr DenseColumns<N, T> kInverse = dense_columns<N, T>();
   Rotated q[9];
-  if constexpr (kStage == 2) {
+  if constexpr (kAllInDouble) {
     polar_step(R, q);
   } else {
     for (int i = 0; i < 9; ++i) q[i] = R[i];
@@ -179,55 +156,22 @@ template <int N, class T, int kStage = GeneratedOrder<N>::kStage>
   for (int d = 0; d < kLanes; ++d) {
     const W dir[3] = {rx[d], ry[d], rz[d]};
     W y[N * N];
-    GeneratedOrder<N>::sh_eval(dir, y);
+    gen::Kernels<N>::template sh_eval<W>(dir, y);
     band_samples<N>(f, y, samples, d, std::make_integer_sequence<int, N - 2>());
   }
   multiply_bands<N>(kInverse, samples, rotated, std::make_integer_sequence<int, N - 2>());
-  // Band 0 is invariant; band 1 is c (y, z, x), so its matrix is R on those axes.
-  constexpr int kAxisOfM[3] = {1, 2, 0};
   rotated[0] = coeffs[0];
-  for (int m = 0; m < 3; ++m) {
-    T sum = 0;
-    for (int n = 0; n < 3; ++n) sum += R[3 * kAxisOfM[m] + kAxisOfM[n]] * coeffs[1 + n];
-    rotated[1 + m] = sum;
-  }
+  rotate_band1(R, coeffs + 1, rotated + 1);
 }
 
-template <class T>
-using LanesKernel = void (*)(const T*, const T*, T*);
-
-namespace lanes_detail {
-template <int N, class T>
-LanesKernel<T> kernel_of(bool all_float) {
-  return all_float ? &rotate_lanes<N, T, 0> : &rotate_lanes<N, T>;
-}
-}  // namespace lanes_detail
-
-// rotate_lanes for an order known at run time (3..8); all_float: every step in float (stage 0).
-template <class T>
-LanesKernel<T> lanes_kernel(int order, bool all_float = false) {
-  switch (order) {
-    case 3: return lanes_detail::kernel_of<3, T>(all_float);
-    case 4: return lanes_detail::kernel_of<4, T>(all_float);
-    case 5: return lanes_detail::kernel_of<5, T>(all_float);
-    case 6: return lanes_detail::kernel_of<6, T>(all_float);
-    case 7: return lanes_detail::kernel_of<7, T>(all_float);
-    case 8: return lanes_detail::kernel_of<8, T>(all_float);
-    default: throw std::invalid_argument("lanes_kernel: order " + std::to_string(order) + " is not in [3, 8]");
-  }
-}
-
-// rotate_lanes's default stage for an order 3..8 (0 float, 1 lobes in double, 2 double).
-inline int lanes_stage(int order) {
-  switch (order) {
-    case 3: return GeneratedOrder<3>::kStage;
-    case 4: return GeneratedOrder<4>::kStage;
-    case 5: return GeneratedOrder<5>::kStage;
-    case 6: return GeneratedOrder<6>::kStage;
-    case 7: return GeneratedOrder<7>::kStage;
-    case 8: return GeneratedOrder<8>::kStage;
-    default: throw std::invalid_argument("lanes_stage: order " + std::to_string(order) + " is not in [3, 8]");
-  }
+// The lanes kernel of order N for a Rotator (its RGB entry point is the scalar kernel's, which
+// shares the per-rotation work across channels); stage as in rotate_lanes.
+template <int N, class T, int kStage = gen::LanesTables<N>::kLobeStage>
+KernelSet<T> lanes_kernels() {
+  KernelSet<T> k = scalar_kernels<N, T>();
+  k.path = "lanes";
+  k.rotate = &rotate_lanes<N, T, kStage>;
+  return k;
 }
 
 }  // namespace zhf::runtime

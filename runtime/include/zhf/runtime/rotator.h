@@ -1,43 +1,72 @@
-// zhf's rotation library: rotate real SH vectors (zhf's convention, see README) by 3x3
+// zhf's rotation library: rotate real SH vectors (zhf's convention, docs/conventions.md) by 3x3
 // rotation matrices R (row-major, v -> R v; the result is the coefficients of f(R^T w)).
 //
 // Which call is the fast choice:
-//   rotate       one vector, a new rotation each call: the generated kernels (orders 2..8).
+//   rotate       one vector, a new rotation each call.
 //   rotate_rgb   three channels under one rotation: the per-rotation work is done once.
 //   rotate_batch many vectors, each with its own rotation; spread over threads when large.
 //   dense        one rotation shared by many vectors: build the band matrices once
 //                (~the cost of N^2/3 rotations), then each apply is a small dense product.
-// A rotator from a lobe table (from_table) handles any order up to 32 at a few times the cost
-// of the generated kernels; use it when the order is only known at run time. Like the generated
-// kernels of orders whose float error model needs it, it runs the lobe stage in double
-// (see codegen/kernels.h, LobePrecision).
+//
+// Where the kernels come from:
+//   Rotator<T>::of<N>()                   the generated kernels of order N (include zhf_orderN.h);
+//   Rotator<T>::with(gen::fastest_kernels<T>(order))
+//                                         any generated order at run time, on the fastest verified
+//                                         path for the instruction set compiled for (zhf_kernels.h);
+//   Rotator<T>::from_table(table)         any order up to 32 from a lobe table, at a few times the
+//                                         cost; its lobe stage runs in double.
 #pragma once
 
 #include <algorithm>
 #include <array>
 #include <cassert>
+#include <cstddef>
 #include <stdexcept>
+#include <string>
 #include <thread>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "zhf/runtime/lobe_table.h"
-#include "zhf/runtime/polar_step.h"
-#include "zhf/runtime/rotation_check.h"
-#include "zhf_order2.h"
-#include "zhf_order3.h"
-#include "zhf_order4.h"
-#include "zhf_order5.h"
-#include "zhf_order6.h"
-#include "zhf_order7.h"
-#include "zhf_order8.h"
+#include "zhf/runtime/rotation.h"
+#include "zhf/runtime/sh_eval.h"
+
+namespace zhf::gen {
+// The functions of one generated order, specialised at the end of each zhf_orderN.h.
+template <int N>
+struct Kernels;
+}  // namespace zhf::gen
 
 namespace zhf::runtime {
 
-inline constexpr int kMinGeneratedOrder = 2;
-inline constexpr int kMaxGeneratedOrder = 8;
 // Below this many vectors a batch runs on the calling thread.
 inline constexpr std::size_t kParallelBatchThreshold = 4096;
+
+// One implementation of an order's single-rotation entry points.
+template <class T>
+struct KernelSet {
+  using Kernel = void (*)(const T*, const T*, T*);
+  int order = 0;
+  const char* path = "";         // which implementation: "scalar" (generated kernels) or "lanes" (lanes.h)
+  Kernel rotate = nullptr;       // (R, in[N^2], out[N^2])
+  Kernel rotate_rgb = nullptr;   // (R, in[3][N^2], out[3][N^2]) as flat planar arrays
+};
+
+// The generated scalar kernels of order N (its header must be included).
+template <int N, class T>
+KernelSet<T> scalar_kernels() {
+  KernelSet<T> k;
+  k.order = N;
+  k.path = "scalar";
+  k.rotate = [](const T* r, const T* in, T* out) { gen::Kernels<N>::template rotate<T>(r, in, out); };
+  // The generated RGB kernels take planar [3][N^2] arrays; the runtime API passes flat ones.
+  k.rotate_rgb = [](const T* r, const T* in, T* out) {
+    using Planar = T[N * N];
+    gen::Kernels<N>::template rotate_rgb<T>(r, reinterpret_cast<const Planar*>(in), reinterpret_cast<Planar*>(out));
+  };
+  return k;
+}
 
 // Build-once, apply-many band matrices of one rotation.
 template <class T>
@@ -49,7 +78,7 @@ class DenseRotation {
   const std::vector<std::vector<T>>& bands() const { return bands_; }
   void apply(const T* in, T* out) const {
     for (int l = 0; l < order_; ++l) {
-      const int n = 2 * l + 1, base = l * l;
+      const int n = band_size(l), base = l * l;
       const T* d = bands_[l].data();
       for (int i = 0; i < n; ++i) {
         T sum = 0;
@@ -67,51 +96,54 @@ class DenseRotation {
 template <class T>
 class Rotator {
  public:
-  using Kernel = void (*)(const T*, const T*, T*);
   using W = std::common_type_t<T, double>;  // the table path's lobe stage
 
-  // The compiled kernels of generated/cpp for order 2..8.
-  static Rotator generated(int order) {
+  // The generated kernels of order N.
+  template <int N>
+  static Rotator of() {
+    return with(scalar_kernels<N, T>());
+  }
+
+  // Any kernel set (gen::fastest_kernels, gen::scalar_kernels_of, ...).
+  static Rotator with(const KernelSet<T>& kernels) {
+    if (kernels.order < 1 || !kernels.rotate || !kernels.rotate_rgb)
+      throw std::invalid_argument("Rotator::with: an incomplete kernel set");
     Rotator r;
-    r.order_ = order;
-    switch (order) {
-      case 2: r.bind<2>(gen::rotate_order2<T>); break;
-      case 3: r.bind<3>(gen::rotate_order3<T>); break;
-      case 4: r.bind<4>(gen::rotate_order4<T>); break;
-      case 5: r.bind<5>(gen::rotate_order5<T>); break;
-      case 6: r.bind<6>(gen::rotate_order6<T>); break;
-      case 7: r.bind<7>(gen::rotate_order7<T>); break;
-      case 8: r.bind<8>(gen::rotate_order8<T>); break;
-      default: throw std::invalid_argument("Rotator::generated: order " + std::to_string(order) + " is not in [2, 8]");
-    }
+    r.order_ = kernels.order;
+    r.kernels_ = kernels;
     return r;
   }
 
-  // Any order 2..32 from a parsed lobe table.
-  static Rotator from_table(const LobeTableData& table) {
+  // Any order 2..32 from a lobe table. Its shape is checked here (a table built or changed by
+  // hand must be safe to use); read_lobe_table has checked a file's numbers too. Throws
+  // InputError naming what is wrong.
+  static Rotator from_table(const LobeTable& table) {
+    validate_lobe_table(table, "Rotator::from_table", TableCheck::kShape);
     Rotator r;
     r.order_ = table.order;
     r.table_ = table;
-    for (const RuntimeBand& band : table.bands) {
-      r.evaluators_.emplace_back(band.l);
+    r.legendre_ = TabulatedLegendreCoefficients(table.order);
+    for (const TableBand& band : table.bands) {
       // A's structural zeros cost nothing here either (and pruned tables run faster).
-      const int size = 2 * band.l + 1;
+      const int size = band_size(band.l);
       r.nonzeros_.emplace_back();
       for (int m = 0; m < size; ++m)
         for (int d = 0; d < size; ++d)
-          if (band.inverse[m * size + d] != 0) r.nonzeros_.back().push_back({m, d, T(band.inverse[m * size + d])});
+          if (band.inverse(m, d) != 0) r.nonzeros_.back().push_back({m, d, T(band.inverse(m, d))});
     }
     return r;
   }
 
   int order() const { return order_; }
   int coefficients() const { return order_ * order_; }
+  // "scalar", "lanes" or "table": which implementation rotate() runs.
+  std::string path() const { return kernels_.rotate ? kernels_.path : "table"; }
 
   // R must be a proper rotation (checked with assert in debug builds; see validate()).
   void rotate(const T r[9], const T* in, T* out) const {
     debug_check(r);
-    if (kernel_) {
-      kernel_(r, in, out);
+    if (kernels_.rotate) {
+      kernels_.rotate(r, in, out);
     } else {
       rotate_from_table(r, in, out, 1);
     }
@@ -120,8 +152,8 @@ class Rotator {
   // Planar channels: in[c * N^2 + i], c = 0, 1, 2.
   void rotate_rgb(const T r[9], const T* in, T* out) const {
     debug_check(r);
-    if (rgb_kernel_) {
-      rgb_kernel_(r, in, out);
+    if (kernels_.rotate_rgb) {
+      kernels_.rotate_rgb(r, in, out);
     } else {
       rotate_from_table(r, in, out, 3);
     }
@@ -149,45 +181,24 @@ class Rotator {
   DenseRotation<T> dense(const T r[9]) const {
     const int n = coefficients();
     std::vector<std::vector<T>> bands(order_);
-    for (int l = 0; l < order_; ++l) bands[l].assign((2 * l + 1) * (2 * l + 1), T(0));
+    for (int l = 0; l < order_; ++l) bands[l].assign(band_size(l) * band_size(l), T(0));
     std::vector<T> unit(n, T(0)), column(n);
     for (int j = 0; j < n; ++j) {
       unit[j] = 1;
       rotate(r, unit.data(), column.data());
       unit[j] = 0;
-      int l = 0;
-      while ((l + 1) * (l + 1) <= j) ++l;
-      const int size = 2 * l + 1, col = j - l * l;
+      const int l = band_of(j), size = band_size(l), col = j - l * l;
       for (int i = 0; i < size; ++i) bands[l][i * size + col] = column[l * l + i];
     }
     return DenseRotation<T>(order_, std::move(bands));
   }
 
-  static RotationCheck validate(const T r[9], double tolerance = kDefaultRotationTolerance) {
-    return validate_rotation(r, tolerance);
+  static RotationCheck validate(const T r[9], double max_defect = tolerance::kRotationDefect) {
+    return validate_rotation(r, max_defect);
   }
 
  private:
-  template <int N>
-  void bind(Kernel kernel) {
-    kernel_ = kernel;
-    // The generated RGB kernels take planar [3][N^2] arrays; the runtime API passes flat ones.
-    rgb_kernel_ = [](const T* r, const T* in, T* out) {
-      using Planar = T[N * N];
-      rgb_dispatch<N>(r, reinterpret_cast<const Planar*>(in), reinterpret_cast<Planar*>(out));
-    };
-  }
-
-  template <int N>
-  static void rgb_dispatch(const T* r, const T (*in)[N * N], T (*out)[N * N]) {
-    if constexpr (N == 2) gen::rotate_rgb_order2<T>(r, in, out);
-    if constexpr (N == 3) gen::rotate_rgb_order3<T>(r, in, out);
-    if constexpr (N == 4) gen::rotate_rgb_order4<T>(r, in, out);
-    if constexpr (N == 5) gen::rotate_rgb_order5<T>(r, in, out);
-    if constexpr (N == 6) gen::rotate_rgb_order6<T>(r, in, out);
-    if constexpr (N == 7) gen::rotate_rgb_order7<T>(r, in, out);
-    if constexpr (N == 8) gen::rotate_rgb_order8<T>(r, in, out);
-  }
+  Rotator() = default;
 
   void debug_check(const T r[9]) const {
     (void)r;
@@ -202,32 +213,26 @@ class Rotator {
     W q[9];
     polar_step(r, q);
     std::vector<std::array<W, 3>> rotated(table_.lobes.size());
-    for (size_t d = 0; d < table_.lobes.size(); ++d)
+    for (std::size_t d = 0; d < table_.lobes.size(); ++d)
       for (int i = 0; i < 3; ++i)
-        rotated[d][i] = q[3 * i] * table_.lobes[d][0] + q[3 * i + 1] * table_.lobes[d][1] + q[3 * i + 2] * table_.lobes[d][2];
+        rotated[d][i] = q[3 * i] * table_.lobes[d].xyz[0] + q[3 * i + 1] * table_.lobes[d].xyz[1] +
+                        q[3 * i + 2] * table_.lobes[d].xyz[2];
     std::vector<std::vector<W>> y_rotated(table_.bands.size());
-    for (size_t b = 0; b < table_.bands.size(); ++b) {
-      const int size = 2 * table_.bands[b].l + 1;
+    for (std::size_t b = 0; b < table_.bands.size(); ++b) {
+      const int size = band_size(table_.bands[b].l);
       y_rotated[b].resize(size * size);  // [d * size + m]
-      for (int d = 0; d < size; ++d) evaluators_[b](rotated[table_.bands[b].lobes[d]].data(), &y_rotated[b][d * size]);
+      for (int d = 0; d < size; ++d)
+        eval_band<W>(table_.bands[b].l, rotated[table_.bands[b].lobes[d]].data(), &y_rotated[b][d * size], legendre_);
     }
     std::vector<T> z;
     for (int c = 0; c < channels; ++c) {
       const T* f = in + c * n;
       T* g = out + c * n;
       g[0] = f[0];
-      if (order_ > 1) {
-        // Band 1 is c (y, z, x): element m is axis {1, 2, 0}[m + 1].
-        static constexpr int kAxis[3] = {1, 2, 0};
-        for (int i = 0; i < 3; ++i) {
-          T sum = 0;
-          for (int j = 0; j < 3; ++j) sum += r[3 * kAxis[i] + kAxis[j]] * f[1 + j];
-          g[1 + i] = sum;
-        }
-      }
-      for (size_t b = 0; b < table_.bands.size(); ++b) {
-        const RuntimeBand& band = table_.bands[b];
-        const int size = 2 * band.l + 1, base = band.l * band.l;
+      if (order_ > 1) rotate_band1(r, f + 1, g + 1);
+      for (std::size_t b = 0; b < table_.bands.size(); ++b) {
+        const TableBand& band = table_.bands[b];
+        const int size = band_size(band.l), base = band.l * band.l;
         z.assign(size, T(0));
         for (const Nonzero& a : nonzeros_[b]) z[a.d] += a.value * f[base + a.m];
         for (int m = 0; m < size; ++m) {
@@ -240,14 +245,13 @@ class Rotator {
   }
 
   int order_ = 0;
-  Kernel kernel_ = nullptr;
-  void (*rgb_kernel_)(const T*, const T*, T*) = nullptr;
+  KernelSet<T> kernels_;
   struct Nonzero {
     int m, d;
     T value;  // A_l[m][d]
   };
-  LobeTableData table_;
-  std::vector<BandEvaluator<W>> evaluators_;
+  LobeTable table_;
+  TabulatedLegendreCoefficients legendre_{0};
   std::vector<std::vector<Nonzero>> nonzeros_;  // per band, row-major order
 };
 

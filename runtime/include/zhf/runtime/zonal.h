@@ -3,23 +3,26 @@
 // with zonal[l] its y_l^0 weight when a = +z. Rotating it by R is re-evaluating at R a: N^2
 // work, no lobes, no band matrices. The fast choice whenever a signal is zonal (a clamped
 // cosine, a Phong lobe, a point light's irradiance); zhf analyze says whether data is.
+// Accuracy: that of the SH evaluation (sh_eval.h); tested against the reference rotation up to
+// order 16.
 #pragma once
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
-#include "zhf/runtime/sh_band.h"
+#include "zhf/runtime/limits.h"
+#include "zhf/runtime/sh_eval.h"
 
 namespace zhf::runtime {
 
 template <class T>
 class ZonalRotator {
  public:
-  explicit ZonalRotator(int order) : order_(order) {
-    for (int l = 0; l < order; ++l) {
-      bands_.emplace_back(l);
-      scale_.push_back(std::sqrt(4 * 3.14159265358979323846 / (2 * l + 1)));
-    }
+  // Throws std::invalid_argument for an order outside 1..kMaxShOrder.
+  explicit ZonalRotator(int order) : order_(order), legendre_(checked(order)) {
+    for (int l = 0; l < order; ++l) scale_.push_back(std::sqrt(4 * kPi / band_size(l)));
   }
   int order() const { return order_; }
 
@@ -32,17 +35,22 @@ class ZonalRotator {
 
   // out (N^2) = the coefficients of the zonal function about the unit axis.
   void project(const T axis[3], const T* zonal, T* out) const {
+    eval_sh<T>(order_, axis, out, legendre_);
     for (int l = 0; l < order_; ++l) {
-      T* band = out + l * l;
-      bands_[l](axis, band);
       const T w = T(scale_[l]) * zonal[l];
-      for (int i = 0; i < 2 * l + 1; ++i) band[i] *= w;
+      for (int i = l * l; i < (l + 1) * (l + 1); ++i) out[i] *= w;
     }
   }
 
  private:
+  static int checked(int order) {
+    if (order < 1 || order > kMaxShOrder)
+      throw std::invalid_argument("ZonalRotator: order " + std::to_string(order) + " is outside 1.." + std::to_string(kMaxShOrder));
+    return order;
+  }
+
   int order_;
-  std::vector<BandEvaluator<T>> bands_;
+  TabulatedLegendreCoefficients legendre_;
   std::vector<double> scale_;
 };
 

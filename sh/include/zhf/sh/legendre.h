@@ -1,12 +1,10 @@
-// Normalised associated Legendre functions and their roots (candidate lobe polar angles).
+// Roots of the normalised associated Legendre functions (candidate lobe polar angles), and the
+// derivative Newton needs. Q_l^m itself is runtime::legendre_q (runtime/sh_eval.h).
 #pragma once
 
 #include <vector>
 
 namespace zhf::sh {
-
-// Q_l^m(z) as in eval.h (K_l^m d^m P_l/dz^m), so P_l^m-normalised = (1-z^2)^{m/2} Q_l^m.
-double legendre_q(int l, int m, double z);
 
 // dQ_l^m/dz = sqrt((l+m+1)(l-m)) Q_l^{m+1}(z).
 double legendre_q_derivative(int l, int m, double z);

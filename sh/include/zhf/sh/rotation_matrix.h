@@ -1,34 +1,44 @@
-// 3x3 rotation helpers. A rotation R is row-major and maps a direction v to R v; rotating
-// an SH function f by R gives g(w) = f(R^T w).
+// Rotations as Eigen matrices for the reference math and the tests: adapters over the runtime's
+// constructions (runtime/rotation.h), random rotations, and the fixed set of extreme rotations
+// every method is checked on. A rotation R is row-major and maps a direction v to R v.
 #pragma once
 
 #include <cstdint>
 #include <random>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Core>
-#include <Eigen/LU>
+
+#include "zhf/runtime/rotation.h"
+#include "zhf/runtime/sh_eval.h"
 
 namespace zhf::sh {
 
 using Matrix3 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
 
+inline Matrix3 to_eigen(const runtime::Matrix3& r) { return Eigen::Map<const Matrix3>(r.data()); }
+inline runtime::Matrix3 to_array(const Matrix3& r) {
+  runtime::Matrix3 out;
+  Eigen::Map<Matrix3>(out.data()) = r;
+  return out;
+}
+
+// A right-handed turn by angle (radians) about axis (any length but zero).
 Matrix3 rotation_about_axis(const Eigen::Vector3d& axis, double angle);
 // R = Rz(alpha) Ry(beta) Rz(gamma).
-Matrix3 rotation_from_zyz(double alpha, double beta, double gamma);
+inline Matrix3 rotation_from_zyz(double alpha, double beta, double gamma) {
+  return to_eigen(runtime::rotation_from_zyz(alpha, beta, gamma));
+}
 // Uniform (Haar) random rotation from a unit quaternion.
 Matrix3 random_rotation(std::mt19937_64& rng);
 // Uniform random unit vector.
 Eigen::Vector3d random_direction(std::mt19937_64& rng);
 
-// How far M is from a proper rotation.
-struct RotationDefect {
-  double orthonormality = 0;  // max |M M^T - I|
-  double determinant = 0;
-  bool finite = true;
-};
-RotationDefect measure_rotation_defect(const Matrix3& m);
-
-// Nearest proper rotation in the Frobenius norm (polar decomposition via SVD).
-Matrix3 nearest_rotation(const Matrix3& m);
+// The rotations where methods break if they break: identity, half turns about the axes and
+// diagonals, Euler gimbal lock (beta = 0, pi, 1e-9), turns of 1e-7 and 1e-8 rad, and, for the
+// lobes given, rotations carrying lobes 0..2 onto the pole and lobe 0 onto lobe 1. Named.
+std::vector<std::pair<std::string, Matrix3>> extreme_rotations(const std::vector<Eigen::Vector3d>& lobes);
 
 }  // namespace zhf::sh

@@ -10,8 +10,10 @@
 #include <array>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
+#include "zhf/runtime/limits.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
 
@@ -36,10 +38,10 @@ void euler_zyz(const T r[9], T& a, T& b, T& g) {
 template <class T>
 class ZxzxzRotator {
  public:
-  static constexpr int kMaxOrder = 64;
 
   explicit ZxzxzRotator(int order) : order_(order), plus_(order), minus_(order) {
-    if (order < 1 || order > kMaxOrder) throw std::invalid_argument("ZxzxzRotator: order must be 1..64");
+    if (order < 1 || order > runtime::kMaxShOrder)
+      throw std::invalid_argument("ZxzxzRotator: order " + std::to_string(order) + " is outside 1.." + std::to_string(runtime::kMaxShOrder));
     const double half_pi = 1.57079632679489661923;
     const BandMatrices p = ivanic_ruedenberg(rotation_about_axis(Eigen::Vector3d::UnitX(), half_pi), order);
     const BandMatrices m = ivanic_ruedenberg(rotation_about_axis(Eigen::Vector3d::UnitX(), -half_pi), order);
@@ -81,8 +83,8 @@ class ZxzxzRotator {
   }
 
  private:
-  using Multiples = std::array<T, kMaxOrder>;  // cos or sin of m t, m = 0..order-1
-  using Band = std::array<T, 2 * kMaxOrder - 1>;
+  using Multiples = std::array<T, runtime::kMaxShOrder>;  // cos or sin of m t, m = 0..order-1
+  using Band = std::array<T, 2 * runtime::kMaxShOrder - 1>;
   struct Entry {
     int row, col;
     double value;

@@ -1,0 +1,73 @@
+#include "options.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+
+#include "commands.h"
+#include "zhf/io/errors.h"
+#include "zhf/io/numbers.h"
+
+namespace zhf::cli {
+namespace {
+
+std::string quoted(const std::string& text) { return "'" + io::excerpt(text) + "'"; }
+
+std::string format(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", x);
+  return text;
+}
+
+}  // namespace
+
+long long integer_option(const std::string& option, const std::string& text, long long lo, long long hi) {
+  long long x = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), x);
+  if (error == std::errc::invalid_argument || end != text.data() + text.size() || text.empty())
+    throw UsageError(option + ": " + quoted(text) + " is not an integer");
+  if (error == std::errc::result_out_of_range || x < lo || x > hi)
+    throw UsageError(option + ": must be " + std::to_string(lo) + ".." + std::to_string(hi) + " (got " + quoted(text) + ")");
+  return x;
+}
+
+std::uint64_t seed_option(const std::string& option, const std::string& text) {
+  std::uint64_t x = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), x);
+  if (error != std::errc() || end != text.data() + text.size() || text.empty())
+    throw UsageError(option + ": " + quoted(text) + " is not an integer in 0..18446744073709551615");
+  return x;
+}
+
+double number_option(const std::string& option, const std::string& text, double lo, double hi) {
+  const io::ParsedNumber x = io::parse_number(text);
+  if (!x.value) throw UsageError(option + ": " + quoted(text) + " " + x.problem);
+  if (*x.value < lo || *x.value > hi)
+    throw UsageError(option + ": must be in [" + format(lo) + ", " + format(hi) + "] (got " + quoted(text) + ")");
+  return *x.value;
+}
+
+std::vector<int> orders_option(const std::string& option, const std::string& text, int lo, int hi) {
+  std::vector<int> orders;
+  const auto dots = text.find("..");
+  if (dots != std::string::npos) {
+    const int first = static_cast<int>(integer_option(option, text.substr(0, dots), lo, hi));
+    const int last = static_cast<int>(integer_option(option, text.substr(dots + 2), lo, hi));
+    if (first > last) throw UsageError(option + ": the range " + quoted(text) + " is empty");
+    for (int n = first; n <= last; ++n) orders.push_back(n);
+    return orders;
+  }
+  size_t start = 0;
+  while (start <= text.size()) {
+    const size_t comma = std::min(text.find(',', start), text.size());
+    const int n = static_cast<int>(integer_option(option, text.substr(start, comma - start), lo, hi));
+    if (std::find(orders.begin(), orders.end(), n) != orders.end())
+      throw UsageError(option + ": " + std::to_string(n) + " is listed twice");
+    orders.push_back(n);
+    start = comma + 1;
+  }
+  return orders;
+}
+
+}  // namespace zhf::cli

@@ -1,0 +1,18 @@
+// zhf_kernels.h: every generated order reachable at run time, and the fastest verified rotation
+// path per order for the instruction set the header is compiled for (emitted with the C++ files
+// of a full tree).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "zhf/codegen/backend.h"
+
+namespace zhf::codegen {
+
+// orders: the orders with kernel files (zhf_orderN.h); lanes_orders: those with lanes tables
+// (zhf_lanes_orderN.h).
+EmittedFile emit_dispatch_header(const std::vector<int>& orders, const std::vector<int>& lanes_orders,
+                                 const std::string& command);
+
+}  // namespace zhf::codegen

@@ -1,0 +1,68 @@
+#include "zhf/codegen/dispatch.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "c_family_printer.h"
+
+namespace zhf::codegen {
+namespace {
+
+// Where the lobe-parallel kernel (runtime/lanes.h) is the faster path for one vector per
+// rotation, float, as measured by a bare loop over 512 random rotations (best of 7) on an AMD
+// EPYC (Zen 3 class) with g++ 12 -O3, scalar kernel time / lanes time at orders 3..8:
+//   x86-64 baseline (SSE2):  1.39 1.88 1.54 3.04 1.63 2.46
+//   x86-64-v3 (AVX2, FMA):   1.18 1.55 2.39 3.02 2.14 2.28
+// Other architectures were not measured, so they keep the scalar kernels.
+constexpr const char* kMeasuredOn = "x86-64 (SSE2 baseline and AVX2), orders 3..8: lanes 1.2x to 3.0x faster";
+
+std::string list(const std::vector<int>& values) {
+  std::string out;
+  for (int v : values) out += (out.empty() ? "" : ", ") + std::to_string(v);
+  return out;
+}
+
+}  // namespace
+
+EmittedFile emit_dispatch_header(const std::vector<int>& orders, const std::vector<int>& lanes_orders,
+                                 const std::string& command) {
+  std::ostringstream out;
+  out << banner(command, {}) << "//   (none: dispatch only)\n";
+  out << "// Every generated order (" << list(orders) << ") reachable at run time, and the fastest verified\n"
+      << "// rotation path of each for the instruction set this header is compiled for.\n";
+  out << "#pragma once\n\n#include <stdexcept>\n#include <string>\n#include <type_traits>\n\n";
+  out << "#include \"zhf/runtime/lanes.h\"\n#include \"zhf/runtime/rotator.h\"\n";
+  for (int n : orders) out << "#include \"zhf_order" << n << ".h\"\n";
+  for (int n : lanes_orders) out << "#include \"zhf_lanes_order" << n << ".h\"\n";
+  out << "\nnamespace zhf::gen {\n\n";
+  out << "// Calls f(std::integral_constant<int, N>{}) for the generated order N equal to order; throws\n"
+      << "// std::invalid_argument for any other order.\n"
+      << "template <class F>\ndecltype(auto) with_order(int order, F&& f) {\n  switch (order) {\n";
+  for (int n : orders) out << "    case " << n << ": return f(std::integral_constant<int, " << n << ">{});\n";
+  out << "    default: break;\n  }\n"
+      << "  throw std::invalid_argument(\"zhf: order \" + std::to_string(order) + \" has no generated kernels (" << list(orders)
+      << ")\");\n}\n\n";
+  out << "// Whether order N has lanes tables (zhf_lanes_orderN.h).\n"
+      << "template <int N>\ninline constexpr bool kHasLanes = false;\n";
+  for (int n : lanes_orders) out << "template <>\ninline constexpr bool kHasLanes<" << n << "> = true;\n";
+  out << "\n// Where runtime/lanes.h is the faster verified path, by measurement: " << kMeasuredOn << ";\n"
+      << "// other architectures unmeasured (the scalar kernels). docs/performance.md has the figures.\n"
+      << "#if defined(__x86_64__) || defined(_M_X64)\ninline constexpr bool kLanesFirst = true;\n#else\n"
+      << "inline constexpr bool kLanesFirst = false;\n#endif\n\n";
+  out << "// The fastest verified rotation path of a generated order (throws for any other order).\n"
+      << "template <class T>\nruntime::KernelSet<T> fastest_kernels(int order) {\n"
+      << "  return with_order(order, [](auto n) {\n"
+      << "    constexpr int N = decltype(n)::value;\n"
+      << "    if constexpr (kHasLanes<N>) {\n"
+      << "      if (kLanesFirst) return runtime::lanes_kernels<N, T>();\n"
+      << "    }\n"
+      << "    return runtime::scalar_kernels<N, T>();\n"
+      << "  });\n}\n\n";
+  out << "// The generated scalar kernels of an order chosen at run time.\n"
+      << "template <class T>\nruntime::KernelSet<T> scalar_kernels(int order) {\n"
+      << "  return with_order(order, [](auto n) { return runtime::scalar_kernels<decltype(n)::value, T>(); });\n}\n\n";
+  out << "}  // namespace zhf::gen\n";
+  return {"zhf_kernels.h", out.str(), {}};
+}
+
+}  // namespace zhf::codegen

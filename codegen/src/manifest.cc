@@ -1,0 +1,176 @@
+#include "zhf/codegen/manifest.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <set>
+
+#include "zhf/io/files.h"
+#include "zhf/runtime/limits.h"
+
+namespace zhf::codegen {
+namespace {
+
+const char* file_kind_name(FileKind kind) {
+  switch (kind) {
+    case FileKind::kKernels: return "kernels";
+    case FileKind::kLanesTables: return "lanes-tables";
+    case FileKind::kDispatch: return "dispatch";
+    case FileKind::kLobeTable: return "lobe-table";
+  }
+  return "?";
+}
+
+const char* precision_name(FilePrecision precision) {
+  switch (precision) {
+    case FilePrecision::kTemplate: return "template";
+    case FilePrecision::kFloat: return "float";
+    case FilePrecision::kDouble: return "double";
+  }
+  return "?";
+}
+
+// Functions a file may hold, and files a tree may hold: generous bounds, checked before use.
+constexpr std::size_t kMaxFunctions = 256;
+constexpr std::size_t kMaxFiles = 4096;
+
+}  // namespace
+
+const ManifestFile* Manifest::find(const std::string& path) const {
+  for (const ManifestFile& f : files)
+    if (f.path == path) return &f;
+  return nullptr;
+}
+
+const ManifestFile* Manifest::kernels(int order, Language language) const {
+  for (const ManifestFile& f : files)
+    if (f.kind == FileKind::kKernels && f.order == order && f.language == language) return &f;
+  return nullptr;
+}
+
+std::vector<int> Manifest::orders() const {
+  std::set<int> orders;
+  for (const ManifestFile& f : files)
+    if (f.kind == FileKind::kKernels) orders.insert(f.order);
+  return {orders.begin(), orders.end()};
+}
+
+nlohmann::ordered_json manifest_json(const Manifest& manifest) {
+  nlohmann::ordered_json j;
+  j["format"] = kManifestFormat;
+  j["generator"] = manifest.generator;
+  j["command"] = manifest.command;
+  if (manifest.scene) j["scene"] = *manifest.scene;
+  nlohmann::ordered_json files = nlohmann::ordered_json::array();
+  for (const ManifestFile& f : manifest.files) {
+    nlohmann::ordered_json functions = nlohmann::ordered_json::array();
+    for (const EmittedFunction& fn : f.functions)
+      functions.push_back({{"name", fn.name},
+                           {"kind", kernel_kind_name(fn.kind)},
+                           {"channels", fn.channels},
+                           {"multiplies", fn.ops.multiplies},
+                           {"adds", fn.ops.adds}});
+    nlohmann::ordered_json entry = {{"path", f.path}, {"kind", file_kind_name(f.kind)}};
+    if (f.kind != FileKind::kLobeTable) entry["language"] = language_name(f.language);
+    entry["order"] = f.order;
+    if (f.kind != FileKind::kLobeTable) {
+      entry["precision"] = precision_name(f.precision);
+      entry["lobe_stage"] = runtime::lobe_stage_name(f.lobe_stage);
+      entry["zero_bands"] = f.zero_bands;
+      entry["functions"] = functions;
+    }
+    entry["fnv1a64"] = f.fnv1a64;
+    files.push_back(entry);
+  }
+  j["files"] = files;
+  return j;
+}
+
+Manifest parse_manifest(const runtime::json::Value& root, const std::string& source) {
+  using runtime::json::Field;
+  const Field top(root, source);
+  top.allow_only({"format", "generator", "command", "scene", "files"});
+  const Field format = top.member("format");
+  if (format.string() != kManifestFormat)
+    format.fail("'" + runtime::excerpt(format.string()) + "' is not " + kManifestFormat + " (regenerate the tree with this zhf)");
+  Manifest manifest;
+  manifest.generator = top.member("generator").string();
+  manifest.command = top.member("command").string();
+  if (const auto scene = top.find("scene")) manifest.scene = io::to_ordered_json(scene->value());
+  for (const Field& f : top.member("files").items(0, kMaxFiles)) {
+    ManifestFile file;
+    const Field path = f.member("path");
+    file.path = path.string();
+    // A relative path inside the tree: no way out of it.
+    if (file.path.empty() || file.path[0] == '/' || file.path.find("..") != std::string::npos || !runtime::is_printable_text(file.path))
+      path.fail("must be a relative path inside the tree");
+    const std::string& kind = f.member("kind").one_of({"kernels", "lanes-tables", "dispatch", "lobe-table"});
+    file.kind = kind == "kernels"        ? FileKind::kKernels
+                : kind == "lanes-tables" ? FileKind::kLanesTables
+                : kind == "dispatch"     ? FileKind::kDispatch
+                                         : FileKind::kLobeTable;
+    if (file.kind == FileKind::kLobeTable) {
+      f.allow_only({"path", "kind", "order", "fnv1a64"});
+      file.order = f.member("order").integer(runtime::kMinTableOrder, runtime::kMaxTableOrder);
+      file.fnv1a64 = f.member("fnv1a64").string();
+      manifest.files.push_back(std::move(file));
+      continue;
+    }
+    f.allow_only({"path", "kind", "language", "order", "precision", "lobe_stage", "zero_bands", "functions", "fnv1a64"});
+    const Field language = f.member("language");
+    if (!parse_language(language.string(), file.language)) language.fail("'" + runtime::excerpt(language.string()) + "' is not a language zhf emits");
+    file.order = f.member("order").integer(file.kind == FileKind::kDispatch ? 0 : runtime::kMinGeneratedOrder, runtime::kMaxEmitOrder);
+    const std::string& precision = f.member("precision").one_of({"template", "float", "double"});
+    file.precision = precision == "template" ? FilePrecision::kTemplate : precision == "float" ? FilePrecision::kFloat : FilePrecision::kDouble;
+    runtime::parse_lobe_stage(f.member("lobe_stage").one_of({"float", "double-rotation", "double"}), file.lobe_stage);
+    for (const Field& band : f.member("zero_bands").items(0, runtime::kMaxEmitOrder))
+      file.zero_bands.push_back(band.integer(0, std::max(0, file.order - 1)));
+    for (const Field& fn : f.member("functions").items(0, kMaxFunctions)) {
+      fn.allow_only({"name", "kind", "channels", "multiplies", "adds"});
+      EmittedFunction function;
+      function.name = fn.member("name").string();
+      if (!runtime::is_printable_text(function.name)) fn.member("name").fail("not a function name");
+      const Field kind_field = fn.member("kind");
+      if (!parse_kernel_kind(kind_field.string(), function.kind))
+        kind_field.fail("'" + runtime::excerpt(kind_field.string()) + "' is not a kind of function zhf emits");
+      function.channels = fn.member("channels").integer(1, 4);
+      function.ops.multiplies = fn.member("multiplies").integer(0, 1 << 30);
+      function.ops.adds = fn.member("adds").integer(0, 1 << 30);
+      file.functions.push_back(function);
+    }
+    file.fnv1a64 = f.member("fnv1a64").string();
+    manifest.files.push_back(std::move(file));
+  }
+  return manifest;
+}
+
+Manifest read_manifest(const std::string& path) {
+  return parse_manifest(io::read_json_file(path, runtime::kMaxManifestBytes), path);
+}
+
+std::map<std::string, std::string> read_manifest_hashes(const std::string& path) {
+  using runtime::json::Field;
+  const runtime::json::Value root = io::read_json_file(path, runtime::kMaxManifestBytes);
+  const Field top(root, path);
+  const std::string& format = top.member("format").one_of({kManifestFormat, "zhf-manifest-1"});
+  std::map<std::string, std::string> hashes;
+  if (format == kManifestFormat) {
+    for (const ManifestFile& f : parse_manifest(root, path).files) hashes[f.path] = f.fnv1a64;
+    return hashes;
+  }
+  for (const Field& f : top.member("files").items(0, kMaxFiles)) hashes[f.member("path").string()] = f.member("fnv1a64").string();
+  return hashes;
+}
+
+std::string content_hash(const std::string& bytes) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : bytes) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  char buffer[17];
+  std::snprintf(buffer, sizeof buffer, "%016llx", static_cast<unsigned long long>(h));
+  return buffer;
+}
+
+}  // namespace zhf::codegen

@@ -1,0 +1,33 @@
+// zhf's one signal policy. For the whole run of a command, SIGINT and SIGTERM only set a flag:
+// long work polls it and stops, child processes are stopped with their process group, nothing
+// half-written is committed, and the command exits 130 (SIGINT) or 143 (SIGTERM), its previous
+// outputs intact. SIGPIPE is ignored, so a closed pipe is a write error, not a silent death.
+#pragma once
+
+#include <atomic>
+#include <stdexcept>
+
+namespace zhf::io {
+
+// Installs the handlers for its lifetime (main holds one).
+class InterruptGuard {
+ public:
+  InterruptGuard();
+  ~InterruptGuard();
+  InterruptGuard(const InterruptGuard&) = delete;
+  InterruptGuard& operator=(const InterruptGuard&) = delete;
+};
+
+// Set once SIGINT or SIGTERM has arrived.
+const std::atomic<bool>& interrupt_requested();
+// The exit code for the signal that arrived: 130 (SIGINT) or 143 (SIGTERM).
+int interrupted_exit_code();
+
+// Thrown where work stops for an interrupt; main turns it into interrupted_exit_code().
+struct Interrupted : std::runtime_error {
+  Interrupted() : std::runtime_error("interrupted") {}
+};
+// Throws Interrupted when a signal has arrived: the check before committing an output.
+void throw_if_interrupted();
+
+}  // namespace zhf::io

@@ -1,0 +1,123 @@
+#include "zhf/io/process.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "zhf/io/errors.h"
+#include "zhf/io/signals.h"
+
+extern char** environ;
+
+namespace zhf::io {
+namespace {
+
+// posix_spawn's file actions and attributes, released on every path.
+struct SpawnSetup {
+  posix_spawn_file_actions_t actions;
+  posix_spawnattr_t attributes;
+  SpawnSetup() {
+    posix_spawn_file_actions_init(&actions);
+    posix_spawnattr_init(&attributes);
+  }
+  ~SpawnSetup() {
+    posix_spawn_file_actions_destroy(&actions);
+    posix_spawnattr_destroy(&attributes);
+  }
+};
+
+void stop_group(pid_t pid) {
+  kill(-pid, SIGTERM);
+  for (int i = 0; i < 100; ++i) {
+    int status = 0;
+    if (waitpid(pid, &status, WNOHANG) == pid) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  kill(-pid, SIGKILL);
+  int status = 0;
+  waitpid(pid, &status, 0);
+}
+
+}  // namespace
+
+ProcessResult run_process(const std::vector<std::string>& argv, const ProcessOptions& output) {
+  // Paths in output are opened after the chdir: callers pass absolute ones with a working_dir.
+  throw_if_interrupted();
+  SpawnSetup setup;
+  posix_spawn_file_actions_addopen(&setup.actions, 0, "/dev/null", O_RDONLY, 0);
+  if (!output.stdout_path.empty()) {
+    posix_spawn_file_actions_addopen(&setup.actions, 1, output.stdout_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    if (output.stderr_path.empty()) posix_spawn_file_actions_adddup2(&setup.actions, 1, 2);
+  }
+  if (!output.stderr_path.empty())
+    posix_spawn_file_actions_addopen(&setup.actions, 2, output.stderr_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+  if (!output.working_dir.empty()) posix_spawn_file_actions_addchdir_np(&setup.actions, output.working_dir.c_str());
+  // A group of its own: a terminal's Ctrl-C reaches zhf alone, which stops the child itself.
+  posix_spawnattr_setpgroup(&setup.attributes, 0);
+  // The child starts with default signal handling whatever zhf ignores.
+  sigset_t defaults;
+  sigemptyset(&defaults);
+  sigaddset(&defaults, SIGINT);
+  sigaddset(&defaults, SIGTERM);
+  sigaddset(&defaults, SIGPIPE);
+  posix_spawnattr_setsigdefault(&setup.attributes, &defaults);
+  posix_spawnattr_setflags(&setup.attributes, POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGDEF);
+  std::vector<char*> args;
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  pid_t pid = 0;
+  const int spawned = posix_spawnp(&pid, args[0], &setup.actions, &setup.attributes, args.data(), environ);
+  ProcessResult result;
+  if (spawned != 0) {
+    result.exit_code = 127;  // as a shell reports a program it cannot start
+    return result;
+  }
+  while (true) {
+    int status = 0;
+    const pid_t done = waitpid(pid, &status, WNOHANG);
+    if (done == pid) {
+      if (WIFEXITED(status)) result.exit_code = WEXITSTATUS(status);
+      if (WIFSIGNALED(status)) result.signal = WTERMSIG(status);
+      return result;
+    }
+    if (done < 0 && errno != EINTR) return result;
+    if (interrupt_requested().load()) {
+      stop_group(pid);
+      throw Interrupted();
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+}
+
+bool program_available(const std::string& name) {
+  if (name.find('/') != std::string::npos) return access(name.c_str(), X_OK) == 0;
+  const char* path = std::getenv("PATH");
+  std::stringstream dirs(path ? path : "/usr/bin:/bin");
+  std::string dir;
+  while (std::getline(dirs, dir, ':')) {
+    const std::string candidate = (dir.empty() ? "." : dir) + "/" + name;
+    struct stat st {};
+    if (stat(candidate.c_str(), &st) == 0 && S_ISREG(st.st_mode) && access(candidate.c_str(), X_OK) == 0) return true;
+  }
+  return false;
+}
+
+std::string log_excerpt(const std::string& log_path, int lines) {
+  std::ifstream in(log_path);
+  std::string line, out;
+  for (int i = 0; i < lines && std::getline(in, line); ++i) out += (i ? " | " : "") + line;
+  return excerpt(out, 300);
+}
+
+}  // namespace zhf::io

@@ -1,0 +1,48 @@
+// The one error a caller's input can raise anywhere in zhf (the runtime's readers and the tools
+// alike): a file, field or argument that is missing, malformed or out of range. The message is
+// one line, "<source>: <field>: <problem>", and quotes at most a short, escaped excerpt. The CLI
+// exits 3 on it.
+#pragma once
+
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace zhf::runtime {
+
+struct InputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// At most max_bytes of text for a message: printable ASCII as is, everything else (control
+// characters, NUL, bytes >= 0x80, backslash, quote) as \xNN, and "..." where it was cut.
+inline std::string excerpt(std::string_view text, std::size_t max_bytes = 24) {
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string out;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (i == max_bytes) {
+      out += "...";
+      break;
+    }
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    if (c >= 0x20 && c < 0x7f && c != '\\' && c != '\'' && c != '"') {
+      out += static_cast<char>(c);
+    } else {
+      out += "\\x";
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
+    }
+  }
+  return out;
+}
+
+// Text that may be placed as it is into a message or an emitted comment: no control characters
+// (a newline would start a new line of code) and no backslashes (which splice lines).
+inline bool is_printable_text(std::string_view text) {
+  for (char c : text)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f || c == '\\') return false;
+  return true;
+}
+
+}  // namespace zhf::runtime

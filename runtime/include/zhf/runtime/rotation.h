@@ -1,0 +1,163 @@
+// 3x3 rotations in zhf's convention: R is row-major and maps a direction v to R v; rotating an
+// SH function f by R gives g(w) = f(R^T w). The checks, repairs and small constructions every
+// rotation path shares.
+//
+// Policy: the rotators rotate by proper rotations only. validate_rotation() reports the measured
+// defect; debug builds assert it; nearest_rotation() (polar decomposition) is the explicit way to
+// accept a matrix that is off by rounding. Reflections (det -1) are rejected: an SH reflection is
+// well defined, but it is not what these kernels compute, and passing one is almost always a
+// handedness bug in the caller.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "zhf/runtime/tolerances.h"
+
+namespace zhf::runtime {
+
+// Band 1 is c (y, z, x): element m + 1 of band 1 is axis kBand1Axis[m + 1], so band 1 rotates by
+// R restricted to those axes.
+inline constexpr int kBand1Axis[3] = {1, 2, 0};
+
+// out = band 1 of the coefficients of f(R^T w), from band 1 of f (in and out: 3 entries each).
+template <class T, class R>
+inline void rotate_band1(const R r[9], const T in[3], T out[3]) {
+  for (int i = 0; i < 3; ++i) {
+    T sum = 0;
+    for (int j = 0; j < 3; ++j) sum += T(r[3 * kBand1Axis[i] + kBand1Axis[j]]) * in[j];
+    out[i] = sum;
+  }
+}
+
+struct RotationCheck {
+  bool ok = false;
+  bool finite = false;
+  double orthonormality = 0;  // max |R R^T - I|
+  double determinant = 0;
+  std::string message;        // empty when ok
+};
+
+namespace detail {
+inline std::string format_defect(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", x);
+  return text;
+}
+}  // namespace detail
+
+template <class T>
+RotationCheck validate_rotation(const T r[9], double max_defect = tolerance::kRotationDefect) {
+  RotationCheck check;
+  check.finite = true;
+  for (int i = 0; i < 9; ++i) check.finite = check.finite && std::isfinite(static_cast<double>(r[i]));
+  if (!check.finite) {
+    check.message = "rotation matrix has a non-finite entry";
+    return check;
+  }
+  double m[9];
+  for (int i = 0; i < 9; ++i) m[i] = r[i];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      double dot = 0;
+      for (int k = 0; k < 3; ++k) dot += m[3 * i + k] * m[3 * j + k];
+      check.orthonormality = std::max(check.orthonormality, std::abs(dot - (i == j ? 1.0 : 0.0)));
+    }
+  check.determinant = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
+                      m[2] * (m[3] * m[7] - m[4] * m[6]);
+  if (check.determinant < 0) {
+    check.message = "rotation matrix is a reflection (det " + detail::format_defect(check.determinant) + ")";
+  } else if (check.orthonormality > max_defect || std::abs(check.determinant - 1) > max_defect) {
+    check.message = "rotation matrix is not orthonormal: max |R R^T - I| = " + detail::format_defect(check.orthonormality) +
+                    ", det = " + detail::format_defect(check.determinant) + " (tolerance " +
+                    detail::format_defect(max_defect) + ")";
+  } else {
+    check.ok = true;
+  }
+  return check;
+}
+
+// Nearest proper rotation to r (Frobenius), by the Newton iteration for the polar factor
+// X <- (X + X^-T) / 2, which converges quadratically from any nonsingular start. Accuracy: a few
+// ulps of double. Returns false (and leaves out untouched) for singular, non-finite or
+// reflecting input.
+template <class T>
+bool nearest_rotation(const T r[9], T out[9]) {
+  double x[9];
+  for (int i = 0; i < 9; ++i) {
+    x[i] = r[i];
+    if (!std::isfinite(x[i])) return false;
+  }
+  for (int it = 0; it < 100; ++it) {
+    const double c[9] = {x[4] * x[8] - x[5] * x[7], x[5] * x[6] - x[3] * x[8], x[3] * x[7] - x[4] * x[6],
+                         x[2] * x[7] - x[1] * x[8], x[0] * x[8] - x[2] * x[6], x[1] * x[6] - x[0] * x[7],
+                         x[1] * x[5] - x[2] * x[4], x[2] * x[3] - x[0] * x[5], x[0] * x[4] - x[1] * x[3]};
+    const double det = x[0] * c[0] + x[1] * c[1] + x[2] * c[2];
+    if (!(std::abs(det) > 1e-300) || !std::isfinite(det)) return false;
+    // X^-T = cofactor matrix / det.
+    double change = 0;
+    for (int i = 0; i < 9; ++i) {
+      const double next = 0.5 * (x[i] + c[i] / det);
+      change = std::max(change, std::abs(next - x[i]));
+      x[i] = next;
+    }
+    if (change < 1e-16) break;
+  }
+  const double det = x[0] * (x[4] * x[8] - x[5] * x[7]) - x[1] * (x[3] * x[8] - x[5] * x[6]) +
+                     x[2] * (x[3] * x[7] - x[4] * x[6]);
+  if (det < 0) return false;
+  for (int i = 0; i < 9; ++i) out[i] = static_cast<T>(x[i]);
+  return true;
+}
+
+// One Newton step toward a nearly orthonormal R's polar factor, Q = R (3 I - R^T R) / 2, in a
+// wider type W. A float R is orthonormal to eps_f only, and a lobe fit amplifies its symmetric
+// part by the band's condition number; after the step what remains is O(eps_f^2). The emitted
+// kernels whose lobe stage runs in double do the same step.
+template <class W, class T>
+inline void polar_step(const T r[9], W q[9]) {
+  W step[9];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      W gram = 0;
+      for (int k = 0; k < 3; ++k) gram += W(r[3 * k + i]) * W(r[3 * k + j]);
+      step[3 * i + j] = (i == j ? W(1.5) : W(0)) - W(0.5) * gram;
+    }
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      W sum = 0;
+      for (int k = 0; k < 3; ++k) sum += W(r[3 * i + k]) * step[3 * k + j];
+      q[3 * i + j] = sum;
+    }
+}
+
+using Matrix3 = std::array<double, 9>;
+
+// a b, row-major.
+inline Matrix3 multiply(const Matrix3& a, const Matrix3& b) {
+  Matrix3 out{};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k) out[3 * i + j] += a[3 * i + k] * b[3 * k + j];
+  return out;
+}
+
+// A right-handed turn by angle (radians) about the unit axis u (Rodrigues).
+inline Matrix3 rotation_about_unit_axis(const double u[3], double angle) {
+  const double c = std::cos(angle), s = std::sin(angle), t = 1 - c;
+  return {t * u[0] * u[0] + c,        t * u[0] * u[1] - s * u[2], t * u[0] * u[2] + s * u[1],
+          t * u[0] * u[1] + s * u[2], t * u[1] * u[1] + c,        t * u[1] * u[2] - s * u[0],
+          t * u[0] * u[2] - s * u[1], t * u[1] * u[2] + s * u[0], t * u[2] * u[2] + c};
+}
+
+// R = Rz(alpha) Ry(beta) Rz(gamma), radians.
+inline Matrix3 rotation_from_zyz(double alpha, double beta, double gamma) {
+  const double z[3] = {0, 0, 1}, y[3] = {0, 1, 0};
+  return multiply(multiply(rotation_about_unit_axis(z, alpha), rotation_about_unit_axis(y, beta)),
+                  rotation_about_unit_axis(z, gamma));
+}
+
+}  // namespace zhf::runtime

@@ -1,0 +1,132 @@
+// zhf's named tolerances, all of them, each with where it comes from. Every check (the readers,
+// verify, the benchmarks' accuracy columns, the tests) uses a name from this table; a tolerance is
+// never loosened to make a check pass without finding out why it failed.
+//
+// "Max error" is the largest absolute difference from the double reference rotation over
+// unit-norm coefficient vectors, unless a line says otherwise.
+#pragma once
+
+namespace zhf::runtime::tolerance {
+
+// ---- Lobe tables (the reader's checks) -------------------------------------------------------
+// Stored unit xyz against theta/phi, and |w|^2 - 1: both are rounded from the same double angles.
+inline constexpr double kTableDirection = 1e-12;
+// Y_l A_l - I, max entry: A_l is stored to 17 digits; the product rounds at ~k eps.
+inline constexpr double kTableInverse = 1e-10;
+// A stored condition number against the recomputed one, relative (the SVDs differ by rounding).
+inline constexpr double kTableConditionRelative = 0.01;
+// Beyond this condition a lobe matrix counts as singular: zero detection at 1e-10 relative is
+// meaningless once rounding (condition x 1e-16) reaches it.
+inline constexpr double kSingularCondition = 1e6;
+// An entry of A_l is a structural zero when |a| <= this times max |A_l|; it is then stored as an
+// exact 0.
+inline constexpr double kZeroRelative = 1e-10;
+
+// ---- Rotation matrices given to zhf ----------------------------------------------------------
+// max |R R^T - I| and |det R - 1| accepted as a rotation: float matrices built from quaternions
+// or Euler angles carry a few 1e-7.
+inline constexpr double kRotationDefect = 1e-5;
+
+// ---- Rotations against the reference ---------------------------------------------------------
+// Double kernels and every double method: ~1e-15 per entry, measured at most 2.9e-14 at the
+// worst unit input.
+inline constexpr double kDouble = 1e-12;
+// The float target of every rotation kernel, on random unit inputs.
+inline constexpr double kFloatRotation = 1e-6;
+inline constexpr double kFloatEpsilon = 5.9604644775390625e-08;  // 2^-24
+
+// Float rotations through lobes. Each rotated lobe is rounded to float, band-l SH turn that into
+// about l eps_f, and A_l amplifies it by up to its condition number k (k_max over the bands); a
+// float R's own symmetric rounding error is amplified the same way. Measured max error /
+// (eps_f (N-1) k_max) over 1000 rotations for the checked-in tables, orders 3..8: 0.42 to 0.95.
+inline double float_lobe_error_model(int order, double worst_condition) {
+  return kFloatEpsilon * (order - 1) * worst_condition;
+}
+// Where the lobe stage runs in double (R projected onto the rotations first), what is left is the
+// rounding of R itself, which turns band l by ~l eps_f, and of the output: 2 (N-1) eps_f, which
+// is below 1e-6 up to order 9. Measured at orders 5..8: 1.2e-7 to 6.8e-7 over 1000 rotations.
+inline double float_rotation(int order, double worst_condition, bool lobe_stage_in_double) {
+  const double model =
+      lobe_stage_in_double ? 2 * (order - 1) * kFloatEpsilon : float_lobe_error_model(order, worst_condition);
+  return model > kFloatRotation ? model : kFloatRotation;
+}
+// The lobe-parallel kernel (lanes.h) multiplies A_l as dense columns; its error model is
+// eps_f (N-1) a_max with a_l = sqrt((2l+1)/4pi) ||A_l||_2. Measured max errors over 131072
+// rotations as multiples of it at N = 3..8: all float 0.86 to 2.1; lobes rotated in double 0.62
+// to 1.13. The stage chosen per order is the cheapest whose model times its margin meets 1e-6.
+inline constexpr double kLanesFloatMargin = 2.5;
+inline constexpr double kLanesLobesInDoubleMargin = 1.25;
+// The worst unit input rather than random ones: kernels whose lobe stage runs (partly) in float
+// reach 1.4e-6 (scalar, order 4) and 1.75e-6 (lanes, order 6) over 20000 rotations, where random
+// unit vectors stay below 7.5e-7 (a random f meets the worst error row at a cosine of about 1/N).
+// 1.4x the largest measured.
+inline constexpr double kFloatLobeStageWorstUnitInput = 2.5e-6;
+// The worst unit input against a method's random-input tolerance: the largest row norm of the
+// error matrix, which a random unit f sees about N/3 times smaller; measured up to 1.75x.
+inline constexpr double kWorstUnitInputFactor = 3;
+// zxzxz in float: five stages of O(eps) rounding per coefficient, and the Euler angles' rounding
+// turns band l by ~l eps: 4 N eps_f (measured at most 0.6 of it).
+inline double zxzxz_float(int order) { return 4 * order * kFloatEpsilon; }
+// A float kernel chained 1000 times by small steps: the near-identity steps repeat one rounding
+// pattern, so the drift grows faster than a random walk (measured 2e-4; a double-stepped chain
+// through the float kernel drifts 2.9e-6). 2.5x the measured.
+inline constexpr double kFloatChain = 5e-4;
+
+// ---- Building blocks of the emitted kernels ---------------------------------------------------
+// sh_eval in float: l-1 recurrence steps of relative error ~4 eps on |y| <= 1.07 (order 8) bound
+// the error by ~1.7e-6 at l = 7.
+inline constexpr double kFloatEvaluation = 2e-6;
+// The sparse products A^T f and A s in float: entries of A up to ~10.
+inline constexpr double kFloatSparse = 4e-6;
+// Shader float results against the C++ float kernel (built with -ffp-contract=off), in ulps at
+// the coefficients' scale, at least kUlpFloor. GLSL reaches the driver as the same operations in
+// the same order: measured 2 ulps on lavapipe. glslang legalises HLSL with SPIRV-Tools passes that
+// fold constant products and regroup sums, amplified like every rounding error (by ~(N-1) k_max):
+// measured 97 ulps at order 5, 768 at order 8 (2 with -Od), hence max(256, 8 (N-1) k_max). The
+// dense-matrix pair differs from C++ by 24 ulps in GLSL too (order 5), so it gets HLSL's limit.
+inline constexpr double kGlslUlps = 8;
+inline constexpr double kUlpFloor = 1.0 / 64;  // unit-norm vectors of up to 64 entries
+inline double hlsl_ulps(int order, double worst_condition) {
+  const double model = 8 * (order - 1) * worst_condition;
+  return model > 256 ? model : 256;
+}
+
+// ---- Reference math (tests of sh/ and candidates/) ----------------------------------------------
+// What is exact in exact arithmetic and rounds once or twice in double (the identity rotation's
+// band matrices, a recurrence at a pole).
+inline constexpr double kExactToRounding = 1e-15;
+// Fast double SH against the long-double closed form: both exact to rounding for l <= 12.
+inline constexpr double kDoubleVsClosedForm = 1e-13;
+// The two long-double slow paths (closed form, unnormalised recurrence), normalised, for l <= 12.
+inline constexpr double kSlowPathsAgreement = 1e-14;
+// The emitted sh_eval (the recurrence's coefficients folded into polynomials) against eval_sh.
+inline constexpr double kGeneratedVsRecurrence = 1e-14;
+// Float SH: coefficients rounded to float and ~3l recurrence steps.
+inline constexpr double kFloatVsClosedForm = 2e-6;
+// Orthonormality by an exact product quadrature at N = 16.
+inline constexpr double kOrthonormality = 1e-13;
+// N = 64 against the long-double unnormalised recurrence, relative to the band's largest value
+// at that point (absolute error near a root of P_l^m is what a recurrence offers); measured
+// 1.6e-13.
+inline constexpr double kOrder64Relative = 1e-12;
+// The two double reference rotations (recurrence and quadrature projection): ~1e-15 per entry at
+// N = 8; at N = 32 the recurrence accumulates rounding over 31 steps (measured 1.9e-14).
+inline constexpr double kReferenceAgreement = 1e-13;
+// g(w) = f(R^T w) pointwise at N = 8, unit-norm f.
+inline constexpr double kPointwise = 1e-12;
+// A polished Legendre root, or a candidate theta from one, leaves |normalised P_l^m| at the
+// rounding floor of one evaluation.
+inline constexpr double kRootResidual = 1e-13;
+// Zeros of A_l counted by the search, recomputed in long double, sit at rounding level.
+inline constexpr double kZeroInLongDouble = 1e-13;
+// The published lobes, snapped to exact candidate values in the reference file, match to this;
+// their printed condition numbers are rounded to 2 decimals (1%).
+inline constexpr double kPaperLobeMatch = 1e-9;
+inline constexpr double kPaperConditionRelative = 0.01;
+// The axis and weights zhf analyze finds for a zonal function (and the function rebuilt from
+// them): measured to about 1e-15.
+inline constexpr double kZonalFit = 1e-9;
+// Two zonal axes are one axis when |a x b| is below this (a and -a are the same axis).
+inline constexpr double kSameAxis = 1e-6;
+
+}  // namespace zhf::runtime::tolerance

@@ -1,0 +1,105 @@
+// zhf bench --quick, as CI runs it: every method ran at every order it covers, and every
+// error, random inputs and the worst unit input, is within the method's named tolerance. No
+// timing is asserted.
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "test_support.h"
+#include "zhf/codegen/kernels.h"
+#include "zhf/runtime/lobe_table.h"
+#include "zhf/runtime/tolerances.h"
+
+namespace zhf {
+namespace {
+
+namespace fs = std::filesystem;
+
+using namespace runtime::tolerance;
+
+// The float tolerance of a lobe method: the runtime table path runs its lobe stage in double;
+// the generated kernels where `auto` put it.
+double lobe_float_tolerance(int order, const fs::path& table_path, bool runtime_path) {
+  if (order < 3) return kFloatRotation;
+  const runtime::LobeTable table = runtime::read_lobe_table(table_path.string());
+  return float_rotation(order, table.worst_condition(),
+                        runtime_path || codegen::automatic_lobe_stage(table) == runtime::LobeStage::kDouble);
+}
+
+TEST(Bench, QuickRunMeasuresEveryMethodWithinItsTolerance) {
+  const fs::path dir = test::make_temp_dir();
+  const std::string json = (dir / "bench.json").string();
+  const test::RunResult r = test::run_zhf("bench --quick --json '" + json + "' --plot '" + (dir / "bench.svg").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json report = test::read_json(json);
+  const fs::path root(test::source_path(""));
+  std::map<std::pair<std::string, std::string>, std::set<int>> ran;
+  for (const auto& row : report["rows"]) {
+    const std::string method = row["method"], scenario = row["scenario"], precision = row["precision"];
+    const std::string variant = row["variant"];
+    const int order = row["order"];
+    const std::string where = method + " " + scenario + " " + precision + " [" + variant + "] order " + std::to_string(order);
+    EXPECT_GT(row["ns_median"].get<double>(), 0.0) << where;
+    ran[{method, scenario}].insert(order);
+    if (variant.rfind("pruned", 0) == 0 || variant == "conversion only") continue;  // knobs that trade accuracy away
+    const double error = row["max_error"];
+    double tolerance = kDouble;
+    if (precision == "float") {
+      if (method == "zxzxz") {
+        tolerance = zxzxz_float(order);
+      } else {
+        fs::path table = root / "generated" / "lobes" / ("order_" + std::to_string(order) + ".json");
+        if (variant == "table cond<=50") table = root / "bench" / "tables" / "order_6_cond50.json";
+        if (variant == "no sharing") table = root / "bench" / "tables" / ("order_" + std::to_string(order) + "_no_sharing.json");
+        if (method == "zhf_lanes") {
+          // The lanes tables; the all-float knob is held to its model, the default to the target.
+          const runtime::LobeTable lanes =
+              runtime::read_lobe_table((root / "generated" / "lobes" / ("lanes_order_" + std::to_string(order) + ".json")).string());
+          tolerance = variant == "all float" ? std::max(kFloatRotation, kLanesFloatMargin * codegen::lanes_float_error_model(lanes))
+                                             : kFloatRotation;
+        } else {
+          tolerance = lobe_float_tolerance(order, table, method == "zhf_runtime");
+        }
+      }
+    }
+    EXPECT_LE(error, tolerance) << where;
+    if (scenario == "single") {
+      ASSERT_TRUE(row.contains("worst_unit_error")) << where;
+      const double worst = row["worst_unit_error"];
+      EXPECT_LE(worst, precision == "float" ? kWorstUnitInputFactor * tolerance : kDouble) << where << ", worst unit input";
+    }
+  }
+  const std::set<int> generated = {2, 3, 4, 5, 6, 7, 8};
+  const std::set<int> all = {2, 3, 4, 5, 6, 7, 8, 10, 12, 16};
+  const std::set<int> tables = {3, 4, 5, 6, 7, 8, 10, 12, 16};
+  EXPECT_EQ((ran[{"zhf", "single"}]), generated);
+  EXPECT_EQ((ran[{"zhf_signal_tailored", "single"}]), generated);
+  EXPECT_EQ((ran[{"zhf", "rgb"}]), generated);
+  EXPECT_EQ((ran[{"zhf", "batch"}]), generated);
+  EXPECT_EQ((ran[{"zhf_lanes", "single"}]), (std::set<int>{3, 4, 5, 6, 7, 8}));
+  EXPECT_EQ((ran[{"zhf_batch_soa", "batch"}]), generated);
+  EXPECT_EQ((ran[{"dense_apply", "shared"}]), generated);
+  EXPECT_EQ((ran[{"zhf_runtime", "single"}]), tables);
+  EXPECT_EQ((ran[{"zxzxz", "single"}]), all);
+  EXPECT_EQ((ran[{"zxzxz", "batch"}]), generated);
+  EXPECT_EQ((ran[{"ivanic_ruedenberg", "single"}]), all);
+  if (report["notes"].empty()) EXPECT_EQ((ran[{"healpix", "single"}]), all);
+  else std::cout << "[ SKIPPED  ] HEALPix part: " << report["notes"][0] << "\n";
+  // The script a user reruns by hand writes the final SVGs, not zhf's temporary ones.
+  const std::string script = test::read_text((dir / "bench.gp").string());
+  EXPECT_NE(script.find("'" + (dir / "bench.svg").string() + "'"), std::string::npos) << script;
+  EXPECT_NE(script.find("'" + (dir / "bench_scaling.svg").string() + "'"), std::string::npos) << script;
+  if (r.out.find("gnuplot is not installed") == std::string::npos) {
+    EXPECT_GT(fs::file_size(dir / "bench.svg"), 0u);
+    EXPECT_GT(fs::file_size(dir / "bench_scaling.svg"), 0u);
+  }
+  for (const auto& entry : fs::directory_iterator(dir))
+    EXPECT_EQ(entry.path().string().find(".tmp."), std::string::npos) << "left behind: " << entry.path();
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace zhf

@@ -1,0 +1,148 @@
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "test_support.h"
+#include "zhf/codegen/generate.h"
+#include "zhf/io/process.h"
+
+namespace zhf::codegen {
+namespace {
+
+namespace fs = std::filesystem;
+const fs::path kGenerated = test::source_path("generated");
+
+std::string slurp(const fs::path& p) { return test::read_text(p.string()); }
+
+TEST(ExpressionGraph, FoldsConstantsSignsAndSharesSubexpressions) {
+  Graph g;
+  const int x = g.input(0, 0), y = g.input(0, 1);
+  EXPECT_EQ(g.mul(g.constant(1), x), x);
+  EXPECT_TRUE(g.is_const(g.mul(g.constant(0), x), 0));
+  EXPECT_EQ(g.add(x, g.constant(0)), x);
+  EXPECT_EQ(g.add(x, y), g.add(y, x));  // shared, commutative
+  EXPECT_EQ(g.neg(g.neg(x)), x);
+  EXPECT_EQ(g.add(x, g.neg(y)), g.sub(x, y));
+  // -(2 x) folds the sign into the constant: one multiply, no negation.
+  const int n = g.neg(g.scale(2, x));
+  EXPECT_EQ(g.node(n).op, Op::kMul);
+  EXPECT_EQ(g.node(g.node(n).a).value, -2);
+  // 3x - 3y + 2x: the two magnitude-3 terms share one multiply.
+  const int l = g.linear({{3, x}, {-3, y}, {2, g.input(0, 2)}});
+  const OpCount c = g.count({l});
+  EXPECT_EQ(c.multiplies, 2);
+  EXPECT_EQ(c.adds, 2);
+}
+
+// Counts the operators of each emitted function from the text alone: binary operators are
+// printed with spaces around them, negations as "-name".
+std::map<std::string, OpCount> count_operators(const std::string& text) {
+  std::map<std::string, OpCount> counts;
+  const std::regex header(R"(^(?:inline )?void (\w+)\()");
+  const std::regex subscript(R"(\[[^\]]*\])");
+  std::istringstream in(text);
+  std::string line, current;
+  while (std::getline(in, line)) {
+    std::smatch m;
+    if (std::regex_search(line, m, header)) {
+      current = m[1];
+      counts[current];
+      continue;
+    }
+    if (line == "}") current.clear();
+    if (current.empty() || line.find(" = ") == std::string::npos || line.find("for (") != std::string::npos) continue;
+    std::string rhs = std::regex_replace(line.substr(line.find(" = ") + 3), subscript, "");
+    OpCount& c = counts[current];
+    for (size_t p = rhs.find(" * "); p != std::string::npos; p = rhs.find(" * ", p + 1)) ++c.multiplies;
+    for (const char* op : {" + ", " - "})
+      for (size_t p = rhs.find(op); p != std::string::npos; p = rhs.find(op, p + 1)) ++c.adds;
+    if (rhs.size() > 1 && rhs[0] == '-' && std::isalpha(static_cast<unsigned char>(rhs[1]))) ++c.adds;
+  }
+  return counts;
+}
+
+TEST(GeneratedFiles, BannerCountsEqualTheOperatorsInTheCode) {
+  const nlohmann::json manifest = test::read_json((kGenerated / "manifest.json").string());
+  int checked = 0;
+  for (const auto& file : manifest.at("files")) {
+    const std::string path = file.at("path");
+    if (file.at("kind") == "lobe-table") continue;
+    const std::string text = slurp(kGenerated / path);
+    const auto counted = count_operators(text);
+    for (const auto& f : file.at("functions")) {
+      const std::string name = f.at("name");
+      ASSERT_TRUE(counted.count(name)) << path << ": no function " << name;
+      EXPECT_EQ(counted.at(name).multiplies, f.at("multiplies").get<int>()) << path << " " << name;
+      EXPECT_EQ(counted.at(name).adds, f.at("adds").get<int>()) << path << " " << name;
+      // The banner says the same as the manifest.
+      EXPECT_NE(text.find("//   " + name + ": " + std::to_string(f.at("multiplies").get<int>()) + " multiplies, " +
+                          std::to_string(f.at("adds").get<int>()) + " adds"),
+                std::string::npos)
+          << path << " " << name;
+      ++checked;
+    }
+    EXPECT_EQ(file.at("fnv1a64"), content_hash(text)) << path;
+  }
+  EXPECT_GT(checked, 100);
+}
+
+TEST(GeneratedFiles, Order3RotationNeedsAtMost90Multiplies) {
+  const nlohmann::json manifest = test::read_json((kGenerated / "manifest.json").string());
+  for (const auto& file : manifest.at("files"))
+    for (const auto& f : file.value("functions", nlohmann::json::array()))
+      if (f.at("name") == "rotate_order3") {
+        EXPECT_LE(f.at("multiplies").get<int>(), 90) << file.at("path");
+      }
+}
+
+// generated/ is exactly what the generator makes from the checked-in tables. After changing
+// the generator, run `zhf generate` from the repository root (or this test with
+// ZHF_UPDATE_GENERATED=1) and commit the result.
+TEST(GeneratedFiles, MatchWhatTheGeneratorMakes) {
+  const bool update = std::getenv("ZHF_UPDATE_GENERATED") != nullptr;
+  const fs::path out = update ? kGenerated : fs::path(test::make_temp_dir());
+  GenerateOptions options;
+  options.tables_dir = (kGenerated / "lobes").string();
+  options.out_dir = out.string();
+  const GenerateResult result = generate(options);
+  if (update) GTEST_SKIP() << "ZHF_UPDATE_GENERATED set: rewrote " << kGenerated;
+  for (const std::string& relative : result.files) {
+    const std::string fresh = slurp(out / relative);
+    const fs::path checked_in = kGenerated / relative;
+    ASSERT_TRUE(fs::exists(checked_in)) << relative << " is generated but not checked in";
+    if (fresh != slurp(checked_in)) {
+      const std::string log = out.string() + "/diff.log";
+      io::run_process({"diff", "-u", checked_in.string(), (out / relative).string()}, log);
+      FAIL() << relative << " differs from what the generator makes; run `zhf generate`. The diff begins:\n"
+             << slurp(log).substr(0, 3000);
+    }
+  }
+  fs::remove_all(out);
+}
+
+// An interrupt before the commit leaves the previous tree exactly as it was.
+TEST(Generate, InterruptedRunLeavesThePreviousOutputs) {
+  const fs::path out = test::make_temp_dir();
+  GenerateOptions options;
+  options.tables_dir = (kGenerated / "lobes").string();
+  options.out_dir = out.string();
+  options.orders = {2, 3};
+  generate(options);
+  const std::string before = slurp(out / "cpp/zhf_order3.h");
+  test::write_text((out / "cpp/zhf_order3.h").string(), before + "// previous run\n");
+  std::atomic<bool> stop{true};
+  options.stop = &stop;
+  const GenerateResult result = generate(options);
+  EXPECT_TRUE(result.interrupted);
+  EXPECT_EQ(slurp(out / "cpp/zhf_order3.h"), before + "// previous run\n");
+  for (const auto& entry : fs::directory_iterator(out))
+    EXPECT_EQ(entry.path().filename().string().find(".zhf-staging"), std::string::npos) << entry.path();
+  fs::remove_all(out);
+}
+
+}  // namespace
+}  // namespace zhf::codegen

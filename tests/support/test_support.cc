@@ -1,0 +1,81 @@
+#include "test_support.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "zhf/io/private_dir.h"
+#include "zhf/io/process.h"
+
+namespace zhf::test {
+
+std::vector<std::string> split_arguments(const std::string& args) {
+  std::vector<std::string> out;
+  std::string current;
+  bool in_word = false;
+  char quote = 0;
+  for (char c : args) {
+    if (quote) {
+      if (c == quote) {
+        quote = 0;
+      } else {
+        current += c;
+      }
+    } else if (c == '\'' || c == '"') {
+      quote = c;
+      in_word = true;
+    } else if (c == ' ') {
+      if (in_word) out.push_back(current);
+      current.clear();
+      in_word = false;
+    } else {
+      current += c;
+      in_word = true;
+    }
+  }
+  if (in_word) out.push_back(current);
+  return out;
+}
+
+RunResult run_zhf(const std::string& args) { return run_zhf(split_arguments(args)); }
+
+RunResult run_zhf(const std::vector<std::string>& args, const std::string& working_dir) {
+  const std::string dir = make_temp_dir();
+  std::vector<std::string> argv = {ZHF_BINARY};
+  argv.insert(argv.end(), args.begin(), args.end());
+  const io::ProcessResult process = io::run_process(argv, io::ProcessOptions{dir + "/out", dir + "/err", working_dir});
+  RunResult result;
+  result.exit_code = process.exit_code;
+  result.signal = process.signal;
+  result.out = read_text(dir + "/out");
+  result.err = read_text(dir + "/err");
+  remove_dir(dir);
+  return result;
+}
+
+std::string make_temp_dir() { return io::make_private_dir("zhf-test"); }
+
+void remove_dir(const std::string& dir) {
+  std::error_code ignored;
+  std::filesystem::remove_all(dir, ignored);
+}
+
+std::string source_path(const std::string& relative) { return std::string(ZHF_SOURCE_DIR) + "/" + relative; }
+
+std::string data_path(const std::string& name) { return source_path("tests/data/" + name); }
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+nlohmann::json read_json(const std::string& path) { return nlohmann::json::parse(read_text(path)); }
+
+void write_text(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+
+int line_count(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
+
+}  // namespace zhf::test

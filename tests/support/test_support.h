@@ -1,0 +1,42 @@
+// What the tests share: running the real zhf binary as a user would (no shell: the argument
+// string is split by the rules below), private temp directories, an independent JSON parser
+// for outputs, and where the project's data is.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace zhf::test {
+
+struct RunResult {
+  int exit_code = -1;
+  int signal = 0;
+  std::string out;
+  std::string err;
+};
+
+// args split at spaces; '...' and "..." group (the quotes dropped), nothing else is special.
+std::vector<std::string> split_arguments(const std::string& args);
+RunResult run_zhf(const std::string& args);
+RunResult run_zhf(const std::vector<std::string>& args, const std::string& working_dir = "");
+
+// A fresh private directory; remove it with remove_dir.
+std::string make_temp_dir();
+void remove_dir(const std::string& dir);
+
+// The project's files, e.g. source_path("generated/lobes/order_3.json").
+std::string source_path(const std::string& relative);
+// tests/data/<name>: test data kept in the project (the published lobe table among them).
+std::string data_path(const std::string& name);
+
+// Outputs read with nlohmann's parser: independent of zhf's own reader.
+std::string read_text(const std::string& path);
+nlohmann::json read_json(const std::string& path);
+void write_text(const std::string& path, const std::string& text);
+
+// Lines of text (newlines counted).
+int line_count(const std::string& text);
+
+}  // namespace zhf::test

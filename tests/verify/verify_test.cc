@@ -1,0 +1,98 @@
+#include <filesystem>
+#include <regex>
+
+#include <gtest/gtest.h>
+
+#include "test_support.h"
+#include "zhf/codegen/generate.h"
+#include "zhf/verify/verify.h"
+
+namespace zhf::verify {
+namespace {
+
+namespace fs = std::filesystem;
+using codegen::Language;
+const fs::path kGenerated = test::source_path("generated");
+
+bool have_vulkan(std::string& why) { return vulkan_available(why); }
+
+VerifyOptions options_for(const fs::path& tree) {
+  VerifyOptions options;
+  options.generated_dir = tree.string();
+  options.runtime_include = test::source_path("runtime/include");
+  return options;
+}
+
+// A tree like generated/ holding order 3 only.
+fs::path tree_of_order3() {
+  const fs::path dir = test::make_temp_dir();
+  codegen::GenerateOptions options;
+  options.tables_dir = (kGenerated / "lobes").string();
+  options.out_dir = (dir / "tree").string();
+  options.orders = {3};
+  codegen::generate(options);
+  return dir;
+}
+
+// Scales the first constant inside rotate_order3 by 1.01.
+void corrupt_rotation_constant(const fs::path& file) {
+  std::string text = test::read_text(file.string());
+  const size_t body = text.find("void rotate_order3(");
+  ASSERT_NE(body, std::string::npos) << file;
+  std::smatch m;
+  const std::string tail = text.substr(body);
+  ASSERT_TRUE(std::regex_search(tail, m, std::regex(R"(([0-9]+\.[0-9]+(e[-+]?[0-9]+)?))"))) << file;
+  const double value = std::stod(m[1]);
+  text.replace(body + m.position(1), m.length(1), std::to_string(value * 1.01));
+  test::write_text(file.string(), text);
+}
+
+TEST(Verify, CheckedInOrder3PassesInEveryLanguage) {
+  std::string why;
+  VerifyOptions options = options_for(kGenerated);
+  options.orders = {3};
+  options.rotations = 100;
+  if (!have_vulkan(why)) {
+    options.languages = {Language::kCpp};
+    std::cout << "[ SKIPPED  ] GLSL and HLSL parts: " << why << "\n";
+  }
+  const VerifyReport report = run_verify(options);
+  EXPECT_TRUE(report.pass()) << report.table();
+  EXPECT_GE(report.results.size(), options.languages.size() * 6) << report.table();
+}
+
+class VerifyCorruption : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(VerifyCorruption, OneWrongCoefficientFailsAndIsNamed) {
+  const std::string language = GetParam();
+  std::string why;
+  if (language != "cpp" && !have_vulkan(why)) GTEST_SKIP() << "no Vulkan device: " << why;
+  const fs::path dir = tree_of_order3();
+  const char* file = language == "cpp" ? "cpp/zhf_order3.h" : language == "glsl" ? "glsl/zhf_order3.glsl" : "hlsl/zhf_order3.hlsli";
+  corrupt_rotation_constant(dir / "tree" / file);
+  VerifyOptions options = options_for(dir / "tree");
+  options.orders = {3};
+  Language parsed = Language::kCpp;
+  codegen::parse_language(language, parsed);
+  options.languages = {parsed};
+  options.rotations = 50;
+  const VerifyReport report = run_verify(options);
+  EXPECT_FALSE(report.pass());
+  bool named = false;
+  for (const FunctionResult& r : report.results)
+    if (!r.pass && r.function == "rotate_order3" && r.language == language) named = true;
+  EXPECT_TRUE(named) << report.table();
+  EXPECT_NE(report.table().find("FAIL: order 3, " + language), std::string::npos) << report.table();
+  fs::remove_all(dir);
+}
+
+INSTANTIATE_TEST_SUITE_P(EachLanguage, VerifyCorruption, ::testing::Values("cpp", "glsl", "hlsl"));
+
+TEST(VerifyCli, BadOrdersGetOneLine) {
+  const test::RunResult r = test::run_zhf("verify --orders 11..13");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--orders: must be 2..12 (got '13')"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace zhf::verify

@@ -1,0 +1,8 @@
+// GLSL: the wrapper compiled by glslangValidator's GLSL front end.
+#include "shader_runner.h"
+
+namespace zhf::verify {
+
+std::unique_ptr<Runner> make_glsl_runner() { return make_shader_runner({true, "verify.comp", {"-V", "-S", "comp"}}); }
+
+}  // namespace zhf::verify

@@ -1,0 +1,174 @@
+#include "shader_runner.h"
+
+#include <cstdint>
+#include <cstring>
+#include <set>
+#include <sstream>
+#include <utility>
+
+#include "../vulkan_device.h"
+#include "zhf/io/files.h"
+#include "zhf/io/process.h"
+#include "zhf/runtime/limits.h"
+
+namespace zhf::verify {
+namespace {
+
+using codegen::KernelKind;
+
+// The call for one mode: single-channel calls use c1/z1/o1, multi-channel ones the vector arrays
+// cvW/zvW/ovW of their width W.
+std::string call(const Mode& m, int order) {
+  const std::string w = std::to_string(m.channels);
+  const bool multi = m.channels > 1;
+  const std::string c = multi ? "cv" + w : "c1", o = multi ? "ov" + w : "o1", z = multi ? "zv" + w : "z1";
+  switch (m.kind) {
+    case KernelKind::kRotate:
+    case KernelKind::kSignalTailored: return m.function + "(r, " + c + ", " + o + ");";
+    case KernelKind::kShEval: return "{ float d[3]; d[0] = r[0]; d[1] = r[1]; d[2] = r[2]; " + m.function + "(d, o1); }";
+    case KernelKind::kLobeWeights:
+    case KernelKind::kFromSamples: return m.function + "(c1, o1);";
+    case KernelKind::kApplyMatrices:
+      return "rotation_matrices_order" + std::to_string(order) + "(r, mats); " + m.function + "(mats, " + c + ", " + o + ");";
+    case KernelKind::kZonal: return m.function + "(r, axis, " + z + ", " + o + ");";
+    case KernelKind::kBatch:
+    case KernelKind::kRotationMatrices: break;
+  }
+  return "";
+}
+
+std::string wrapper(bool glsl, int order, const std::string& kernels, const std::vector<Mode>& modes) {
+  const int n = order * order;
+  const std::string ns = std::to_string(n), block = std::to_string(kMaxChannels * n);
+  std::ostringstream s;
+  if (glsl) {
+    s << "#version 450\n"
+      << "layout(local_size_x = 64) in;\n"
+      << "layout(std430, set = 0, binding = 0) readonly buffer Rotations { float rotations[]; };\n"
+      << "layout(std430, set = 0, binding = 1) readonly buffer Coefficients { float coefficients[]; };\n"
+      << "layout(std430, set = 0, binding = 2) writeonly buffer Results { float results[]; };\n"
+      << "layout(push_constant) uniform Params { uint count; } params;\n\n";
+  } else {
+    s << "struct Params { uint count; };\n"
+      << "[[vk::push_constant]] ConstantBuffer<Params> params;\n"
+      << "[[vk::binding(0, 0)]] StructuredBuffer<float> rotations;\n"
+      << "[[vk::binding(1, 0)]] StructuredBuffer<float> coefficients;\n"
+      << "[[vk::binding(2, 0)]] RWStructuredBuffer<float> results;\n\n";
+  }
+  s << kernels << "\n";
+  // Multi-channel calls of one width share vector arrays; every width present gets its own.
+  std::set<int> widths;
+  for (const Mode& m : modes)
+    if (m.channels > 1) widths.insert(m.channels);
+  auto vec = [&](int w) { return (glsl ? std::string("vec") : std::string("float")) + std::to_string(w); };
+  if (glsl) {
+    s << "void main() {\n  uint i = gl_GlobalInvocationID.x;\n";
+  } else {
+    s << "[numthreads(64, 1, 1)]\nvoid main(uint3 id : SV_DispatchThreadID) {\n  uint i = id.x;\n";
+  }
+  s << "  if (i >= " << modes.size() << "u * params.count) return;\n"
+    << "  uint v = i % params.count;\n  uint mode = i / params.count;\n"
+    << "  float r[9];\n  float axis[3];\n  float c[4][" << ns << "];\n  float z[4][" << order << "];\n"
+    << "  float c1[" << ns << "];\n  float z1[" << order << "];\n  float o1[" << ns << "];\n"
+    << "  float mats[" << std::max(1, dense_size(order)) << "];\n";
+  for (int w : widths)
+    s << "  " << vec(w) << " cv" << w << "[" << ns << "];\n  " << vec(w) << " zv" << w << "[" << order << "];\n  " << vec(w)
+      << " ov" << w << "[" << ns << "];\n";
+  s << "  for (int k = 0; k < 9; ++k) r[k] = rotations[" << kRotationStride << "u * v + uint(k)];\n"
+    << "  for (int k = 0; k < 3; ++k) axis[k] = rotations[" << kRotationStride << "u * v + 9u + uint(k)];\n"
+    << "  for (int ch = 0; ch < 4; ++ch) {\n"
+    << "    for (int k = 0; k < " << ns << "; ++k) c[ch][k] = coefficients[" << ns << "u * ((v + uint(ch)) % params.count) + uint(k)];\n"
+    << "    for (int k = 0; k < " << order << "; ++k) z[ch][k] = c[ch][k];\n"
+    << "  }\n"
+    << "  for (int k = 0; k < " << ns << "; ++k) { c1[k] = c[0][k]; o1[k] = 0.0; }\n"
+    << "  for (int k = 0; k < " << order << "; ++k) z1[k] = z[0][k];\n";
+  for (int w : widths) {
+    const std::string args = "c[0][k], c[1][k], c[2][k]" + std::string(w == 4 ? ", c[3][k]" : "");
+    const std::string zargs = "z[0][k], z[1][k], z[2][k]" + std::string(w == 4 ? ", z[3][k]" : "");
+    s << "  for (int k = 0; k < " << ns << "; ++k) { cv" << w << "[k] = " << vec(w) << "(" << args << "); ov" << w << "[k] = "
+      << vec(w) << "(0.0" << std::string(w == 4 ? ", 0.0, 0.0, 0.0" : ", 0.0, 0.0") << "); }\n"
+      << "  for (int k = 0; k < " << order << "; ++k) zv" << w << "[k] = " << vec(w) << "(" << zargs << ");\n";
+  }
+  for (size_t k = 0; k < modes.size(); ++k) s << "  if (mode == " << k << "u) { " << call(modes[k], order) << " }\n";
+  s << "  uint base = (mode * params.count + v) * " << block << "u;\n"
+    << "  for (int k = 0; k < " << ns << "; ++k) {\n"
+    << "    results[base + uint(k)] = o1[k];\n";
+  for (int w : widths) {
+    s << "    if (";
+    bool first = true;
+    for (size_t k = 0; k < modes.size(); ++k)
+      if (modes[k].channels == w) {
+        s << (first ? "" : " || ") << "mode == " << k << "u";
+        first = false;
+      }
+    s << ") {\n";
+    for (int ch = 0; ch < w; ++ch) s << "      results[base + " << ch * n << "u + uint(k)] = ov" << w << "[k]." << "xyzw"[ch] << ";\n";
+    s << "    }\n";
+  }
+  s << "  }\n}\n";
+  return s.str();
+}
+
+std::vector<std::uint8_t> as_floats(const std::vector<double>& values) {
+  std::vector<std::uint8_t> out(values.size() * sizeof(float));
+  for (size_t i = 0; i < values.size(); ++i) {
+    const float f = static_cast<float>(values[i]);
+    std::memcpy(&out[i * sizeof(float)], &f, sizeof f);
+  }
+  return out;
+}
+
+class ShaderRunner : public Runner {
+ public:
+  explicit ShaderRunner(ShaderDialect dialect) : d_(std::move(dialect)) {}
+  bool needs_vulkan() const override { return true; }
+  bool runs(const Mode& mode) const override { return mode.kind != KernelKind::kBatch && !mode.lanes; }
+
+  RunOutputs run(const RunRequest& r) const override {
+    const Inputs& in = *r.inputs;
+    const std::string source = r.work_dir + "/" + d_.source_name, spirv = r.work_dir + "/shader.spv";
+    const std::string kernels = io::read_text_file(r.kernel_file, runtime::kMaxTableBytes);
+    io::write_file_atomically(source, wrapper(d_.glsl, r.order, kernels, r.modes));
+    std::vector<std::string> compile = {"glslangValidator"};
+    compile.insert(compile.end(), d_.compile_flags.begin(), d_.compile_flags.end());
+    compile.insert(compile.end(), {"-o", spirv, source});
+    if (!io::run_process(compile, r.work_dir + "/compile.log").ok())
+      throw RunFailure("glslangValidator failed: " + io::log_excerpt(r.work_dir + "/compile.log", 4));
+    if (!io::run_process({"spirv-val", spirv}, r.work_dir + "/validate.log").ok())
+      throw RunFailure("spirv-val failed: " + io::log_excerpt(r.work_dir + "/validate.log", 3));
+    const std::string bytes = io::read_text_file(spirv, std::size_t(1) << 30);
+    std::vector<std::uint32_t> words(bytes.size() / 4);
+    std::memcpy(words.data(), bytes.data(), words.size() * 4);
+    const size_t block = size_t(kMaxChannels) * r.order * r.order * in.count;
+    std::vector<std::vector<std::uint8_t>> buffers = {as_floats(in.rotation_stream()), as_floats(in.coeffs),
+                                                       std::vector<std::uint8_t>(r.modes.size() * block * sizeof(float), 0)};
+    const std::uint32_t count = static_cast<std::uint32_t>(in.count);
+    try {
+      r.device->run(words, buffers, &count, sizeof count, (static_cast<std::uint32_t>(r.modes.size()) * count + 63) / 64);
+    } catch (const std::exception& e) {
+      throw RunFailure(e.what());
+    }
+    RunOutputs out;
+    out.precisions = {"float"};
+    out.outputs.resize(1);
+    for (size_t m = 0; m < r.modes.size(); ++m) {
+      std::vector<double> got(block);
+      for (size_t k = 0; k < block; ++k) {
+        float f;
+        std::memcpy(&f, &buffers[2][(m * block + k) * sizeof(float)], sizeof f);
+        got[k] = f;
+      }
+      out.outputs[0].push_back(std::move(got));
+    }
+    return out;
+  }
+
+ private:
+  ShaderDialect d_;
+};
+
+}  // namespace
+
+std::unique_ptr<Runner> make_shader_runner(ShaderDialect dialect) { return std::make_unique<ShaderRunner>(std::move(dialect)); }
+
+}  // namespace zhf::verify
