@@ -122,7 +122,11 @@ void add_codegen_commands(CLI::App& app, Action& action, const std::string& comm
   auto e = std::make_shared<EmitCommandOptions>();
   CLI::App* emit = app.add_subcommand("emit", "Emit rotation kernels for one lobe table and language");
   emit->add_option("--table", e->table, "Lobe table (zhf-lobes-1 JSON)")->required();
-  emit->add_option("--lang", e->language, "cpp, hlsl or glsl")->required()->check(CLI::IsMember({"cpp", "hlsl", "glsl"}));
+  std::vector<std::string> languages;
+  for (codegen::Language l : codegen::all_languages()) languages.push_back(codegen::language_name(l));
+  emit->add_option("--lang", e->language, "The language (" + CLI::detail::join(languages, ", ") + ")")
+      ->required()
+      ->check(CLI::IsMember(languages));
   emit->add_option("--precision", e->precision, "float or double (shaders; C++ kernels are templates)")
       ->check(CLI::IsMember({"float", "double"}));
   emit->add_option("--lobe-stage", e->lobe_stage, kLobeStageHelp)

@@ -14,12 +14,6 @@ namespace {
 
 std::string quoted(const std::string& text) { return "'" + io::excerpt(text) + "'"; }
 
-std::string format(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", x);
-  return text;
-}
-
 }  // namespace
 
 long long integer_option(const std::string& option, const std::string& text, long long lo, long long hi) {
@@ -44,7 +38,7 @@ double number_option(const std::string& option, const std::string& text, double 
   const io::ParsedNumber x = io::parse_number(text);
   if (!x.value) throw UsageError(option + ": " + quoted(text) + " " + x.problem);
   if (*x.value < lo || *x.value > hi)
-    throw UsageError(option + ": must be in [" + format(lo) + ", " + format(hi) + "] (got " + quoted(text) + ")");
+    throw UsageError(option + ": must be in [" + runtime::format_number(lo, 6) + ", " + runtime::format_number(hi, 6) + "] (got " + quoted(text) + ")");
   return *x.value;
 }
 

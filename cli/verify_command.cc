@@ -16,21 +16,28 @@ namespace {
 
 struct VerifyCommandOptions {
   std::string generated;
-  std::string orders;  // empty: every order in the manifest
-  std::string languages = "cpp,glsl,hlsl";
+  std::string orders;     // empty: every order in the manifest
+  std::string languages;  // empty: every language
   std::string json;
   std::string work_dir;
   std::string rotations = "1000";
 };
 
+std::string language_names() {
+  std::string names;
+  for (codegen::Language l : codegen::all_languages()) names += (names.empty() ? "" : ", ") + std::string(codegen::language_name(l));
+  return names;
+}
+
 std::vector<codegen::Language> parse_languages(const std::string& text) {
+  if (text.empty()) return codegen::all_languages();
   std::vector<codegen::Language> languages;
   std::stringstream s(text);
   std::string item;
   while (std::getline(s, item, ',')) {
     codegen::Language language = codegen::Language::kCpp;
     if (!codegen::parse_language(item, language))
-      throw UsageError("--langs: '" + io::excerpt(item) + "' is not one of cpp, glsl, hlsl");
+      throw UsageError("--langs: '" + io::excerpt(item) + "' is not one of " + language_names());
     languages.push_back(language);
   }
   if (languages.empty()) throw UsageError("--langs: empty");
@@ -71,7 +78,7 @@ void add_verify_command(CLI::App& app, Action& action) {
   CLI::App* c = app.add_subcommand("verify", "Compile and run every emitted kernel against the double reference");
   c->add_option("--generated", o->generated, "The generated tree to check (default generated, else the source tree's)");
   c->add_option("--orders", o->orders, "Orders, e.g. 2..8 or 3,5 (default: every order in the manifest)");
-  c->add_option("--langs", o->languages, "Languages, comma separated (default cpp,glsl,hlsl)");
+  c->add_option("--langs", o->languages, "Languages, comma separated (default: every language, " + language_names() + ")");
   c->add_option("--json", o->json, "Write the report as JSON here");
   c->add_option("--work-dir", o->work_dir, "Keep the harnesses, shaders and logs here (default: a private temp dir, removed)");
   c->add_option("--rotations", o->rotations, "Random rotations besides the fixed extreme set, 1..1000000 (default 1000)");

@@ -41,15 +41,9 @@ void add_vector(CoefficientFile& out, std::vector<std::vector<double>> channels,
   for (auto& c : channels) out.signals.push_back(std::move(c));
 }
 
-std::string format_number(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", x);
-  return text;
-}
-
 double checked(double x, const std::string& where) {
   if (!(std::abs(x) <= kMaxCoefficientMagnitude))
-    throw InputError(where + ": " + format_number(x) + " is beyond the largest coefficient magnitude, 1e150");
+    throw InputError(where + ": " + runtime::format_number(x, 6) + " is beyond the largest coefficient magnitude, 1e150");
   return x;
 }
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -35,6 +36,13 @@ inline std::string excerpt(std::string_view text, std::size_t max_bytes = 24) {
     }
   }
   return out;
+}
+
+// A number for a message: digits significant digits, %g style.
+inline std::string format_number(double x, int digits = 3) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.*g", digits, x);
+  return text;
 }
 
 // Text that may be placed as it is into a message or an emitted comment: no control characters

@@ -337,11 +337,6 @@ class Parser {
   std::size_t count_ = 0;
 };
 
-inline std::string format_double(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", x);
-  return text;
-}
 
 }  // namespace detail
 
@@ -414,7 +409,7 @@ class Field {
   double number(double lo, double hi) const {
     const double x = number();
     if (!(x >= lo && x <= hi))
-      fail("must be in [" + detail::format_double(lo) + ", " + detail::format_double(hi) + "] (got " + excerpt(value_->text) + ")");
+      fail("must be in [" + format_number(lo, 6) + ", " + format_number(hi, 6) + "] (got " + excerpt(value_->text) + ")");
     return x;
   }
   // An exact integer in [lo, hi]: "3.0", "3e0" and out-of-range values are refused, never

@@ -193,7 +193,7 @@ inline void validate_lobe_table(const LobeTable& table, const std::string& sourc
     double gap = 0;
     for (int k = 0; k < 3; ++k) gap = std::max(gap, std::abs(expected[k] - w[k]));
     if (!(gap <= tolerance::kTableDirection))
-      fail(field + ".xyz", "disagrees with theta/phi by " + detail::format_number(gap) + " (tolerance 1e-12)");
+      fail(field + ".xyz", "disagrees with theta/phi by " + format_number(gap) + " (tolerance 1e-12)");
     if (!is_printable_text(lobe.source))
       fail(field + ".source", "control characters and backslashes are not allowed ('" + excerpt(lobe.source) + "')");
   }
@@ -229,8 +229,8 @@ inline void validate_lobe_table(const LobeTable& table, const std::string& sourc
     const Matrix y = band_matrix(table, l);
     const double condition = condition_number(y);
     if (!(condition <= tolerance::kSingularCondition))
-      fail(field, "lobe matrix Y_" + std::to_string(l) + " is near-singular (condition " + detail::format_number(condition) +
-                      ", limit " + detail::format_number(tolerance::kSingularCondition) + ")");
+      fail(field, "lobe matrix Y_" + std::to_string(l) + " is near-singular (condition " + format_number(condition) +
+                      ", limit " + format_number(tolerance::kSingularCondition) + ")");
     double residual = 0;
     for (int i = 0; i < size; ++i)
       for (int j = 0; j < size; ++j) {
@@ -239,11 +239,11 @@ inline void validate_lobe_table(const LobeTable& table, const std::string& sourc
         residual = std::max(residual, std::abs(dot - (i == j ? 1.0 : 0.0)));
       }
     if (!(residual <= tolerance::kTableInverse))
-      fail(field + ".inverse", "Y_" + std::to_string(l) + " * inverse differs from I by " + detail::format_number(residual) +
+      fail(field + ".inverse", "Y_" + std::to_string(l) + " * inverse differs from I by " + format_number(residual) +
                                    " (tolerance 1e-10): directions and inverse disagree");
     if (!(std::abs(condition - band.condition) <= tolerance::kTableConditionRelative * condition))
-      fail(field + ".condition", "says " + detail::format_number(band.condition) + " but the lobes give " +
-                                     detail::format_number(condition));
+      fail(field + ".condition", "says " + format_number(band.condition) + " but the lobes give " +
+                                     format_number(condition));
   }
   if (!full) return;
   if (table.zeros != zeros_total) fail("zeros", "does not equal the sum over bands (" + std::to_string(zeros_total) + ")");

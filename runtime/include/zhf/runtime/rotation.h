@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <string>
 
+#include "zhf/runtime/errors.h"
 #include "zhf/runtime/tolerances.h"
 
 namespace zhf::runtime {
@@ -41,14 +42,6 @@ struct RotationCheck {
   std::string message;        // empty when ok
 };
 
-namespace detail {
-inline std::string format_defect(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", x);
-  return text;
-}
-}  // namespace detail
-
 template <class T>
 RotationCheck validate_rotation(const T r[9], double max_defect = tolerance::kRotationDefect) {
   RotationCheck check;
@@ -69,11 +62,11 @@ RotationCheck validate_rotation(const T r[9], double max_defect = tolerance::kRo
   check.determinant = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
                       m[2] * (m[3] * m[7] - m[4] * m[6]);
   if (check.determinant < 0) {
-    check.message = "rotation matrix is a reflection (det " + detail::format_defect(check.determinant) + ")";
+    check.message = "rotation matrix is a reflection (det " + format_number(check.determinant) + ")";
   } else if (check.orthonormality > max_defect || std::abs(check.determinant - 1) > max_defect) {
-    check.message = "rotation matrix is not orthonormal: max |R R^T - I| = " + detail::format_defect(check.orthonormality) +
-                    ", det = " + detail::format_defect(check.determinant) + " (tolerance " +
-                    detail::format_defect(max_defect) + ")";
+    check.message = "rotation matrix is not orthonormal: max |R R^T - I| = " + format_number(check.orthonormality) +
+                    ", det = " + format_number(check.determinant) + " (tolerance " +
+                    format_number(max_defect) + ")";
   } else {
     check.ok = true;
   }
