@@ -13,6 +13,7 @@ namespace {
 
 struct BenchOptions {
   bool quick = false;
+  bool quiet = false;
   std::string orders;
   std::string json;
   std::string plot;
@@ -25,9 +26,14 @@ int run_bench(const BenchOptions& o) {
   options.source_dir = pipeline::project().root;
   // Refuse an unwritable output before minutes of measuring, not after.
   if (!o.json.empty()) io::PendingFile check(o.json);
-  if (!o.plot.empty()) io::PendingFile check(o.plot);
-  options.progress = [](const std::string& line) { std::fprintf(stderr, "  %s\n", line.c_str()); };
-  std::fprintf(stderr, "zhf bench%s: measuring (one line per method, order and scenario)\n", o.quick ? " --quick" : "");
+  if (!o.plot.empty()) {
+    io::PendingFile check(o.plot);
+    bench::check_plot_targets(o.plot);
+  }
+  if (!o.quiet) {
+    options.progress = [](const std::string& line) { std::fprintf(stderr, "  %s\n", line.c_str()); };
+    std::fprintf(stderr, "zhf bench%s: measuring (one line per method, order and scenario)\n", o.quick ? " --quick" : "");
+  }
   const bench::SuiteReport report = bench::run_suite(options);
   std::printf("CPU: %s\ncompiler: %s\nflags: %s\ndate: %s\n\n%s", report.cpu.c_str(), report.compiler.c_str(),
               report.flags.c_str(), report.date.c_str(), report.table().c_str());
@@ -54,6 +60,7 @@ void add_bench_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* c = app.add_subcommand("bench", "Time and error of every rotation method, per order and scenario");
   c->add_flag("--quick", o->quick, "Small counts and few repeats (CI: checks every method runs and is accurate)");
+  c->add_flag("--quiet", o->quiet, "No progress on stderr");
   c->add_option("--orders", o->orders, "Orders, e.g. 3,5,8 or 2..8, each 2..16 (default 2..8 plus 10, 12, 16)");
   c->add_option("--json", o->json, "Write every measurement as JSON here");
   c->add_option("--plot", o->plot,

@@ -11,6 +11,10 @@
 namespace zhf::cli {
 namespace {
 
+// --json up to this order: its 174242 directions take about 400 MiB to write (order 20 has 584162
+// and 1.4 GiB, order 32 6.4 million and 15 GiB).
+constexpr int kMaxJsonOrder = 16;
+
 struct CandidatesOptions {
   std::string order;
   std::string json_path;
@@ -19,6 +23,9 @@ struct CandidatesOptions {
 int run_candidates(const CandidatesOptions& options) {
   const int order =
       static_cast<int>(integer_option("--order", options.order, runtime::kMinSearchOrder, runtime::kMaxSearchOrder));
+  if (!options.json_path.empty() && order > kMaxJsonOrder)
+    throw UsageError("--json: a candidates file goes up to order " + std::to_string(kMaxJsonOrder) + " (order " +
+                     std::to_string(order) + "'s would be too large to write)");
   const candidates::CandidateSet set = candidates::enumerate_candidates(order);
   std::printf("order %d: %zu theta values, %zu phi values, %zu candidate directions\n", set.order, set.thetas.size(),
               set.phis.size(), set.directions.size());
@@ -37,7 +44,7 @@ void add_candidates_command(CLI::App& app, Action& action) {
   auto options = std::make_shared<CandidatesOptions>();
   CLI::App* command = app.add_subcommand("candidates", "Enumerate the candidate lobe directions of an order");
   command->add_option("--order", options->order, "Order N (bands 0..N-1), 3..32")->required();
-  command->add_option("--json", options->json_path, "Write the candidates as JSON to this file");
+  command->add_option("--json", options->json_path, "Write the candidates as JSON to this file (orders up to 16)");
   command->callback([options, &action] { action = [options] { return run_candidates(*options); }; });
 }
 

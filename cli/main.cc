@@ -26,11 +26,26 @@ std::string recorded_command(int argc, char** argv) {
   return command;
 }
 
-// One line on stderr: messages quote inputs only as short escaped excerpts, but a path or an
-// option's text may still hold a newline.
+// One line on stderr. zhf's messages quote inputs as short escaped excerpts, but a path, or an
+// option's text in CLI11's messages, may still hold control characters or be huge: those are
+// escaped, and the line is cut at 1000 bytes.
 int fail(int code, const std::string& message) {
+  static constexpr char kHex[] = "0123456789abcdef";
   std::string line = "zhf: ";
-  for (char c : message) line += c == '\n' || c == '\r' ? ' ' : c;
+  for (char c : message) {
+    if (line.size() > 1000) {
+      line += "...";
+      break;
+    }
+    const unsigned char u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f) {
+      line += "\\x";
+      line += kHex[u >> 4];
+      line += kHex[u & 15];
+    } else {
+      line += c;
+    }
+  }
   std::cerr << line << "\n";
   return code;
 }

@@ -601,15 +601,20 @@ void check_derived(const fs::path& path, const std::string& mark) {
 
 }  // namespace
 
-std::string write_plots(const SuiteReport& report, const std::string& svg_path) {
+void check_plot_targets(const std::string& svg_path) {
   if (!runtime::is_printable_text(svg_path)) throw io::OutputError("--plot: the path has control characters or backslashes");
+  const fs::path svg(svg_path);
+  check_derived(svg.parent_path() / (svg.stem().string() + "_scaling.svg"), "zhf bench: time vs order");
+  check_derived(svg.parent_path() / (svg.stem().string() + ".csv"), kPlotBanner);
+  check_derived(svg.parent_path() / (svg.stem().string() + ".gp"), kPlotBanner);
+}
+
+std::string write_plots(const SuiteReport& report, const std::string& svg_path) {
+  check_plot_targets(svg_path);
   const fs::path svg(svg_path);
   const fs::path scaling = svg.parent_path() / (svg.stem().string() + "_scaling.svg");
   const std::string csv_path = (svg.parent_path() / (svg.stem().string() + ".csv")).string();
   const std::string gp = (svg.parent_path() / (svg.stem().string() + ".gp")).string();
-  check_derived(scaling, "zhf bench: time vs order");
-  check_derived(csv_path, kPlotBanner);
-  check_derived(gp, kPlotBanner);
   // One series per method (and precision/variant), single-vector scenario.
   std::map<std::string, std::vector<const Row*>> series;
   for (const Row& r : report.rows) {

@@ -107,7 +107,7 @@ void check_targets(const fs::path& out, const Tree& tree) {
     // generated/ holding its own lobe tables) counts as zhf's.
     for (const fs::directory_entry& entry : fs::recursive_directory_iterator(out, ec)) {
       if (!entry.is_regular_file()) continue;
-      const std::string relative = fs::relative(entry.path(), out).string();
+      const std::string relative = entry.path().lexically_relative(out).string();
       if (relative.rfind(".zhf-staging-", 0) == 0) continue;
       const auto ours = std::find_if(tree.files.begin(), tree.files.end(), [&](const auto& f) { return f.first == relative; });
       if (ours == tree.files.end())

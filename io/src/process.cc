@@ -76,8 +76,19 @@ ProcessResult run_process(const std::vector<std::string>& argv, const ProcessOpt
   std::vector<char*> args;
   for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
+  // zhf's environment with the overrides on top (an override replaces the same name).
+  std::vector<char*> env;
+  for (char** e = environ; *e; ++e) {
+    const std::string entry(*e);
+    const std::string name = entry.substr(0, entry.find('=') + 1);
+    bool overridden = false;
+    for (const std::string& o : output.environment) overridden = overridden || o.rfind(name, 0) == 0;
+    if (!overridden) env.push_back(*e);
+  }
+  for (const std::string& o : output.environment) env.push_back(const_cast<char*>(o.c_str()));
+  env.push_back(nullptr);
   pid_t pid = 0;
-  const int spawned = posix_spawnp(&pid, args[0], &setup.actions, &setup.attributes, args.data(), environ);
+  const int spawned = posix_spawnp(&pid, args[0], &setup.actions, &setup.attributes, args.data(), env.data());
   ProcessResult result;
   if (spawned != 0) {
     result.exit_code = 127;  // as a shell reports a program it cannot start

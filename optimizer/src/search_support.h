@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <limits>
 #include <random>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -36,6 +37,7 @@ inline int resolve_threads(int threads) {
 
 // Calls work(i) for i in [0, count) on `workers` threads (the caller's among them), each taking
 // the next index; results must go to per-index slots so the order of completion never shows.
+// When the system refuses more threads (a process limit), the ones started share the work.
 template <class Work>
 void parallel_for(int count, int workers, Work&& work) {
   std::atomic<int> next{0};
@@ -43,7 +45,10 @@ void parallel_for(int count, int workers, Work&& work) {
     for (int i = next.fetch_add(1); i < count; i = next.fetch_add(1)) work(i);
   };
   std::vector<std::thread> pool;
-  for (int t = 1; t < workers; ++t) pool.emplace_back(run);
+  try {
+    for (int t = 1; t < workers; ++t) pool.emplace_back(run);
+  } catch (const std::system_error&) {
+  }
   run();
   for (std::thread& t : pool) t.join();
 }

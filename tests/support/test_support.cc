@@ -1,6 +1,7 @@
 #include "test_support.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -40,11 +41,17 @@ std::vector<std::string> split_arguments(const std::string& args) {
 
 RunResult run_zhf(const std::string& args) { return run_zhf(split_arguments(args)); }
 
-RunResult run_zhf(const std::vector<std::string>& args, const std::string& working_dir) {
+std::string zhf_binary() {
+  const char* other = std::getenv("ZHF_TEST_BINARY");
+  return other && *other ? other : ZHF_BINARY;
+}
+
+RunResult run_zhf(const std::vector<std::string>& args, const std::string& working_dir,
+                  const std::vector<std::string>& environment) {
   const std::string dir = make_temp_dir();
-  std::vector<std::string> argv = {ZHF_BINARY};
+  std::vector<std::string> argv = {zhf_binary()};
   argv.insert(argv.end(), args.begin(), args.end());
-  const io::ProcessResult process = io::run_process(argv, io::ProcessOptions{dir + "/out", dir + "/err", working_dir});
+  const io::ProcessResult process = io::run_process(argv, io::ProcessOptions{dir + "/out", dir + "/err", working_dir, environment});
   RunResult result;
   result.exit_code = process.exit_code;
   result.signal = process.signal;

@@ -19,8 +19,12 @@ struct RunResult {
 
 // args split at spaces; '...' and "..." group (the quotes dropped), nothing else is special.
 std::vector<std::string> split_arguments(const std::string& args);
+// The binary is ZHF_BINARY, or $ZHF_TEST_BINARY when set (to run the CLI tests against another
+// build). environment: NAME=value entries on top of the test's.
 RunResult run_zhf(const std::string& args);
-RunResult run_zhf(const std::vector<std::string>& args, const std::string& working_dir = "");
+RunResult run_zhf(const std::vector<std::string>& args, const std::string& working_dir = "",
+                  const std::vector<std::string>& environment = {});
+std::string zhf_binary();
 
 // A fresh private directory; remove it with remove_dir.
 std::string make_temp_dir();

@@ -16,11 +16,12 @@ struct ProcessResult {
 
 // Where a child's output goes: stdout to stdout_path and stderr to stderr_path, or both to
 // stdout_path when stderr_path is empty; inherited when both are empty. It runs in working_dir
-// (zhf's own when empty).
+// (zhf's own when empty), with zhf's environment and the NAME=value entries of environment on top.
 struct ProcessOptions {
   std::string stdout_path;
   std::string stderr_path;
   std::string working_dir;
+  std::vector<std::string> environment;
 };
 
 // Runs argv[0] (searched on PATH) with argv, stdin from /dev/null, in a process group of its
@@ -30,7 +31,7 @@ struct ProcessOptions {
 ProcessResult run_process(const std::vector<std::string>& argv, const ProcessOptions& options);
 // Both streams into one log (inherited when log_path is empty).
 inline ProcessResult run_process(const std::vector<std::string>& argv, const std::string& log_path = "") {
-  return run_process(argv, ProcessOptions{log_path, "", ""});
+  return run_process(argv, ProcessOptions{log_path, "", "", {}});
 }
 
 // Whether a program of that name is on PATH (executable).

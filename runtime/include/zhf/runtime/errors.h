@@ -1,7 +1,8 @@
 // The one error a caller's input can raise anywhere in zhf (the runtime's readers and the tools
 // alike): a file, field or argument that is missing, malformed or out of range. The message is
 // one line, "<source>: <field>: <problem>", and quotes at most a short, escaped excerpt. The CLI
-// exits 3 on it.
+// exits 3 on it. An invalid argument, so the runtime's entry points throw std::invalid_argument
+// (or this) for whatever they refuse.
 #pragma once
 
 #include <cstddef>
@@ -12,8 +13,8 @@
 
 namespace zhf::runtime {
 
-struct InputError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+struct InputError : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
 };
 
 // At most max_bytes of text for a message: printable ASCII as is, everything else (control

@@ -23,6 +23,7 @@
 #include <cstddef>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 #include <thread>
 #include <type_traits>
 #include <utility>
@@ -169,11 +170,17 @@ class Rotator {
     if (count < kParallelBatchThreshold) workers = 1;
     std::vector<std::thread> pool;
     const std::size_t chunk = (count + workers - 1) / workers;
-    for (int t = 1; t < workers; ++t) {
-      const std::size_t begin = std::min(count, t * chunk), end = std::min(count, (t + 1) * chunk);
-      if (begin < end) pool.emplace_back(work, begin, end);
+    std::size_t started = chunk;  // [0, chunk) is the calling thread's
+    try {
+      for (int t = 1; t < workers && started < count; ++t) {
+        pool.emplace_back(work, started, std::min(count, started + chunk));
+        started = std::min(count, started + chunk);
+      }
+    } catch (const std::system_error&) {
+      // No more threads (a process limit): the calling thread does the rest.
     }
     work(0, std::min(count, chunk));
+    work(started, count);
     for (std::thread& t : pool) t.join();
   }
 
