@@ -556,6 +556,60 @@ TEST(Hostile, OptionsAndNumbersAreReadExactly) {
           "--matrix: rotation matrix is a reflection");
 }
 
+// Every malformed document, fed to every reader the CLI has: each one is refused with exit 3 and
+// one line naming the file, and nothing is written.
+TEST(Hostile, EveryReaderRefusesEveryMalformedDocument) {
+  const std::string table = read_text(kTable3);
+  std::string binary;
+  for (int i = 0; i < 300; ++i) binary += static_cast<char>((i * 37 + 11) & 0xff);
+  std::string duplicate = table;
+  duplicate.insert(duplicate.find('{') + 1, "\"order\": 3, ");
+  const std::vector<std::pair<std::string, std::string>> documents = {
+      {"empty", ""},
+      {"truncated", table.substr(0, table.size() / 2)},
+      {"trailing garbage", table + " }x"},
+      {"NaN", "[[NaN, 0, 0, 0]]"},
+      {"-Infinity", "{\"order\": -Infinity}"},
+      {"1e400", "[[1e400, 0, 0, 0]]"},
+      {"duplicate key", duplicate},
+      {"NUL byte", std::string("{\"order\"\0: 3}", 13)},
+      {"raw binary", binary},
+      {"a bare string", "\"hello\""},
+      {"a 10 MB string", "[\"" + std::string(10 << 20, 'a') + "\"]"},
+      {"100000 brackets", deep('[', 100000)},
+      {"a lone surrogate", "[\"\\udc00\"]"},
+      {"a number with a leading zero", "[[01, 0, 0, 0]]"},
+  };
+  for (const auto& [what, text] : documents) {
+    Sandbox box;
+    std::string coeffs9 = "[[";
+    for (int i = 0; i < 81; ++i) coeffs9 += std::string(i ? ", " : "") + "0.1";
+    box.write("c9.json", coeffs9 + "]]");
+    box.write("bad.json", text);
+    box.write("tables9/order_9.json", text);  // rotate reads tables only above the compiled orders
+    box.write("tree/manifest.json", text);
+    for (int order = 2; order <= 12; ++order)
+      box.write("tables/order_" + std::to_string(order) + ".json",
+                order == 3 ? text : read_text(source_path("generated/lobes/order_" + std::to_string(order) + ".json")));
+    const std::vector<std::pair<std::string, std::vector<std::string>>> readers = {
+        {"emit --table", {"emit", "--table", box.path("bad.json"), "--lang", "cpp", "--out", box.path("o")}},
+        {"generate --tables", {"generate", "--tables", box.path("tables"), "--out", box.path("o")}},
+        {"generate --scene", {"generate", "--scene", box.path("bad.json"), "--out", box.path("o")}},
+        {"verify --generated", {"verify", "--generated", box.path("tree"), "--langs", "cpp"}},
+        {"analyze --coeffs", {"analyze", "--coeffs", box.path("bad.json"), "--json", box.path("a.json")}},
+        {"rotate --coeffs", {"rotate", "--coeffs", box.path("bad.json"), "--zyz", "1 2 3", "--out", box.path("r.json")}},
+        {"rotate --tables", {"rotate", "--coeffs", box.path("c9.json"), "--tables", box.path("tables9"), "--zyz", "1 2 3", "--out", box.path("r.json")}},
+    };
+    for (const auto& [reader, args] : readers) {
+      const std::string file = reader == "verify --generated" ? "manifest.json"
+                               : reader == "generate --tables" ? "order_3.json"
+                               : reader == "rotate --tables"   ? "order_9.json"
+                                                               : "bad.json";
+      refused(reader + " given " + what, box, args, 3, file);
+    }
+  }
+}
+
 TEST(Hostile, RuntimeEntryPointsRefuseWhatTheyCannotUse) {
   auto refuses = [](const char* what, auto&& call) {
     bool thrown = false;
