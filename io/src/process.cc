@@ -94,6 +94,7 @@ ProcessResult run_process(const std::vector<std::string>& argv, const ProcessOpt
     result.exit_code = 127;  // as a shell reports a program it cannot start
     return result;
   }
+  const auto started = std::chrono::steady_clock::now();
   while (true) {
     int status = 0;
     const pid_t done = waitpid(pid, &status, WNOHANG);
@@ -106,6 +107,13 @@ ProcessResult run_process(const std::vector<std::string>& argv, const ProcessOpt
     if (interrupt_requested().load()) {
       stop_group(pid);
       throw Interrupted();
+    }
+    if (output.time_limit_seconds > 0 &&
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() > output.time_limit_seconds) {
+      stop_group(pid);
+      result.timed_out = true;
+      result.signal = SIGTERM;
+      return result;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }

@@ -51,7 +51,7 @@ RunResult run_zhf(const std::vector<std::string>& args, const std::string& worki
   const std::string dir = make_temp_dir();
   std::vector<std::string> argv = {zhf_binary()};
   argv.insert(argv.end(), args.begin(), args.end());
-  const io::ProcessResult process = io::run_process(argv, io::ProcessOptions{dir + "/out", dir + "/err", working_dir, environment});
+  const io::ProcessResult process = io::run_process(argv, io::ProcessOptions{dir + "/out", dir + "/err", working_dir, environment, kRunTimeLimitSeconds});
   RunResult result;
   result.exit_code = process.exit_code;
   result.signal = process.signal;

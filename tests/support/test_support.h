@@ -20,7 +20,9 @@ struct RunResult {
 // args split at spaces; '...' and "..." group (the quotes dropped), nothing else is special.
 std::vector<std::string> split_arguments(const std::string& args);
 // The binary is ZHF_BINARY, or $ZHF_TEST_BINARY when set (to run the CLI tests against another
-// build). environment: NAME=value entries on top of the test's.
+// build). environment: NAME=value entries on top of the test's. A run that hangs (an older build
+// opening a FIFO to read it, say) is stopped after kRunTimeLimitSeconds and reports SIGTERM.
+constexpr double kRunTimeLimitSeconds = 300;
 RunResult run_zhf(const std::string& args);
 RunResult run_zhf(const std::vector<std::string>& args, const std::string& working_dir = "",
                   const std::vector<std::string>& environment = {});

@@ -11,17 +11,20 @@ namespace zhf::io {
 struct ProcessResult {
   int exit_code = -1;  // when it exited
   int signal = 0;      // when a signal ended it
+  bool timed_out = false;  // stopped at ProcessOptions::time_limit_seconds
   bool ok() const { return exit_code == 0 && signal == 0; }
 };
 
 // Where a child's output goes: stdout to stdout_path and stderr to stderr_path, or both to
 // stdout_path when stderr_path is empty; inherited when both are empty. It runs in working_dir
 // (zhf's own when empty), with zhf's environment and the NAME=value entries of environment on top.
+// A child still running after time_limit_seconds (when above 0) is stopped like an interrupted one.
 struct ProcessOptions {
   std::string stdout_path;
   std::string stderr_path;
   std::string working_dir;
   std::vector<std::string> environment;
+  double time_limit_seconds = 0;
 };
 
 // Runs argv[0] (searched on PATH) with argv, stdin from /dev/null, in a process group of its

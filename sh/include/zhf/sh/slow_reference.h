@@ -1,4 +1,4 @@
-// Slow, obviously-correct SH evaluation in long double, sharing no code with eval.h; used
+// Slow, obviously-correct SH evaluation in long double, sharing no code with runtime/sh_eval.h; used
 // only to test the fast paths.
 #pragma once
 
