@@ -244,7 +244,7 @@ TEST(Hostile, OutputsThatAreNotRegularFilesAreWrittenThroughNeverReplaced) {
     EXPECT_EQ(s.at("link.json").type, 'l');
     EXPECT_EQ(s.at("real/out.json").content.rfind("{", 0), 0u);
   }
-  {
+  if (geteuid() != 0 || zhf_binary() == ZHF_BINARY) {  // another build, as root, might replace /dev/stdout
     Sandbox box;
     const RunResult r = succeeded("--json /dev/stdout", box, {"candidates", "--order", "3", "--json", "/dev/stdout"});
     EXPECT_NE(r.out.find("\"zhf-candidates-1\""), std::string::npos);
