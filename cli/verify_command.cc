@@ -52,7 +52,7 @@ int run_verify_command(const VerifyCommandOptions& o) {
   options.languages = parse_languages(o.languages);
   options.rotations = static_cast<int>(integer_option("--rotations", o.rotations, 1, 1000000));
   options.work_dir = o.work_dir;
-  options.runtime_include = project.runtime_include();
+  options.runtime_include = project.runtime_include;
   // Refuse an unwritable report before the work, not after it.
   if (!o.json.empty()) io::PendingFile check(o.json);
   const verify::VerifyReport report = verify::run_verify(options);

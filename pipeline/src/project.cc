@@ -1,18 +1,37 @@
 #include "zhf/pipeline/project.h"
 
 #include <filesystem>
+#include <system_error>
 
 namespace zhf::pipeline {
+
+namespace fs = std::filesystem;
 
 runtime::LobeTable Project::table(int order) const {
   if (order == 2) return runtime::lobe_free_table();
   return runtime::read_lobe_table(lobes() + "/order_" + std::to_string(order) + ".json", order);
 }
 
-Project project() {
+namespace {
+
+bool holds_tables(const fs::path& root) {
   std::error_code ec;
-  const bool here = std::filesystem::is_directory("generated/lobes", ec) && !std::filesystem::is_empty("generated/lobes", ec);
-  return Project{here ? "." : ZHF_SOURCE_DIR};
+  return fs::is_directory(root / "generated/lobes", ec) && !fs::is_empty(root / "generated/lobes", ec);
+}
+
+}  // namespace
+
+Project project() {
+  if (holds_tables(".")) return Project{".", "./runtime/include"};
+  // ZHF_INSTALLED_DATA and ZHF_INSTALLED_INCLUDE are relative to the installed binary's folder.
+  std::error_code ec;
+  const fs::path binary = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const fs::path bin_dir = binary.parent_path();
+    const fs::path data = (bin_dir / ZHF_INSTALLED_DATA).lexically_normal();
+    if (holds_tables(data)) return Project{data.string(), (bin_dir / ZHF_INSTALLED_INCLUDE).lexically_normal().string()};
+  }
+  return Project{ZHF_SOURCE_DIR, ZHF_SOURCE_DIR "/runtime/include"};
 }
 
 }  // namespace zhf::pipeline

@@ -10,18 +10,19 @@
 namespace zhf::pipeline {
 
 struct Project {
-  std::string root;  // holds generated/, runtime/include and bench/tables
+  std::string root;             // holds generated/ and bench/tables
+  std::string runtime_include;  // holds zhf/runtime/*.h
 
   std::string generated() const { return root + "/generated"; }
   std::string lobes() const { return root + "/generated/lobes"; }
-  std::string runtime_include() const { return root + "/runtime/include"; }
   std::string bench_tables() const { return root + "/bench/tables"; }
   // generated/lobes/order_N.json (order 2: the lobe-free table).
   runtime::LobeTable table(int order) const;
 };
 
-// The working directory when it holds a non-empty generated/ (a checkout, or a copy made to
-// change the tables), else the source tree zhf was built from.
+// The first of: the working directory when it holds a non-empty generated/lobes (a checkout, or
+// a copy made to change the tables); the installed data beside the running binary
+// (<prefix>/share/zhf after `cmake --install`); the source tree zhf was built from.
 Project project();
 
 }  // namespace zhf::pipeline
