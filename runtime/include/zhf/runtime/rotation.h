@@ -146,6 +146,19 @@ inline Matrix3 rotation_about_unit_axis(const double u[3], double angle) {
           t * u[0] * u[2] - s * u[1], t * u[1] * u[2] + s * u[0], t * u[2] * u[2] + c};
 }
 
+// The rotation of the quaternion q = w + x i + y j + z k, of any nonzero length (it is divided by
+// |q|): v -> q v q*, a right-handed turn by 2 acos(w / |q|) about (x, y, z); q and -q give the
+// same R. Returns false (out untouched) for a zero or non-finite q. Accuracy: a few ulps.
+inline bool rotation_from_quaternion(double w, double x, double y, double z, Matrix3& out) {
+  const double norm2 = w * w + x * x + y * y + z * z;
+  if (!std::isfinite(norm2) || !(norm2 > 0)) return false;
+  const double s = 2 / norm2;
+  out = {1 - s * (y * y + z * z), s * (x * y - w * z),     s * (x * z + w * y),
+         s * (x * y + w * z),     1 - s * (x * x + z * z), s * (y * z - w * x),
+         s * (x * z - w * y),     s * (y * z + w * x),     1 - s * (x * x + y * y)};
+  return true;
+}
+
 // R = Rz(alpha) Ry(beta) Rz(gamma), radians.
 inline Matrix3 rotation_from_zyz(double alpha, double beta, double gamma) {
   const double z[3] = {0, 0, 1}, y[3] = {0, 1, 0};

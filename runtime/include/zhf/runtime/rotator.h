@@ -5,8 +5,9 @@
 //   rotate       one vector, a new rotation each call.
 //   rotate_rgb   three channels under one rotation: the per-rotation work is done once.
 //   rotate_batch many vectors, each with its own rotation; spread over threads when large.
-//   dense        one rotation shared by many vectors: build the band matrices once
-//                (~the cost of N^2/3 rotations), then each apply is a small dense product.
+//   rotate_shared many vectors under one rotation: the band matrices are built once (dense),
+//                then each vector is a small dense product; spread over threads when large.
+//   dense        those band matrices, to apply yourself (~the cost of N^2 rotations to build).
 //
 // Where the kernels come from:
 //   Rotator<T>::of<N>()                   the generated kernels of order N (include zhf_orderN.h);
@@ -43,6 +44,29 @@ namespace zhf::runtime {
 
 // Below this many vectors a batch runs on the calling thread.
 inline constexpr std::size_t kParallelBatchThreshold = 4096;
+
+// Runs work(begin, end) over [0, count) in contiguous chunks, one per worker (threads = 0: all
+// cores); below kParallelBatchThreshold items, or when no thread can be started, on the calling
+// thread alone.
+template <class Work>
+void parallel_chunks(std::size_t count, int threads, Work&& work) {
+  int workers = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (count < kParallelBatchThreshold) workers = 1;
+  std::vector<std::thread> pool;
+  const std::size_t chunk = (count + workers - 1) / workers;
+  std::size_t started = chunk;  // [0, chunk) is the calling thread's
+  try {
+    for (int t = 1; t < workers && started < count; ++t) {
+      pool.emplace_back(work, started, std::min(count, started + chunk));
+      started = std::min(count, started + chunk);
+    }
+  } catch (const std::system_error&) {
+    // No more threads (a process limit): the calling thread does the rest.
+  }
+  work(std::size_t(0), std::min(count, chunk));
+  work(started, count);
+  for (std::thread& t : pool) t.join();
+}
 
 // One implementation of an order's single-rotation entry points.
 template <class T>
@@ -163,25 +187,23 @@ class Rotator {
   // count vectors: R[9 v + k], in[N^2 v + i], out[N^2 v + i]; threads = 0: all cores.
   void rotate_batch(std::size_t count, const T* r, const T* in, T* out, int threads = 0) const {
     const std::size_t n = static_cast<std::size_t>(coefficients());
-    auto work = [&](std::size_t begin, std::size_t end) {
+    parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
       for (std::size_t v = begin; v < end; ++v) rotate(r + 9 * v, in + n * v, out + n * v);
-    };
-    int workers = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-    if (count < kParallelBatchThreshold) workers = 1;
-    std::vector<std::thread> pool;
-    const std::size_t chunk = (count + workers - 1) / workers;
-    std::size_t started = chunk;  // [0, chunk) is the calling thread's
-    try {
-      for (int t = 1; t < workers && started < count; ++t) {
-        pool.emplace_back(work, started, std::min(count, started + chunk));
-        started = std::min(count, started + chunk);
-      }
-    } catch (const std::system_error&) {
-      // No more threads (a process limit): the calling thread does the rest.
+    });
+  }
+
+  // count vectors under one rotation R: in[N^2 v + i], out[N^2 v + i]; threads = 0: all cores.
+  // Fewer vectors than N^2 are rotated one by one (building the band matrices would cost more).
+  void rotate_shared(std::size_t count, const T r[9], const T* in, T* out, int threads = 0) const {
+    const std::size_t n = static_cast<std::size_t>(coefficients());
+    if (count < n) {
+      for (std::size_t v = 0; v < count; ++v) rotate(r, in + n * v, out + n * v);
+      return;
     }
-    work(0, std::min(count, chunk));
-    work(started, count);
-    for (std::thread& t : pool) t.join();
+    const DenseRotation<T> d = dense(r);
+    parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t v = begin; v < end; ++v) d.apply(in + n * v, out + n * v);
+    });
   }
 
   // The band matrices of R, by rotating each basis vector once.

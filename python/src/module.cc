@@ -1,0 +1,265 @@
+// zhf._zhf: the C++ half of the Python module. It takes arrays the Python half (zhf/__init__.py)
+// has already shaped: contiguous (count, N^2) coefficients of one dtype and float64 rotations,
+// validates every number, then rotates without the GIL on the runtime's threads. Shapes,
+// broadcasting and rotation forms are the Python half's.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "zhf/io/errors.h"
+#include "zhf/io/files.h"
+#include "zhf/io/lobe_table_writer.h"
+#include "zhf/runtime/lobe_table.h"
+#include "zhf/runtime/rotation.h"
+#include "zhf/runtime/rotator.h"
+#include "zhf/sh/analysis.h"
+#include "zhf_kernels.h"
+
+namespace py = pybind11;
+namespace rt = zhf::runtime;
+
+namespace {
+
+template <class T>
+using Array = py::array_t<T, py::array::c_style>;
+
+// The rotator of an order: the generated kernels (orders 2..8, the fastest verified path) or the
+// given table's path (any order up to 32).
+template <class T>
+rt::Rotator<T> rotator_for(int order, const rt::LobeTable* table) {
+  if (table) {
+    if (table->order != order)
+      throw rt::InputError("table: order " + std::to_string(table->order) + ", but coeffs have order " + std::to_string(order));
+    return rt::Rotator<T>::from_table(*table);
+  }
+  return rt::Rotator<T>::with(zhf::gen::fastest_kernels<T>(order));
+}
+
+int order_of(const py::buffer_info& coeffs) {
+  const auto n = static_cast<std::size_t>(coeffs.shape[1]);
+  for (int order = 1; order <= rt::kMaxTableOrder; ++order)
+    if (static_cast<std::size_t>(order) * order == n) return order;
+  throw rt::InputError("coeffs: a last axis of " + std::to_string(n) + " is not N^2 for an order N <= " +
+                       std::to_string(rt::kMaxTableOrder));
+}
+
+// Refuses the first non-finite entry, naming its position in the (count, N^2) view.
+template <class T>
+void check_finite(const T* data, std::size_t count, std::size_t n, int threads) {
+  std::atomic<std::size_t> first_bad{count * n};
+  rt::parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin * n; i < end * n; ++i)
+      if (!std::isfinite(data[i])) {
+        std::size_t seen = first_bad.load();
+        while (i < seen && !first_bad.compare_exchange_weak(seen, i)) {
+        }
+        return;
+      }
+  });
+  const std::size_t bad = first_bad.load();
+  if (bad < count * n)
+    throw rt::InputError("coeffs: vector " + std::to_string(bad / n) + ", coefficient " + std::to_string(bad % n) +
+                         ": " + rt::format_number(double(data[bad])) + " is not finite");
+}
+
+// Refuses anything but a proper rotation, naming the vector.
+void check_rotation(const double* r, std::size_t v, bool many) {
+  const rt::RotationCheck check = rt::validate_rotation(r);
+  if (!check.ok) throw rt::InputError(std::string("rotation") + (many ? " " + std::to_string(v) : "") + ": " + check.message);
+}
+
+template <class T>
+Array<T> rotate_shared(const Array<T>& coeffs, const Array<double>& rotation, const rt::LobeTable* table, int threads) {
+  const py::buffer_info in = coeffs.request();
+  if (in.ndim != 2) throw rt::InputError("coeffs: expected a (count, N^2) array");
+  if (rotation.size() != 9) throw rt::InputError("rotation: expected 9 numbers");
+  const int order = order_of(in);
+  check_rotation(rotation.data(), 0, false);
+  const std::size_t count = in.shape[0], n = in.shape[1];
+  Array<T> out({count, n});
+  T r[9];
+  for (int i = 0; i < 9; ++i) r[i] = T(rotation.data()[i]);
+  const T* src = coeffs.data();
+  T* dst = out.mutable_data();
+  {
+    py::gil_scoped_release release;
+    check_finite(src, count, n, threads);
+    if (order == 1) {
+      std::copy(src, src + count * n, dst);
+    } else {
+      rotator_for<T>(order, table).rotate_shared(count, r, src, dst, threads);
+    }
+  }
+  return out;
+}
+
+template <class T>
+Array<T> rotate_each(const Array<T>& coeffs, const Array<double>& rotations, const rt::LobeTable* table, int threads) {
+  const py::buffer_info in = coeffs.request();
+  if (in.ndim != 2) throw rt::InputError("coeffs: expected a (count, N^2) array");
+  const int order = order_of(in);
+  const std::size_t count = in.shape[0], n = in.shape[1];
+  if (rotations.ndim() != 2 || std::size_t(rotations.shape(0)) != count || rotations.shape(1) != 9)
+    throw rt::InputError("rotation: expected one 3x3 matrix per vector");
+  Array<T> out({count, n});
+  const T* src = coeffs.data();
+  T* dst = out.mutable_data();
+  const double* r = rotations.data();
+  {
+    py::gil_scoped_release release;
+    for (std::size_t v = 0; v < count; ++v) check_rotation(r + 9 * v, v, true);
+    check_finite(src, count, n, threads);
+    if (order == 1) {
+      std::copy(src, src + count * n, dst);
+    } else {
+      std::vector<T> rt_rotations(r, r + 9 * count);
+      rotator_for<T>(order, table).rotate_batch(count, rt_rotations.data(), src, dst, threads);
+    }
+  }
+  return out;
+}
+
+// D_l of R for l < order, each (2l+1, 2l+1): out_l = D_l in_l.
+std::vector<Array<double>> band_matrices(const Array<double>& rotation, int order, const rt::LobeTable* table) {
+  if (rotation.size() != 9) throw rt::InputError("rotation: expected 9 numbers");
+  check_rotation(rotation.data(), 0, false);
+  std::vector<Array<double>> bands;
+  if (order == 1) {
+    Array<double> one({1, 1});
+    one.mutable_data()[0] = 1;
+    bands.push_back(one);
+    return bands;
+  }
+  const rt::DenseRotation<double> d = rotator_for<double>(order, table).dense(rotation.data());
+  for (int l = 0; l < order; ++l) {
+    const auto size = static_cast<std::size_t>(rt::band_size(l));
+    Array<double> band({size, size});
+    std::copy(d.bands()[l].begin(), d.bands()[l].end(), band.mutable_data());
+    bands.push_back(band);
+  }
+  return bands;
+}
+
+// (count, 4) quaternions -> ((count, 9) matrices, the largest | |q| - 1 |). Zero or non-finite
+// quaternions are refused, naming the first.
+py::tuple matrices_from_quaternions(const Array<double>& quaternions, bool scalar_first) {
+  if (quaternions.ndim() != 2 || quaternions.shape(1) != 4) throw rt::InputError("rotation: expected (count, 4) quaternions");
+  const std::size_t count = quaternions.shape(0);
+  Array<double> matrices({count, std::size_t(9)});
+  const double* q = quaternions.data();
+  double* out = matrices.mutable_data();
+  double defect = 0;
+  for (std::size_t v = 0; v < count; ++v) {
+    const double* c = q + 4 * v;
+    const double w = scalar_first ? c[0] : c[3], x = scalar_first ? c[1] : c[0], y = scalar_first ? c[2] : c[1],
+                 z = scalar_first ? c[3] : c[2];
+    rt::Matrix3 r;
+    if (!rt::rotation_from_quaternion(w, x, y, z, r))
+      throw rt::InputError("rotation: quaternion " + std::to_string(v) + " is zero or not finite");
+    defect = std::max(defect, std::abs(std::sqrt(w * w + x * x + y * y + z * z) - 1));
+    std::copy(r.begin(), r.end(), out + 9 * v);
+  }
+  return py::make_tuple(matrices, defect);
+}
+
+py::dict analyze(const Array<double>& coeffs, double tolerance) {
+  const py::buffer_info in = coeffs.request();
+  if (in.ndim != 2 || in.shape[0] < 1) throw rt::InputError("coeffs: expected a non-empty (count, N^2) array");
+  order_of(in);
+  if (!(tolerance >= 1e-15 && tolerance <= 1)) throw rt::InputError("tolerance: must be in [1e-15, 1]");
+  const std::size_t count = in.shape[0], n = in.shape[1];
+  check_finite(coeffs.data(), count, n, 1);
+  std::vector<Eigen::VectorXd> signals(count);
+  for (std::size_t v = 0; v < count; ++v) signals[v] = Eigen::Map<const Eigen::VectorXd>(coeffs.data() + v * n, n);
+  const zhf::sh::EnergyReport report = zhf::sh::analyze_energy(signals, tolerance);
+  py::dict out;
+  out["order"] = report.order;
+  out["band_energy"] = report.band_energy;
+  out["truncation_error"] = report.truncation_error;
+  out["smallest_order"] = report.smallest_order;
+  out["zero_bands"] = report.zero_bands;
+  return out;
+}
+
+py::list table_bands(const rt::LobeTable& table) {
+  py::list bands;
+  for (const rt::TableBand& band : table.bands) {
+    Array<double> inverse({band.inverse.rows, band.inverse.cols});
+    std::copy(band.inverse.values.begin(), band.inverse.values.end(), inverse.mutable_data());
+    py::dict b;
+    b["l"] = band.l;
+    b["lobes"] = band.lobes;
+    b["inverse"] = inverse;
+    b["zeros"] = band.zeros;
+    b["condition"] = band.condition;
+    bands.append(b);
+  }
+  return bands;
+}
+
+Array<double> table_directions(const rt::LobeTable& table) {
+  Array<double> xyz({table.lobes.size(), std::size_t(3)});
+  for (std::size_t d = 0; d < table.lobes.size(); ++d)
+    for (int i = 0; i < 3; ++i) xyz.mutable_data()[3 * d + i] = table.lobes[d].xyz[i];
+  return xyz;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_zhf, m) {
+  m.doc() = "zhf's C++ core; use the zhf package, which shapes arrays for it";
+  m.attr("__version__") = ZHF_VERSION;
+  m.attr("max_table_order") = rt::kMaxTableOrder;
+  m.attr("max_generated_order") = rt::kMaxGeneratedOrder;
+  // The named tolerances the Python tests hold results to (runtime/tolerances.h).
+  py::dict tolerances;
+  tolerances["double"] = rt::tolerance::kDouble;
+  tolerances["float_rotation"] = rt::tolerance::kFloatRotation;
+  tolerances["pointwise"] = rt::tolerance::kPointwise;
+  tolerances["rotation_defect"] = rt::tolerance::kRotationDefect;
+  m.attr("tolerances") = tolerances;
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const zhf::io::OutputError& e) {
+      PyErr_SetString(PyExc_OSError, e.what());
+    } catch (const std::invalid_argument& e) {  // rt::InputError among them
+      PyErr_SetString(PyExc_ValueError, e.what());
+    }
+  });
+
+  py::class_<rt::LobeTable>(m, "LobeTable", "A validated lobe table (docs/formats.md); read with read_lobe_table")
+      .def_readonly("order", &rt::LobeTable::order)
+      .def_readonly("lobe_sharing", &rt::LobeTable::lobe_sharing)
+      .def_readonly("zeros", &rt::LobeTable::zeros, "exact zeros of the inverses, all bands")
+      .def_readonly("entries", &rt::LobeTable::entries, "entries of the inverses, all bands")
+      .def_property_readonly("directions", &table_directions, "the lobe directions, (lobes, 3) unit vectors")
+      .def_property_readonly("bands", &table_bands, "per band l >= 2: l, lobes (indices), inverse A_l, zeros, condition")
+      .def_property_readonly("worst_condition", &rt::LobeTable::worst_condition)
+      .def_property_readonly("command", &rt::LobeTable::command, "the command that made it (provenance)")
+      .def("__repr__", [](const rt::LobeTable& t) {
+        return "<zhf.LobeTable order " + std::to_string(t.order) + ", " + std::to_string(t.lobes.size()) + " lobes, " +
+               std::to_string(t.zeros) + " zeros of " + std::to_string(t.entries) + ">";
+      });
+
+  m.def("read_lobe_table", [](const std::string& path, int order) { return rt::read_lobe_table(path, order); },
+        py::arg("path"), py::arg("order") = 0);
+  m.def("write_lobe_table", [](const rt::LobeTable& table, const std::string& path) {
+          zhf::io::write_file_atomically(path, zhf::io::lobe_table_text(table, path));
+        },
+        py::arg("table"), py::arg("path"));
+  m.def("rotate_shared", &rotate_shared<float>, py::arg("coeffs"), py::arg("rotation"), py::arg("table"), py::arg("threads"));
+  m.def("rotate_shared", &rotate_shared<double>, py::arg("coeffs"), py::arg("rotation"), py::arg("table"), py::arg("threads"));
+  m.def("rotate_each", &rotate_each<float>, py::arg("coeffs"), py::arg("rotations"), py::arg("table"), py::arg("threads"));
+  m.def("rotate_each", &rotate_each<double>, py::arg("coeffs"), py::arg("rotations"), py::arg("table"), py::arg("threads"));
+  m.def("band_matrices", &band_matrices, py::arg("rotation"), py::arg("order"), py::arg("table"));
+  m.def("analyze", &analyze, py::arg("coeffs"), py::arg("tolerance"));
+  m.def("matrices_from_quaternions", &matrices_from_quaternions, py::arg("quaternions"), py::arg("scalar_first"));
+}

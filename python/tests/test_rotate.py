@@ -1,0 +1,165 @@
+"""zhf.rotate and its rotation forms, against independent references (reference.py)."""
+
+import numpy as np
+import pytest
+
+import zhf
+from zhf import _zhf
+
+from reference import random_directions, random_rotation, real_sh, rotation_about_axis
+
+TOL = _zhf.tolerances
+SHIPPED_ORDERS = list(range(1, 13)) + [16]
+
+
+def unit_vectors(rng, shape):
+    f = rng.standard_normal(shape)
+    return f / np.linalg.norm(f, axis=-1, keepdims=True)
+
+
+@pytest.mark.parametrize("order", SHIPPED_ORDERS)
+def test_rotated_coefficients_are_the_rotated_function(order):
+    # g(w) = f(R^T w) at random directions, with SH evaluated independently of zhf.
+    rng = np.random.default_rng(order)
+    f = unit_vectors(rng, (4, order * order))
+    r = random_rotation(rng)
+    g = zhf.rotate(f, r)
+    w = random_directions(rng, 40)
+    g_at_w = g @ real_sh(order, w).T
+    f_at_rtw = f @ real_sh(order, w @ r).T  # rows of w @ r are R^T w
+    error = np.abs(g_at_w - f_at_rtw).max()
+    # A coefficient error e moves the value by at most e sqrt(N^2 / 4 pi).
+    assert error <= TOL["pointwise"] * max(1.0, order / np.sqrt(4 * np.pi)), f"order {order}: {error:.3g}"
+
+
+@pytest.mark.parametrize("order", range(2, 9))
+def test_float32_within_the_float_target(order):
+    rng = np.random.default_rng(100 + order)
+    f = unit_vectors(rng, (64, order * order))
+    r = random_rotation(rng)
+    expected = zhf.rotate(f, r)
+    got = zhf.rotate(f.astype(np.float32), r.astype(np.float32))
+    assert got.dtype == np.float32
+    error = np.abs(got.astype(np.float64) - expected)
+    worst = np.unravel_index(error.argmax(), error.shape)
+    assert error.max() <= TOL["float_rotation"], f"order {order}, vector {worst[0]}, index {worst[1]}: {error.max():.3g}"
+
+
+def test_shapes_dtypes_and_broadcasting():
+    rng = np.random.default_rng(7)
+    f = rng.standard_normal((5, 3, 16))
+    rs = np.stack([random_rotation(rng) for _ in range(5)])
+    one = zhf.rotate(f, rs[0])
+    assert one.shape == f.shape and one.dtype == np.float64
+    # One rotation per item, shared by the channels, against a loop.
+    per_item = zhf.rotate(f, rs[:, None])
+    for i in range(5):
+        np.testing.assert_allclose(per_item[i], zhf.rotate(f[i], rs[i]), atol=TOL["double"], rtol=0)
+    # One vector, many rotations: the output takes the broadcast shape.
+    many = zhf.rotate(f[0, 0], rs)
+    assert many.shape == (5, 16)
+    # Integers are computed in float64; the input is never changed.
+    ints = np.arange(16)
+    before = ints.copy()
+    assert zhf.rotate(ints, rs[0]).dtype == np.float64
+    np.testing.assert_array_equal(ints, before)
+    # Empty batches and order 1 (a copy).
+    assert zhf.rotate(np.zeros((0, 9)), rs[0]).shape == (0, 9)
+    np.testing.assert_array_equal(zhf.rotate([[2.5], [1.0]], rs[0]), [[2.5], [1.0]])
+
+
+def test_batch_path_equals_one_by_one():
+    # Above N^2 vectors one rotation takes the dense batch path; it must agree with the kernels.
+    rng = np.random.default_rng(8)
+    f = unit_vectors(rng, (5000, 3, 16)).astype(np.float32)
+    r = random_rotation(rng)
+    batch = zhf.rotate(f, r)
+    single = np.stack([zhf.rotate(f[i : i + 1], r)[0] for i in range(0, 5000, 499)])
+    np.testing.assert_allclose(batch[::499], single, atol=2 * TOL["float_rotation"], rtol=0)
+
+
+def test_thread_count_never_changes_the_result():
+    rng = np.random.default_rng(9)
+    f = rng.standard_normal((20000, 25)).astype(np.float32)
+    rs = np.stack([random_rotation(rng) for _ in range(20000)])
+    np.testing.assert_array_equal(zhf.rotate(f, rs, threads=1), zhf.rotate(f, rs, threads=2))
+    np.testing.assert_array_equal(zhf.rotate(f, rs[0], threads=1), zhf.rotate(f, rs[0], threads=2))
+
+
+def test_quaternions_in_both_orders_match_axis_angle():
+    rng = np.random.default_rng(10)
+    for _ in range(20):
+        axis = rng.standard_normal(3)
+        angle = rng.uniform(-np.pi, np.pi)
+        u = axis / np.linalg.norm(axis)
+        wxyz = np.concatenate([[np.cos(angle / 2)], np.sin(angle / 2) * u])
+        xyzw = np.roll(wxyz, -1)
+        expected = rotation_about_axis(axis, angle)
+        np.testing.assert_allclose(zhf.matrix_from_quaternion(wxyz, "wxyz"), expected, atol=1e-15)
+        np.testing.assert_allclose(zhf.matrix_from_quaternion(xyzw, "xyzw"), expected, atol=1e-15)
+        np.testing.assert_allclose(zhf.matrix_from_quaternion(-wxyz, "wxyz"), expected, atol=1e-15)
+    f = rng.standard_normal((3, 16))
+    np.testing.assert_allclose(zhf.rotate(f, wxyz, quaternion_order="wxyz"), zhf.rotate(f, expected), atol=TOL["double"])
+    batch = np.stack([wxyz, -wxyz, wxyz])
+    np.testing.assert_allclose(zhf.rotate(f, batch, quaternion_order="wxyz"), zhf.rotate(f, expected), atol=TOL["double"])
+
+
+def test_non_unit_quaternions_are_normalised_with_a_warning():
+    q = np.array([2.0, 0.0, 0.0, 2.0])  # a quarter turn about z, length 2*sqrt(2)
+    with pytest.warns(UserWarning, match="normalised"):
+        r = zhf.matrix_from_quaternion(q, "wxyz")
+    np.testing.assert_allclose(r, rotation_about_axis([0, 0, 1], np.pi / 2), atol=1e-15)
+
+
+def test_objects_with_array_interface_work():
+    class Wrapped:
+        def __init__(self, a):
+            self.a = a
+
+        def __array__(self, dtype=None):
+            return self.a
+
+    f = np.random.default_rng(11).standard_normal((2, 9)).astype(np.float32)
+    r = rotation_about_axis([1, 2, 3], 0.4)
+    np.testing.assert_array_equal(zhf.rotate(Wrapped(f), Wrapped(r)), zhf.rotate(f, r))
+    np.testing.assert_array_equal(zhf.rotate(memoryview(f), r), zhf.rotate(f, r))
+
+
+def test_torch_tensors_through_numpy():
+    torch = pytest.importorskip("torch")
+    f = torch.randn(4, 3, 16)
+    r = rotation_about_axis([0, 1, 0], 1.0)
+    got = zhf.rotate(f.numpy(), r)
+    assert got.dtype == np.float32
+    np.testing.assert_array_equal(got, zhf.rotate(np.asarray(f), r))
+
+
+@pytest.mark.parametrize(
+    "call, message",
+    [
+        (lambda: zhf.rotate(np.full(16, np.nan), np.eye(3)), "coeffs: vector 0, coefficient 0: nan is not finite"),
+        (lambda: zhf.rotate(np.r_[np.zeros(20), np.inf, np.zeros(11)].reshape(2, 16), np.eye(3)),
+         "coeffs: vector 1, coefficient 4: inf is not finite"),
+        (lambda: zhf.rotate(np.zeros(15), np.eye(3)), "coeffs: a last axis of 15 is not N^2"),
+        (lambda: zhf.rotate(np.zeros(16), np.diag([1.0, 1.0, -1.0])), "rotation: rotation matrix is a reflection"),
+        (lambda: zhf.rotate(np.zeros(16), 1.1 * np.eye(3)), "rotation: rotation matrix is not orthonormal"),
+        (lambda: zhf.rotate(np.zeros(16), np.array([np.eye(3), np.diag([1, -1, -1]), 2 * np.eye(3)])),
+         "rotation 2: rotation matrix is not orthonormal"),
+        (lambda: zhf.rotate(np.zeros(16), [[np.nan] * 3] * 3), "rotation: rotation matrix has a non-finite entry"),
+        (lambda: zhf.rotate(np.zeros(16), [1, 0, 0, 0]), "quaternion_order='wxyz' or 'xyzw'"),
+        (lambda: zhf.rotate(np.zeros(16), [0, 0, 0, 0], quaternion_order="wxyz"), "quaternion 0 is zero"),
+        (lambda: zhf.rotate(np.zeros(16), [1, 0, 0, 0], quaternion_order="zyxw"), "quaternion_order: 'zyxw'"),
+        (lambda: zhf.rotate(np.zeros(16), np.eye(3), quaternion_order="wxyz"), "quaternion_order: given"),
+        (lambda: zhf.rotate(np.zeros(16), np.eye(2)), "rotation: expected matrices"),
+        (lambda: zhf.rotate(np.zeros((4, 16)), np.stack([np.eye(3)] * 3)), "does not broadcast"),
+        (lambda: zhf.rotate(np.zeros(16, dtype=complex), np.eye(3)), "coeffs: dtype complex128"),
+        (lambda: zhf.rotate(np.zeros(169), np.eye(3)), "order 13 has no shipped lobe table"),
+        (lambda: zhf.rotate(np.zeros(16), np.eye(3), threads=-1), "threads: -1"),
+        (lambda: zhf.rotate(np.float64(1.0), np.eye(3)), "coeffs: expected an array"),
+    ],
+)
+def test_bad_input_is_a_value_error_naming_the_field(call, message):
+    with pytest.raises(ValueError) as raised:
+        call()
+    assert message in str(raised.value)
+    assert "\n" not in str(raised.value)
