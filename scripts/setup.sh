@@ -14,6 +14,7 @@ packages=(
   libgtest-dev libbenchmark-dev
   glslang-tools spirv-tools libvulkan-dev mesa-vulkan-drivers
   libhealpix-cxx-dev gnuplot-nox
+  python3 python3-dev pybind11-dev python3-numpy python3-pytest
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # The whole test suite: set up and build everything, then
-#   1. every test on the Release build (ctest);
-#   2. every test again under AddressSanitizer + UndefinedBehaviorSanitizer;
+#   1. every test on the Release build (ctest; the installed-package consumer test and the Python
+#      module's pytest suite among them);
+#   2. every test again under AddressSanitizer + UndefinedBehaviorSanitizer (the Python module
+#      aside: an instrumented extension cannot load into an uninstrumented interpreter);
 #   3. each libFuzzer target for ZHF_FUZZ_SECONDS (default 60) on its seed corpus.
 # Non-zero exit on any failure. ZHF_QUICK=1 runs stage 1 only.
 set -euo pipefail
@@ -17,7 +19,7 @@ asan_build="${ZHF_BUILD}-asan"
 # -g1 (line tables, enough for symbolised reports): with -g, GCC's variable tracking over the
 # generated order-8 kernels in bench/src/suite.cc ran out of memory on CI's machine.
 debug_flags="-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -g1 -DNDEBUG"
-cmake -S "$ZHF_ROOT" -B "$asan_build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "$debug_flags" -DZHF_SANITIZE=ON -DZHF_BENCH=OFF >/dev/null
+cmake -S "$ZHF_ROOT" -B "$asan_build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "$debug_flags" -DZHF_SANITIZE=ON -DZHF_BENCH=OFF -DZHF_PYTHON=OFF >/dev/null
 cmake --build "$asan_build" -j "$ZHF_JOBS"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 ctest --test-dir "$asan_build" --output-on-failure -j "$ZHF_JOBS"

@@ -9,6 +9,9 @@
 #include <atomic>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <type_traits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -50,23 +53,60 @@ int order_of(const py::buffer_info& coeffs) {
                        std::to_string(rt::kMaxTableOrder));
 }
 
-// Refuses the first non-finite entry, naming its position in the (count, N^2) view.
+// Whether every entry of p[0, count) is finite, by the exponent bits (integer work that
+// vectorises, unlike a float test with an early exit).
 template <class T>
-void check_finite(const T* data, std::size_t count, std::size_t n, int threads) {
-  std::atomic<std::size_t> first_bad{count * n};
+bool all_finite(const T* p, std::size_t count) {
+  using Bits = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;
+  constexpr Bits exponent = sizeof(T) == 4 ? Bits(0x7f800000u) : Bits(0x7ff0000000000000ull);
+  Bits bad = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    Bits bits;
+    std::memcpy(&bits, p + i, sizeof bits);
+    bad |= Bits((bits & exponent) == exponent);
+  }
+  return bad == 0;
+}
+
+// Throws InputError naming the first non-finite entry of data[from, total) (vectors of n), if any.
+template <class T>
+void refuse_non_finite(const T* data, std::size_t from, std::size_t total, std::size_t n) {
+  for (std::size_t i = from; i < total; ++i)
+    if (!std::isfinite(data[i]))
+      throw rt::InputError("coeffs: vector " + std::to_string(i / n) + ", coefficient " + std::to_string(i % n) + ": " +
+                           rt::format_number(double(data[i])) + " is not finite");
+}
+
+// Rotates count vectors of n coefficients on the runtime's threads, in blocks that stay in cache:
+// each block's input is checked for non-finite numbers first, then rotate_one(v, in_v, out_v)
+// runs on its vectors. A non-finite entry is refused, naming the first (out is then garbage).
+template <class T, class RotateOne>
+void rotate_checked(const T* in, T* out, std::size_t count, std::size_t n, int threads, const RotateOne& rotate_one) {
+  constexpr std::size_t kBlock = 256;
+  std::atomic<std::size_t> first_bad_block{count};
   rt::parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin * n; i < end * n; ++i)
-      if (!std::isfinite(data[i])) {
-        std::size_t seen = first_bad.load();
-        while (i < seen && !first_bad.compare_exchange_weak(seen, i)) {
+    for (std::size_t b = begin; b < end; b += kBlock) {
+      const std::size_t e = std::min(end, b + kBlock);
+      if (!all_finite(in + b * n, (e - b) * n)) {
+        std::size_t seen = first_bad_block.load();
+        while (b < seen && !first_bad_block.compare_exchange_weak(seen, b)) {
         }
         return;
       }
+      for (std::size_t v = b; v < e; ++v) rotate_one(v, in + n * v, out + n * v);
+    }
   });
-  const std::size_t bad = first_bad.load();
-  if (bad < count * n)
-    throw rt::InputError("coeffs: vector " + std::to_string(bad / n) + ", coefficient " + std::to_string(bad % n) +
-                         ": " + rt::format_number(double(data[bad])) + " is not finite");
+  refuse_non_finite(in, first_bad_block.load() * n, count * n, n);
+}
+
+// The caller's output array (the Python half has checked its shape, dtype, layout and that it
+// does not overlap the input), or a new one.
+template <class T>
+Array<T> output_array(std::optional<Array<T>>& into, std::size_t count, std::size_t n) {
+  if (!into) return Array<T>({count, n});
+  if (into->ndim() != 2 || std::size_t(into->shape(0)) != count || std::size_t(into->shape(1)) != n)
+    throw rt::InputError("out: expected the shape of the result");
+  return *into;
 }
 
 // Refuses anything but a proper rotation, naming the vector.
@@ -76,51 +116,58 @@ void check_rotation(const double* r, std::size_t v, bool many) {
 }
 
 template <class T>
-Array<T> rotate_shared(const Array<T>& coeffs, const Array<double>& rotation, const rt::LobeTable* table, int threads) {
+Array<T> rotate_shared(const Array<T>& coeffs, const Array<double>& rotation, const rt::LobeTable* table, int threads,
+                       std::optional<Array<T>> into) {
   const py::buffer_info in = coeffs.request();
   if (in.ndim != 2) throw rt::InputError("coeffs: expected a (count, N^2) array");
   if (rotation.size() != 9) throw rt::InputError("rotation: expected 9 numbers");
   const int order = order_of(in);
   check_rotation(rotation.data(), 0, false);
   const std::size_t count = in.shape[0], n = in.shape[1];
-  Array<T> out({count, n});
+  Array<T> out = output_array(into, count, n);
   T r[9];
   for (int i = 0; i < 9; ++i) r[i] = T(rotation.data()[i]);
   const T* src = coeffs.data();
   T* dst = out.mutable_data();
   {
     py::gil_scoped_release release;
-    check_finite(src, count, n, threads);
     if (order == 1) {
-      std::copy(src, src + count * n, dst);
+      rotate_checked(src, dst, count, n, threads, [](std::size_t, const T* f, T* g) { g[0] = f[0]; });
+    } else if (count < n) {
+      // Fewer vectors than the band matrices would cost to build: one by one.
+      const rt::Rotator<T> rotator = rotator_for<T>(order, table);
+      rotate_checked(src, dst, count, n, threads, [&](std::size_t, const T* f, T* g) { rotator.rotate(r, f, g); });
     } else {
-      rotator_for<T>(order, table).rotate_shared(count, r, src, dst, threads);
+      const rt::DenseRotation<T> d = rotator_for<T>(order, table).dense(r);
+      rotate_checked(src, dst, count, n, threads, [&](std::size_t, const T* f, T* g) { d.apply(f, g); });
     }
   }
   return out;
 }
 
 template <class T>
-Array<T> rotate_each(const Array<T>& coeffs, const Array<double>& rotations, const rt::LobeTable* table, int threads) {
+Array<T> rotate_each(const Array<T>& coeffs, const Array<double>& rotations, const rt::LobeTable* table, int threads,
+                     std::optional<Array<T>> into) {
   const py::buffer_info in = coeffs.request();
   if (in.ndim != 2) throw rt::InputError("coeffs: expected a (count, N^2) array");
   const int order = order_of(in);
   const std::size_t count = in.shape[0], n = in.shape[1];
   if (rotations.ndim() != 2 || std::size_t(rotations.shape(0)) != count || rotations.shape(1) != 9)
     throw rt::InputError("rotation: expected one 3x3 matrix per vector");
-  Array<T> out({count, n});
+  Array<T> out = output_array(into, count, n);
   const T* src = coeffs.data();
   T* dst = out.mutable_data();
   const double* r = rotations.data();
   {
     py::gil_scoped_release release;
     for (std::size_t v = 0; v < count; ++v) check_rotation(r + 9 * v, v, true);
-    check_finite(src, count, n, threads);
+    std::vector<T> rotations_t(r, r + 9 * count);
     if (order == 1) {
-      std::copy(src, src + count * n, dst);
+      rotate_checked(src, dst, count, n, threads, [](std::size_t, const T* f, T* g) { g[0] = f[0]; });
     } else {
-      std::vector<T> rt_rotations(r, r + 9 * count);
-      rotator_for<T>(order, table).rotate_batch(count, rt_rotations.data(), src, dst, threads);
+      const rt::Rotator<T> rotator = rotator_for<T>(order, table);
+      rotate_checked(src, dst, count, n, threads,
+                     [&](std::size_t v, const T* f, T* g) { rotator.rotate(rotations_t.data() + 9 * v, f, g); });
     }
   }
   return out;
@@ -175,7 +222,7 @@ py::dict analyze(const Array<double>& coeffs, double tolerance) {
   order_of(in);
   if (!(tolerance >= 1e-15 && tolerance <= 1)) throw rt::InputError("tolerance: must be in [1e-15, 1]");
   const std::size_t count = in.shape[0], n = in.shape[1];
-  check_finite(coeffs.data(), count, n, 1);
+  refuse_non_finite(coeffs.data(), 0, count * n, n);
   std::vector<Eigen::VectorXd> signals(count);
   for (std::size_t v = 0; v < count; ++v) signals[v] = Eigen::Map<const Eigen::VectorXd>(coeffs.data() + v * n, n);
   const zhf::sh::EnergyReport report = zhf::sh::analyze_energy(signals, tolerance);
@@ -255,10 +302,14 @@ PYBIND11_MODULE(_zhf, m) {
           zhf::io::write_file_atomically(path, zhf::io::lobe_table_text(table, path));
         },
         py::arg("table"), py::arg("path"));
-  m.def("rotate_shared", &rotate_shared<float>, py::arg("coeffs"), py::arg("rotation"), py::arg("table"), py::arg("threads"));
-  m.def("rotate_shared", &rotate_shared<double>, py::arg("coeffs"), py::arg("rotation"), py::arg("table"), py::arg("threads"));
-  m.def("rotate_each", &rotate_each<float>, py::arg("coeffs"), py::arg("rotations"), py::arg("table"), py::arg("threads"));
-  m.def("rotate_each", &rotate_each<double>, py::arg("coeffs"), py::arg("rotations"), py::arg("table"), py::arg("threads"));
+  m.def("rotate_shared", &rotate_shared<float>, py::arg("coeffs"), py::arg("rotation"), py::arg("table"), py::arg("threads"),
+        py::arg("out").noconvert());
+  m.def("rotate_shared", &rotate_shared<double>, py::arg("coeffs"), py::arg("rotation"), py::arg("table"), py::arg("threads"),
+        py::arg("out").noconvert());
+  m.def("rotate_each", &rotate_each<float>, py::arg("coeffs"), py::arg("rotations"), py::arg("table"), py::arg("threads"),
+        py::arg("out").noconvert());
+  m.def("rotate_each", &rotate_each<double>, py::arg("coeffs"), py::arg("rotations"), py::arg("table"), py::arg("threads"),
+        py::arg("out").noconvert());
   m.def("band_matrices", &band_matrices, py::arg("rotation"), py::arg("order"), py::arg("table"));
   m.def("analyze", &analyze, py::arg("coeffs"), py::arg("tolerance"));
   m.def("matrices_from_quaternions", &matrices_from_quaternions, py::arg("quaternions"), py::arg("scalar_first"));

@@ -78,6 +78,25 @@ def test_batch_path_equals_one_by_one():
     np.testing.assert_allclose(batch[::499], single, atol=2 * TOL["float_rotation"], rtol=0)
 
 
+def test_out_receives_the_result():
+    rng = np.random.default_rng(12)
+    f = rng.standard_normal((3000, 3, 16)).astype(np.float32)
+    rs = np.stack([random_rotation(rng) for _ in range(3000)])[:, None]
+    for r in (rs[0, 0], rs):
+        out = np.empty_like(f)
+        assert zhf.rotate(f, r, out=out) is out
+        np.testing.assert_array_equal(out, zhf.rotate(f, r))
+    for bad, message in [
+        (np.empty((3000, 3, 16)), "out: expected shape"),
+        (np.empty((3000, 3, 9), dtype=np.float32), "out: expected shape"),
+        (np.empty((3, 3000, 16), dtype=np.float32).transpose(1, 0, 2), "C-contiguous"),
+        (f, "overlaps coeffs"),
+        ([0.0] * 16, "expected a numpy array"),
+    ]:
+        with pytest.raises(ValueError, match=message):
+            zhf.rotate(f, rs[0, 0], out=bad)
+
+
 def test_thread_count_never_changes_the_result():
     rng = np.random.default_rng(9)
     f = rng.standard_normal((20000, 25)).astype(np.float32)

@@ -67,8 +67,8 @@ def matrix_from_quaternion(quaternions, order: str, *, _stacklevel: int = 2) -> 
     return matrices.reshape(q.shape[:-1] + (3, 3))
 
 
-def rotate(coeffs, rotation, *, quaternion_order=None, table=None, threads: int = 0) -> np.ndarray:
-    """Rotated SH coefficients, a new array of the shape (and float dtype) of coeffs.
+def rotate(coeffs, rotation, *, quaternion_order=None, table=None, threads: int = 0, out=None) -> np.ndarray:
+    """Rotated SH coefficients, a new array of the shape (and float dtype) of coeffs, or out.
 
     coeffs:   (..., N*N), any order N with kernels or a lobe table: 1..8 generated (the fastest
               verified path for this machine), 9, 10, 11, 12, 16 and 32 from the shipped tables,
@@ -81,6 +81,8 @@ def rotate(coeffs, rotation, *, quaternion_order=None, table=None, threads: int 
     quaternion_order: "wxyz" or "xyzw"; required when rotation holds quaternions.
     table:    a LobeTable (read_lobe_table) to rotate with instead of the shipped kernels.
     threads:  0 for all cores; large batches are split over them, the GIL released.
+    out:      an array to write the result into (C-contiguous, the result's shape and dtype, not
+              overlapping coeffs), returned; saves allocating (and first touching) a new one.
 
     Raises ValueError for a bad shape, a matrix that is not a rotation, a zero quaternion, or a
     non-finite coefficient (naming the vector and coefficient).
@@ -96,7 +98,9 @@ def rotate(coeffs, rotation, *, quaternion_order=None, table=None, threads: int 
         table = _shipped_table(order)
     if matrices.shape == (3, 3):
         flat = np.ascontiguousarray(c).reshape(-1, n)
-        return _zhf.rotate_shared(flat, matrices.reshape(9), table, threads).reshape(c.shape)
+        into = _output(out, c.shape, c, n)
+        result = _zhf.rotate_shared(flat, matrices.reshape(9), table, threads, into)
+        return out if out is not None else result.reshape(c.shape)
     try:
         batch = np.broadcast_shapes(c.shape[:-1], matrices.shape[:-2])
     except ValueError:
@@ -105,7 +109,9 @@ def rotate(coeffs, rotation, *, quaternion_order=None, table=None, threads: int 
             f"{c.shape[:-1]} (for one rotation per item of (..., C, N*N) give (..., 1, 3, 3))") from None
     flat = np.ascontiguousarray(np.broadcast_to(c, batch + (n,))).reshape(-1, n)
     flat_r = np.ascontiguousarray(np.broadcast_to(matrices, batch + (3, 3))).reshape(-1, 9)
-    return _zhf.rotate_each(flat, flat_r, table, threads).reshape(batch + (n,))
+    into = _output(out, batch + (n,), c, n)
+    result = _zhf.rotate_each(flat, flat_r, table, threads, into)
+    return out if out is not None else result.reshape(batch + (n,))
 
 
 def band_matrices(rotation, order: int, *, quaternion_order=None, table=None) -> list:
@@ -159,6 +165,22 @@ def _real_array(value, name, dtype):
     if array.dtype not in (np.float32, np.float64):
         return array.astype(np.float64)
     return array
+
+
+def _output(out, shape, coeffs, n):
+    """out as a (count, n) view to write into, or None; refused unless it can take the result."""
+    if out is None:
+        return None
+    if not isinstance(out, np.ndarray):
+        raise ValueError(f"out: expected a numpy array, not {type(out).__name__}")
+    dtype = coeffs.dtype
+    if out.shape != shape or out.dtype != dtype:
+        raise ValueError(f"out: expected shape {shape} and dtype {dtype}, not {out.shape} and {out.dtype}")
+    if not out.flags.c_contiguous or not out.flags.writeable:
+        raise ValueError("out: must be C-contiguous and writeable")
+    if np.may_share_memory(out, coeffs):
+        raise ValueError("out: overlaps coeffs (rotation in place is not supported)")
+    return out.reshape(-1, n)
 
 
 def _matrices(rotation, quaternion_order):

@@ -29,7 +29,8 @@ def rotate(
     quaternion_order: Optional[QuaternionOrder] = ...,
     table: Optional[LobeTable] = ...,
     threads: int = ...,
-) -> np.ndarray:  # the broadcast shape (..., N*N), float32 or float64
+    out: Optional[np.ndarray] = ...,
+) -> np.ndarray:  # the broadcast shape (..., N*N), float32 or float64 (out, when given)
     ...
 def band_matrices(
     rotation: npt.ArrayLike,  # (3, 3) or (4,)

@@ -97,25 +97,61 @@ KernelSet<T> scalar_kernels() {
 template <class T>
 class DenseRotation {
  public:
-  DenseRotation(int order, std::vector<std::vector<T>> bands) : order_(order), bands_(std::move(bands)) {}
+  DenseRotation(int order, std::vector<std::vector<T>> bands) : order_(order), bands_(std::move(bands)) {
+    // apply() runs column by column: out_l += column j of D_l times in_l[j], a loop over
+    // contiguous rows that vectorises, so it keeps the transposes.
+    for (int l = 0; l < order_; ++l) {
+      const int n = band_size(l);
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) columns_.push_back(bands_[l][i * n + j]);
+    }
+  }
   int order() const { return order_; }
   // bands()[l] is (2l+1)^2 row-major: out_l = D_l in_l.
   const std::vector<std::vector<T>>& bands() const { return bands_; }
+  // out = D in for one vector of N^2 (in and out must not overlap). Cost: sum (2l+1)^2
+  // multiply-adds, with fixed band sizes for the generated orders.
   void apply(const T* in, T* out) const {
+    switch (order_) {
+      case 1: return apply_bands<1>(in, out);
+      case 2: return apply_bands<2>(in, out);
+      case 3: return apply_bands<3>(in, out);
+      case 4: return apply_bands<4>(in, out);
+      case 5: return apply_bands<5>(in, out);
+      case 6: return apply_bands<6>(in, out);
+      case 7: return apply_bands<7>(in, out);
+      case 8: return apply_bands<8>(in, out);
+      default: break;
+    }
+    const T* d = columns_.data();
     for (int l = 0; l < order_; ++l) {
       const int n = band_size(l), base = l * l;
-      const T* d = bands_[l].data();
-      for (int i = 0; i < n; ++i) {
-        T sum = 0;
-        for (int j = 0; j < n; ++j) sum += d[i * n + j] * in[base + j];
-        out[base + i] = sum;
-      }
+      for (int i = 0; i < n; ++i) out[base + i] = 0;
+      for (int j = 0; j < n; ++j, d += n)
+        for (int i = 0; i < n; ++i) out[base + i] += d[i] * in[base + j];
     }
   }
 
  private:
+  template <int N>
+  void apply_bands(const T* in, T* out) const {
+    apply_band<0, N>(columns_.data(), in, out);
+  }
+  template <int L, int N>
+  static void apply_band(const T* d, const T* in, T* out) {
+    if constexpr (L < N) {
+      constexpr int n = 2 * L + 1, base = L * L;
+      T sum[n] = {};
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) sum[i] += d[j * n + i] * in[base + j];
+      for (int i = 0; i < n; ++i) out[base + i] = sum[i];
+      apply_band<L + 1, N>(d + n * n, in, out);
+    }
+  }
+
   int order_;
   std::vector<std::vector<T>> bands_;
+  std::vector<T> columns_;  // band by band, each D_l column-major
 };
 
 template <class T>
