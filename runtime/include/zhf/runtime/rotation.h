@@ -150,9 +150,11 @@ inline Matrix3 rotation_about_unit_axis(const double u[3], double angle) {
 // |q|): v -> q v q*, a right-handed turn by 2 acos(w / |q|) about (x, y, z); q and -q give the
 // same R. Returns false (out untouched) for a zero or non-finite q. Accuracy: a few ulps.
 inline bool rotation_from_quaternion(double w, double x, double y, double z, Matrix3& out) {
-  const double norm2 = w * w + x * x + y * y + z * z;
-  if (!std::isfinite(norm2) || !(norm2 > 0)) return false;
-  const double s = 2 / norm2;
+  // Scaled by its largest component first, so no length overflows or underflows.
+  const double big = std::max(std::max(std::abs(w), std::abs(x)), std::max(std::abs(y), std::abs(z)));
+  if (!std::isfinite(big) || !(big > 0)) return false;
+  w /= big, x /= big, y /= big, z /= big;
+  const double s = 2 / (w * w + x * x + y * y + z * z);
   out = {1 - s * (y * y + z * z), s * (x * y - w * z),     s * (x * z + w * y),
          s * (x * y + w * z),     1 - s * (x * x + z * z), s * (y * z - w * x),
          s * (x * z - w * y),     s * (y * z + w * x),     1 - s * (x * x + y * y)};

@@ -31,7 +31,9 @@ inline constexpr double kRotationDefect = 1e-5;
 // Double kernels and every double method: ~1e-15 per entry, measured at most 2.9e-14 at the
 // worst unit input.
 inline constexpr double kDouble = 1e-12;
-// The float target of every rotation kernel, on random unit inputs.
+// The float target of every rotation kernel, on random unit inputs; also of float band matrices
+// built by the kernels (Rotator::dense, rotate_shared's batch path): measured at most 5.0e-7 at
+// N = 2..8.
 inline constexpr double kFloatRotation = 1e-6;
 inline constexpr double kFloatEpsilon = 5.9604644775390625e-08;  // 2^-24
 

@@ -1,0 +1,117 @@
+// The batch entry points (rotate_shared, rotate_batch) against the Ivanic-Ruedenberg reference
+// and against themselves across thread counts; quaternions against Eigen's conversion.
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include "zhf/runtime/rotation.h"
+#include "zhf/runtime/rotator.h"
+#include "zhf/runtime/tolerances.h"
+#include "zhf/sh/reference_rotation.h"
+#include "zhf/sh/rotation_matrix.h"
+#include "zhf_kernels.h"
+
+namespace zhf {
+namespace {
+
+using namespace runtime::tolerance;
+
+// count unit vectors of order N, flat.
+template <class T>
+std::vector<T> unit_vectors(std::size_t count, int order, std::mt19937_64& rng) {
+  std::normal_distribution<double> normal;
+  const std::size_t n = std::size_t(order) * order;
+  std::vector<T> out(count * n);
+  for (std::size_t v = 0; v < count; ++v) {
+    Eigen::VectorXd f(n);
+    for (std::size_t i = 0; i < n; ++i) f[i] = normal(rng);
+    f.normalize();
+    for (std::size_t i = 0; i < n; ++i) out[v * n + i] = T(f[i]);
+  }
+  return out;
+}
+
+template <class T>
+void check_shared(int order, double tolerance) {
+  std::mt19937_64 rng(order);
+  const sh::Matrix3 m = sh::random_rotation(rng);
+  T r[9];
+  for (int i = 0; i < 9; ++i) r[i] = T(m(i / 3, i % 3));
+  const sh::BandMatrices exact = sh::ivanic_ruedenberg(m, order);
+  const auto rotator = runtime::Rotator<T>::with(gen::fastest_kernels<T>(order));
+  const std::size_t n = std::size_t(order) * order;
+  // Below N^2 vectors one by one, above it through the band matrices, above the thread threshold
+  // on two threads.
+  for (std::size_t count : {std::size_t(3), n + 1, runtime::kParallelBatchThreshold + 7}) {
+    const std::vector<T> in = unit_vectors<T>(count, order, rng);
+    std::vector<T> out(in.size()), one_thread(in.size());
+    rotator.rotate_shared(count, r, in.data(), out.data(), 2);
+    rotator.rotate_shared(count, r, in.data(), one_thread.data(), 1);
+    ASSERT_EQ(out, one_thread) << "order " << order << ", " << count << " vectors: the thread count changed the result";
+    for (std::size_t v = 0; v < count; v += 1 + count / 16) {
+      Eigen::VectorXd f(n);
+      for (std::size_t i = 0; i < n; ++i) f[i] = double(in[v * n + i]);
+      const Eigen::VectorXd g = sh::apply_band_matrices(exact, f);
+      for (std::size_t i = 0; i < n; ++i)
+        ASSERT_NEAR(double(out[v * n + i]), g[i], tolerance)
+            << "order " << order << ", band " << runtime::band_of(int(i)) << ", index " << i << ", vector " << v << " of "
+            << count;
+    }
+  }
+}
+
+TEST(Batch, SharedRotationMatchesTheReferenceAtEveryGeneratedOrder) {
+  for (int order = 2; order <= runtime::kMaxGeneratedOrder; ++order) {
+    check_shared<double>(order, kDouble);
+    check_shared<float>(order, kFloatRotation);
+  }
+}
+
+TEST(Batch, PerVectorRotationsDoNotDependOnTheThreadCount) {
+  constexpr int kOrder = 5;
+  std::mt19937_64 rng(5);
+  const std::size_t count = runtime::kParallelBatchThreshold * 2 + 3, n = kOrder * kOrder;
+  std::vector<float> r(9 * count);
+  for (std::size_t v = 0; v < count; ++v) {
+    const sh::Matrix3 m = sh::random_rotation(rng);
+    for (int i = 0; i < 9; ++i) r[9 * v + i] = float(m(i / 3, i % 3));
+  }
+  const std::vector<float> in = unit_vectors<float>(count, kOrder, rng);
+  std::vector<float> two(in.size()), one(in.size()), single(n);
+  const auto rotator = runtime::Rotator<float>::with(gen::fastest_kernels<float>(kOrder));
+  rotator.rotate_batch(count, r.data(), in.data(), two.data(), 2);
+  rotator.rotate_batch(count, r.data(), in.data(), one.data(), 1);
+  ASSERT_EQ(two, one);
+  rotator.rotate(r.data() + 9 * (count - 1), in.data() + n * (count - 1), single.data());
+  for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(two[n * (count - 1) + i], single[i]) << "index " << i;
+}
+
+TEST(Batch, QuaternionsGiveEigensRotation) {
+  std::mt19937_64 rng(6);
+  std::normal_distribution<double> normal;
+  for (int k = 0; k < 200; ++k) {
+    const double scale = std::pow(10.0, 100 * (k % 7 - 3));  // lengths from 1e-300 to 1e300
+    const Eigen::Quaterniond q(normal(rng), normal(rng), normal(rng), normal(rng));
+    const sh::Matrix3 expected = q.normalized().toRotationMatrix();
+    const Eigen::Vector4d s = q.coeffs() * scale;  // x, y, z, w
+    runtime::Matrix3 r, negated;
+    ASSERT_TRUE(runtime::rotation_from_quaternion(s[3], s[0], s[1], s[2], r));
+    ASSERT_TRUE(runtime::rotation_from_quaternion(-s[3], -s[0], -s[1], -s[2], negated));
+    for (int i = 0; i < 9; ++i) {
+      ASSERT_NEAR(r[i], expected(i / 3, i % 3), kExactToRounding * 4) << "quaternion " << k << ", entry " << i;
+      ASSERT_EQ(r[i], negated[i]) << "q and -q differ at entry " << i;
+    }
+  }
+  runtime::Matrix3 untouched{};
+  EXPECT_FALSE(runtime::rotation_from_quaternion(0, 0, 0, 0, untouched));
+  EXPECT_FALSE(runtime::rotation_from_quaternion(std::numeric_limits<double>::quiet_NaN(), 0, 0, 1, untouched));
+  EXPECT_FALSE(runtime::rotation_from_quaternion(std::numeric_limits<double>::infinity(), 0, 0, 1, untouched));
+  EXPECT_EQ(untouched, runtime::Matrix3{});
+}
+
+}  // namespace
+}  // namespace zhf
