@@ -4,9 +4,8 @@
 //
 // Policy: the rotators rotate by proper rotations only. validate_rotation() reports the measured
 // defect; debug builds assert it; nearest_rotation() (polar decomposition) is the explicit way to
-// accept a matrix that is off by rounding. Reflections (det -1) are rejected: an SH reflection is
-// well defined, but it is not what these kernels compute, and passing one is almost always a
-// handedness bug in the caller.
+// accept a matrix that is off by rounding. Reflections (det -1) are what orthogonal.h is for: a
+// caller that means one asks validate_rotation for Handedness::kEither and transforms through it.
 #pragma once
 
 #include <algorithm>
@@ -14,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <string_view>
 
 #include "zhf/runtime/errors.h"
 #include "zhf/runtime/tolerances.h"
@@ -42,8 +42,12 @@ struct RotationCheck {
   std::string message;        // empty when ok
 };
 
+// Which determinant is accepted: +1 only (the rotators), or -1 too (orthogonal.h).
+enum class Handedness { kProper, kEither };
+
 template <class T>
-RotationCheck validate_rotation(const T r[9], double max_defect = tolerance::kRotationDefect) {
+RotationCheck validate_rotation(const T r[9], double max_defect = tolerance::kRotationDefect,
+                                Handedness handedness = Handedness::kProper) {
   RotationCheck check;
   check.finite = true;
   for (int i = 0; i < 9; ++i) check.finite = check.finite && std::isfinite(static_cast<double>(r[i]));
@@ -61,9 +65,9 @@ RotationCheck validate_rotation(const T r[9], double max_defect = tolerance::kRo
     }
   check.determinant = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
                       m[2] * (m[3] * m[7] - m[4] * m[6]);
-  if (check.determinant < 0) {
+  if (check.determinant < 0 && handedness == Handedness::kProper) {
     check.message = "rotation matrix is a reflection (det " + format_number(check.determinant) + ")";
-  } else if (check.orthonormality > max_defect || std::abs(check.determinant - 1) > max_defect) {
+  } else if (check.orthonormality > max_defect || std::abs(std::abs(check.determinant) - 1) > max_defect) {
     check.message = "rotation matrix is not orthonormal: max |R R^T - I| = " + format_number(check.orthonormality) +
                     ", det = " + format_number(check.determinant) + " (tolerance " +
                     format_number(max_defect) + ")";
@@ -106,6 +110,18 @@ bool nearest_rotation(const T r[9], T out[9]) {
   return true;
 }
 
+// nearest_rotation for either handedness: a reflection Q is -(-Q), with -Q a rotation.
+template <class T>
+bool nearest_orthogonal(const T r[9], T out[9]) {
+  const double det = r[0] * (r[4] * r[8] - r[5] * r[7]) - r[1] * (r[3] * r[8] - r[5] * r[6]) + r[2] * (r[3] * r[7] - r[4] * r[6]);
+  if (!(det < 0)) return nearest_rotation(r, out);
+  T negated[9];
+  for (int i = 0; i < 9; ++i) negated[i] = -r[i];
+  if (!nearest_rotation(negated, out)) return false;
+  for (int i = 0; i < 9; ++i) out[i] = -out[i];
+  return true;
+}
+
 // One Newton step toward a nearly orthonormal R's polar factor, Q = R (3 I - R^T R) / 2, in a
 // wider type W. A float R is orthonormal to eps_f only, and a lobe fit amplifies its symmetric
 // part by the band's condition number; after the step what remains is O(eps_f^2). The emitted
@@ -138,6 +154,8 @@ inline Matrix3 multiply(const Matrix3& a, const Matrix3& b) {
   return out;
 }
 
+inline Matrix3 transpose(const Matrix3& a) { return {a[0], a[3], a[6], a[1], a[4], a[7], a[2], a[5], a[8]}; }
+
 // A right-handed turn by angle (radians) about the unit axis u (Rodrigues).
 inline Matrix3 rotation_about_unit_axis(const double u[3], double angle) {
   const double c = std::cos(angle), s = std::sin(angle), t = 1 - c;
@@ -166,6 +184,23 @@ inline Matrix3 rotation_from_zyz(double alpha, double beta, double gamma) {
   const double z[3] = {0, 0, 1}, y[3] = {0, 1, 0};
   return multiply(multiply(rotation_about_unit_axis(z, alpha), rotation_about_unit_axis(y, beta)),
                   rotation_about_unit_axis(z, gamma));
+}
+
+// Euler angles (radians) about the axes order names: three of 'X', 'Y', 'Z', no axis twice in a
+// row ("XYZ", "ZYX", "ZXZ", ...). Intrinsic: each turn is about the axes as already turned,
+// R = R1(a) R2(b) R3(c). Extrinsic: each turn is about the fixed axes, R = R3(c) R2(b) R1(a).
+// Returns false (out untouched) for another order or a non-finite angle.
+inline bool rotation_from_euler(const double angles[3], std::string_view order, bool extrinsic, Matrix3& out) {
+  if (order.size() != 3) return false;
+  Matrix3 turns[3];
+  for (int k = 0; k < 3; ++k) {
+    const char c = order[k];
+    if ((c != 'X' && c != 'Y' && c != 'Z') || (k > 0 && c == order[k - 1]) || !std::isfinite(angles[k])) return false;
+    const double axis[3] = {c == 'X' ? 1.0 : 0.0, c == 'Y' ? 1.0 : 0.0, c == 'Z' ? 1.0 : 0.0};
+    turns[k] = rotation_about_unit_axis(axis, angles[k]);
+  }
+  out = extrinsic ? multiply(multiply(turns[2], turns[1]), turns[0]) : multiply(multiply(turns[0], turns[1]), turns[2]);
+  return true;
 }
 
 }  // namespace zhf::runtime
