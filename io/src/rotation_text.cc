@@ -35,27 +35,48 @@ std::vector<double> numbers(const std::string& text, size_t expected, const std:
 
 }  // namespace
 
-std::array<double, 9> parse_rotation(const std::string& text, RotationForm form, const std::string& option) {
+ParsedRotation parse_rotation(const std::string& text, RotationForm form, const std::string& option, const EulerAxes& euler) {
+  ParsedRotation out;
   switch (form) {
-    case RotationForm::kMatrix: {
+    case RotationForm::kMatrix:
+    case RotationForm::kMatrixColumnMajor: {
       const std::vector<double> v = numbers(text, 9, option);
-      std::array<double, 9> out{};
-      std::copy(v.begin(), v.end(), out.begin());
+      std::copy(v.begin(), v.end(), out.matrix.begin());
+      if (form == RotationForm::kMatrixColumnMajor) out.matrix = runtime::transpose(out.matrix);
       return out;
     }
     case RotationForm::kZyz: {
       const std::vector<double> v = numbers(text, 3, option);
-      return runtime::rotation_from_zyz(v[0], v[1], v[2]);
+      out.matrix = runtime::rotation_from_zyz(v[0], v[1], v[2]);
+      return out;
     }
     case RotationForm::kAxisAngle: {
       const std::vector<double> v = numbers(text, 4, option);
       const double norm = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
       if (!(norm > 0) || !std::isfinite(norm)) throw InputError(option + ": the axis (" + excerpt(text) + ") has no direction");
       const double u[3] = {v[0] / norm, v[1] / norm, v[2] / norm};
-      return runtime::rotation_about_unit_axis(u, v[3]);
+      out.matrix = runtime::rotation_about_unit_axis(u, v[3]);
+      return out;
+    }
+    case RotationForm::kQuaternionWxyz:
+    case RotationForm::kQuaternionXyzw: {
+      const std::vector<double> v = numbers(text, 4, option);
+      const bool first = form == RotationForm::kQuaternionWxyz;
+      const double w = first ? v[0] : v[3], x = first ? v[1] : v[0], y = first ? v[2] : v[1], z = first ? v[3] : v[2];
+      if (!runtime::rotation_from_quaternion(w, x, y, z, out.matrix))
+        throw InputError(option + ": the quaternion (" + excerpt(text) + ") is zero");
+      out.quaternion_length = std::hypot(std::hypot(w, x), std::hypot(y, z));
+      return out;
+    }
+    case RotationForm::kEuler: {
+      const std::vector<double> v = numbers(text, 3, option);
+      if (!runtime::rotation_from_euler(v.data(), euler.order, euler.extrinsic, out.matrix))
+        throw InputError("--euler-order: '" + excerpt(euler.order) +
+                         "' is not three of X, Y, Z with no axis twice in a row (e.g. XYZ, ZYX, ZXZ)");
+      return out;
     }
   }
-  return {};
+  return out;
 }
 
 }  // namespace zhf::io

@@ -19,7 +19,9 @@
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/io/lobe_table_writer.h"
+#include "zhf/runtime/conventions.h"
 #include "zhf/runtime/lobe_table.h"
+#include "zhf/runtime/orthogonal.h"
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/rotator.h"
 #include "zhf/sh/analysis.h"
@@ -109,9 +111,9 @@ Array<T> output_array(std::optional<Array<T>>& into, std::size_t count, std::siz
   return *into;
 }
 
-// Refuses anything but a proper rotation, naming the vector.
+// Refuses anything but an orthogonal matrix (rotations and reflections), naming the vector.
 void check_rotation(const double* r, std::size_t v, bool many) {
-  const rt::RotationCheck check = rt::validate_rotation(r);
+  const rt::RotationCheck check = rt::validate_rotation(r, rt::tolerance::kRotationDefect, rt::Handedness::kEither);
   if (!check.ok) throw rt::InputError(std::string("rotation") + (many ? " " + std::to_string(v) : "") + ": " + check.message);
 }
 
@@ -133,13 +135,16 @@ Array<T> rotate_shared(const Array<T>& coeffs, const Array<double>& rotation, co
     py::gil_scoped_release release;
     if (order == 1) {
       rotate_checked(src, dst, count, n, threads, [](std::size_t, const T* f, T* g) { g[0] = f[0]; });
-    } else if (count < n) {
-      // Fewer vectors than the band matrices would cost to build: one by one.
-      const rt::Rotator<T> rotator = rotator_for<T>(order, table);
-      rotate_checked(src, dst, count, n, threads, [&](std::size_t, const T* f, T* g) { rotator.rotate(r, f, g); });
     } else {
-      const rt::DenseRotation<T> d = rotator_for<T>(order, table).dense(r);
-      rotate_checked(src, dst, count, n, threads, [&](std::size_t, const T* f, T* g) { d.apply(f, g); });
+      const rt::Rotator<T> rotator = rotator_for<T>(order, table);
+      const rt::OrthogonalTransform<T> transform(rotator, r);
+      if (transform.exact() || count < n) {
+        // An exact axis map, or fewer vectors than the band matrices would cost to build.
+        rotate_checked(src, dst, count, n, threads, [&](std::size_t, const T* f, T* g) { transform.apply(f, g); });
+      } else {
+        const rt::DenseRotation<T> d = transform.dense();
+        rotate_checked(src, dst, count, n, threads, [&](std::size_t, const T* f, T* g) { d.apply(f, g); });
+      }
     }
   }
   return out;
@@ -166,8 +171,9 @@ Array<T> rotate_each(const Array<T>& coeffs, const Array<double>& rotations, con
       rotate_checked(src, dst, count, n, threads, [](std::size_t, const T* f, T* g) { g[0] = f[0]; });
     } else {
       const rt::Rotator<T> rotator = rotator_for<T>(order, table);
-      rotate_checked(src, dst, count, n, threads,
-                     [&](std::size_t v, const T* f, T* g) { rotator.rotate(rotations_t.data() + 9 * v, f, g); });
+      rotate_checked(src, dst, count, n, threads, [&](std::size_t v, const T* f, T* g) {
+        rt::OrthogonalTransform<T>(rotator, rotations_t.data() + 9 * v).apply(f, g);
+      });
     }
   }
   return out;
@@ -184,7 +190,8 @@ std::vector<Array<double>> band_matrices(const Array<double>& rotation, int orde
     bands.push_back(one);
     return bands;
   }
-  const rt::DenseRotation<double> d = rotator_for<double>(order, table).dense(rotation.data());
+  const rt::Rotator<double> rotator = rotator_for<double>(order, table);
+  const rt::DenseRotation<double> d = rt::OrthogonalTransform<double>(rotator, rotation.data()).dense();
   for (int l = 0; l < order; ++l) {
     const auto size = static_cast<std::size_t>(rt::band_size(l));
     Array<double> band({size, size});
@@ -214,6 +221,33 @@ py::tuple matrices_from_quaternions(const Array<double>& quaternions, bool scala
     std::copy(r.begin(), r.end(), out + 9 * v);
   }
   return py::make_tuple(matrices, defect);
+}
+
+const rt::Convention& convention_named(const std::string& name) {
+  const rt::Convention* c = rt::find_convention(name);
+  if (!c) throw rt::InputError("convention: '" + rt::excerpt(name) + "' is not one of " + rt::convention_names());
+  return *c;
+}
+
+// (count, 9) rotations written in the convention's axes -> as zhf applies them to its coefficients.
+Array<double> rotations_in_zhf_terms(const std::string& name, const Array<double>& rotations) {
+  const rt::Convention& c = convention_named(name);
+  if (rotations.ndim() != 2 || rotations.shape(1) != 9) throw rt::InputError("rotation: expected (count, 9)");
+  const std::size_t count = rotations.shape(0);
+  Array<double> out({count, std::size_t(9)});
+  for (std::size_t v = 0; v < count; ++v) {
+    rt::Matrix3 r;
+    std::copy(rotations.data() + 9 * v, rotations.data() + 9 * v + 9, r.begin());
+    const rt::Matrix3 z = c.rotation_in_zhf_terms(r);
+    std::copy(z.begin(), z.end(), out.mutable_data() + 9 * v);
+  }
+  return out;
+}
+
+// The orthogonal matrix taking coefficients in convention source to convention target.
+std::vector<double> conversion(const std::string& source, const std::string& target) {
+  const rt::Matrix3 m = rt::multiply(convention_named(target).from_zhf(), convention_named(source).to_zhf());
+  return std::vector<double>(m.begin(), m.end());
 }
 
 py::dict analyze(const Array<double>& coeffs, double tolerance) {
@@ -312,5 +346,10 @@ PYBIND11_MODULE(_zhf, m) {
         py::arg("out").noconvert());
   m.def("band_matrices", &band_matrices, py::arg("rotation"), py::arg("order"), py::arg("table"));
   m.def("analyze", &analyze, py::arg("coeffs"), py::arg("tolerance"));
+  m.def("rotations_in_zhf_terms", &rotations_in_zhf_terms, py::arg("convention"), py::arg("rotations"));
+  m.def("conversion", &conversion, py::arg("source"), py::arg("target"));
+  py::list names;
+  for (const rt::Convention& c : rt::conventions()) names.append(std::string(c.name));
+  m.attr("conventions") = names;
   m.def("matrices_from_quaternions", &matrices_from_quaternions, py::arg("quaternions"), py::arg("scalar_first"));
 }

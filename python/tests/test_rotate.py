@@ -131,6 +131,35 @@ def test_non_unit_quaternions_are_normalised_with_a_warning():
     np.testing.assert_allclose(r, rotation_about_axis([0, 0, 1], np.pi / 2), atol=1e-15)
 
 
+def test_reflections_and_exact_axis_maps():
+    rng = np.random.default_rng(13)
+    f = unit_vectors(rng, (6, 25))
+    mirror = np.diag([1.0, 1.0, -1.0])  # z -> -z: coefficient (l, m) times (-1)^(l+m), bit for bit
+    signs = np.array([(-1.0) ** (l + m) for l in range(5) for m in range(-l, l + 1)])
+    np.testing.assert_array_equal(zhf.rotate(f, mirror), f * signs)
+    np.testing.assert_array_equal(zhf.rotate(np.tile(f, (10, 1)), mirror), np.tile(f * signs, (10, 1)))
+    # A general reflection, one rotation and one per item, as a function.
+    q = -random_rotation(rng)
+    w = random_directions(rng, 30)
+    for g in (zhf.rotate(f, q), zhf.rotate(f, np.broadcast_to(q, (6, 3, 3)))):
+        error = np.abs(g @ real_sh(5, w).T - f @ real_sh(5, w @ q).T).max()
+        assert error <= TOL["pointwise"], f"order 5 reflection: {error:.3g}"
+
+
+def test_conventions_convert_and_rotate_in_their_own_terms():
+    rng = np.random.default_rng(14)
+    f = unit_vectors(rng, (4, 16))
+    assert zhf.conventions[:3] == ["zhf", "condon-shortley", "3dgs"]
+    # 3DGS is the Condon-Shortley sign pattern: (-1)^m, exactly.
+    cs = np.array([(-1.0) ** abs(m) for l in range(4) for m in range(-l, l + 1)])
+    np.testing.assert_array_equal(zhf.convert(f, "3dgs"), f * cs)
+    r = random_rotation(rng)
+    np.testing.assert_allclose(zhf.rotate(f, r, convention="3dgs"), zhf.rotate(f * cs, r) * cs, atol=TOL["double"], rtol=0)
+    # Round trips through a frame change.
+    for name in zhf.conventions:
+        np.testing.assert_allclose(zhf.convert(zhf.convert(f, name), "zhf", name), f, atol=TOL["double"], rtol=0)
+
+
 def test_objects_with_array_interface_work():
     class Wrapped:
         def __init__(self, a):
@@ -161,7 +190,7 @@ def test_torch_tensors_through_numpy():
         (lambda: zhf.rotate(np.r_[np.zeros(20), np.inf, np.zeros(11)].reshape(2, 16), np.eye(3)),
          "coeffs: vector 1, coefficient 4: inf is not finite"),
         (lambda: zhf.rotate(np.zeros(15), np.eye(3)), "coeffs: a last axis of 15 is not N^2"),
-        (lambda: zhf.rotate(np.zeros(16), np.diag([1.0, 1.0, -1.0])), "rotation: rotation matrix is a reflection"),
+        (lambda: zhf.rotate(np.zeros(16), np.eye(3), convention="y-down"), "convention: 'y-down' is not one of zhf"),
         (lambda: zhf.rotate(np.zeros(16), 1.1 * np.eye(3)), "rotation: rotation matrix is not orthonormal"),
         (lambda: zhf.rotate(np.zeros(16), np.array([np.eye(3), np.diag([1, -1, -1]), 2 * np.eye(3)])),
          "rotation 2: rotation matrix is not orthonormal"),

@@ -3,7 +3,8 @@
 Convention (docs/conventions.md): real orthonormal SH without the Condon-Shortley phase; the
 coefficient of band l, order m is at index l(l+1)+m of the last axis; z up; band 1 is
 c (y, z, x). A rotation R is a 3x3 matrix mapping a direction v to R v; rotating f gives the
-coefficients of g(w) = f(R^T w).
+coefficients of g(w) = f(R^T w). Reflections (det -1) are accepted wherever rotations are.
+Other systems' coefficients: convention= (zhf.conventions lists the presets) and zhf.convert.
 
 Arrays: coefficients have shape (..., N*N) for order N (bands 0..N-1), channels being one more
 leading axis, e.g. (splats, 3, 16) for RGB at order 4. float32 stays float32, float64 stays
@@ -17,12 +18,14 @@ import warnings
 import numpy as np
 
 from . import _zhf
-from ._zhf import LobeTable, __version__
+from ._zhf import LobeTable, __version__, conventions
 
 __all__ = [
     "LobeTable",
     "analyze",
     "band_matrices",
+    "conventions",
+    "convert",
     "matrix_from_quaternion",
     "order_of",
     "read_lobe_table",
@@ -67,7 +70,8 @@ def matrix_from_quaternion(quaternions, order: str, *, _stacklevel: int = 2) -> 
     return matrices.reshape(q.shape[:-1] + (3, 3))
 
 
-def rotate(coeffs, rotation, *, quaternion_order=None, table=None, threads: int = 0, out=None) -> np.ndarray:
+def rotate(coeffs, rotation, *, quaternion_order=None, convention="zhf", table=None, threads: int = 0,
+           out=None) -> np.ndarray:
     """Rotated SH coefficients, a new array of the shape (and float dtype) of coeffs, or out.
 
     coeffs:   (..., N*N), any order N with kernels or a lobe table: 1..8 generated (the fastest
@@ -77,22 +81,24 @@ def rotate(coeffs, rotation, *, quaternion_order=None, table=None, threads: int 
               matrices built once, then a small dense product per vector); or one per item,
               (..., 3, 3) or (..., 4), broadcast against coeffs.shape[:-1] like NumPy. For
               (..., C, N*N) arrays with one rotation per item give (..., 1, 3, 3).
-              Matrices must be proper rotations (det +1, orthonormal within 1e-5).
+              Matrices must be orthogonal within 1e-5: rotations, or reflections (det -1).
     quaternion_order: "wxyz" or "xyzw"; required when rotation holds quaternions.
+    convention: the coefficients' convention (zhf.conventions), the rotation written in the
+              same system's axes: "3dgs" for 3D Gaussian Splatting data, for instance.
     table:    a LobeTable (read_lobe_table) to rotate with instead of the shipped kernels.
     threads:  0 for all cores; large batches are split over them, the GIL released.
     out:      an array to write the result into (C-contiguous, the result's shape and dtype, not
               overlapping coeffs), returned; saves allocating (and first touching) a new one.
 
-    Raises ValueError for a bad shape, a matrix that is not a rotation, a zero quaternion, or a
-    non-finite coefficient (naming the vector and coefficient).
+    Raises ValueError for a bad shape, a matrix that is not orthogonal, a zero quaternion, an
+    unknown convention, or a non-finite coefficient (naming the vector and coefficient).
     """
     c = _real_array(coeffs, "coeffs", None)
     if c.ndim < 1:
         raise ValueError("coeffs: expected an array of shape (..., N*N)")
     order = order_of(c)
     n = order * order
-    matrices = _matrices(rotation, quaternion_order)
+    matrices = _in_zhf_terms(_matrices(rotation, quaternion_order), convention)
     threads = _threads(threads)
     if table is None:
         table = _shipped_table(order)
@@ -114,7 +120,7 @@ def rotate(coeffs, rotation, *, quaternion_order=None, table=None, threads: int 
     return out if out is not None else result.reshape(batch + (n,))
 
 
-def band_matrices(rotation, order: int, *, quaternion_order=None, table=None) -> list:
+def band_matrices(rotation, order: int, *, quaternion_order=None, convention="zhf", table=None) -> list:
     """The dense band matrices D_0..D_{order-1} of one rotation, float64, D_l of shape (2l+1, 2l+1).
 
     Rotating band l of f is D_l @ f_l, so np.einsum with these is the plain dense way to apply a
@@ -122,12 +128,22 @@ def band_matrices(rotation, order: int, *, quaternion_order=None, table=None) ->
     """
     if not isinstance(order, (int, np.integer)) or not 1 <= order <= _zhf.max_table_order:
         raise ValueError(f"order: {order!r} is not an order in 1..{_zhf.max_table_order}")
-    matrices = _matrices(rotation, quaternion_order)
+    matrices = _in_zhf_terms(_matrices(rotation, quaternion_order), convention)
     if matrices.shape != (3, 3):
         raise ValueError(f"rotation: expected one rotation, not a batch of shape {matrices.shape[:-2]}")
     if table is None:
         table = _shipped_table(int(order))
     return _zhf.band_matrices(matrices.reshape(9), int(order), table)
+
+
+def convert(coeffs, source: str, target: str = "zhf", *, threads: int = 0) -> np.ndarray:
+    """Coefficients (..., N*N) in convention source as the same function in convention target.
+
+    Sign patterns are exact (no arithmetic); a change of frame (y-up-rh, y-up-lh) is an exact
+    orthogonal transform computed to rounding. See docs/conventions.md for each preset.
+    """
+    m = np.asarray(_zhf.conversion(source, target)).reshape(3, 3)
+    return rotate(coeffs, m, threads=threads)
 
 
 def analyze(coeffs, tolerance: float = 1e-3) -> dict:
@@ -194,6 +210,15 @@ def _matrices(rotation, quaternion_order):
             raise ValueError("rotation: quaternions (..., 4) need quaternion_order='wxyz' or 'xyzw'")
         return matrix_from_quaternion(r, quaternion_order, _stacklevel=4)
     raise ValueError(f"rotation: expected matrices (..., 3, 3) or quaternions (..., 4), not shape {r.shape}")
+
+
+def _in_zhf_terms(matrices, convention):
+    if convention == "zhf":
+        return matrices
+    if not isinstance(convention, str):
+        raise ValueError(f"convention: {convention!r} is not a name ({', '.join(conventions)})")
+    flat = np.ascontiguousarray(matrices).reshape(-1, 9)
+    return _zhf.rotations_in_zhf_terms(convention, flat).reshape(matrices.shape)
 
 
 def _threads(threads):

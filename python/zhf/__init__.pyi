@@ -8,6 +8,7 @@ import numpy.typing as npt
 __version__: str
 
 QuaternionOrder = Literal["wxyz", "xyzw"]
+conventions: list[str]
 
 class LobeTable:
     order: int
@@ -27,6 +28,7 @@ def rotate(
     rotation: npt.ArrayLike,  # (3, 3), (4,), (..., 3, 3) or (..., 4)
     *,
     quaternion_order: Optional[QuaternionOrder] = ...,
+    convention: str = ...,
     table: Optional[LobeTable] = ...,
     threads: int = ...,
     out: Optional[np.ndarray] = ...,
@@ -37,9 +39,12 @@ def band_matrices(
     order: int,
     *,
     quaternion_order: Optional[QuaternionOrder] = ...,
+    convention: str = ...,
     table: Optional[LobeTable] = ...,
 ) -> list[npt.NDArray[np.float64]]:  # D_l: (2l+1, 2l+1), l = 0..order-1
     ...
+def convert(coeffs: npt.ArrayLike, source: str, target: str = ..., *, threads: int = ...) -> np.ndarray:
+    """(..., N*N) -> (..., N*N)"""
 def analyze(coeffs: npt.ArrayLike, tolerance: float = ...) -> dict: ...
 def read_lobe_table(path: Union[str, PathLike], order: int = ...) -> LobeTable: ...
 def write_lobe_table(table: LobeTable, path: Union[str, PathLike]) -> None: ...

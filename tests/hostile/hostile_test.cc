@@ -563,8 +563,8 @@ TEST(Hostile, OptionsAndNumbersAreReadExactly) {
   box.write("binary.json", binary);
   refused("raw binary as a table", box, {"emit", "--table", box.path("binary.json"), "--lang", "cpp", "--out", box.path("o")}, 3,
           "binary.json: not valid JSON");
-  refused("a reflection", box, {"rotate", "--coeffs", box.path("c.json"), "--matrix", "1 0 0 0 1 0 0 0 -1", "--out", box.path("r.json")}, 2,
-          "--matrix: rotation matrix is a reflection");
+  refused("a singular matrix", box, {"rotate", "--coeffs", box.path("c.json"), "--matrix", "1 0 0 0 1 0 0 0 0", "--out", box.path("r.json")}, 2,
+          "--matrix: rotation matrix is not orthonormal");
 }
 
 // Every malformed document, fed to every reader the CLI has: each one is refused with exit 3 and

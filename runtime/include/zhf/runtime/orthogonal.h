@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstddef>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "zhf/runtime/rotation.h"
@@ -110,20 +111,30 @@ class OrthogonalTransform {
     if (invert_) negate_odd_bands(rotator_->order(), out);
   }
 
-  // count vectors (in[N^2 v + i]): the band matrices once, then each vector; threads 0: all cores.
+  // The band matrices of the transform (the rotation's, odd bands negated for a reflection).
+  DenseRotation<T> dense() const {
+    const DenseRotation<T> d = rotator_->dense(rotation_);
+    if (!invert_) return d;
+    std::vector<std::vector<T>> bands = d.bands();
+    for (std::size_t l = 1; l < bands.size(); l += 2)
+      for (T& x : bands[l]) x = -x;
+    return DenseRotation<T>(d.order(), std::move(bands));
+  }
+
+  // count vectors (in[N^2 v + i]) under this one transform: the exact map, or the band matrices
+  // built once when there are at least N^2 vectors; threads 0: all cores.
   void apply_shared(std::size_t count, const T* in, T* out, int threads = 0) const {
     const std::size_t n = std::size_t(rotator_->coefficients());
-    if (exact_) {
+    if (exact_ || count < n) {
       parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t v = begin; v < end; ++v) exact_->apply(in + n * v, out + n * v);
+        for (std::size_t v = begin; v < end; ++v) apply(in + n * v, out + n * v);
       });
       return;
     }
-    rotator_->rotate_shared(count, rotation_, in, out, threads);
-    if (invert_)
-      parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t v = begin; v < end; ++v) negate_odd_bands(rotator_->order(), out + n * v);
-      });
+    const DenseRotation<T> d = dense();
+    parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t v = begin; v < end; ++v) d.apply(in + n * v, out + n * v);
+    });
   }
 
   static void negate_odd_bands(int order, T* f) {
