@@ -33,5 +33,6 @@ void add_verify_command(CLI::App& app, Action& action);
 void add_analyze_command(CLI::App& app, Action& action);
 void add_bench_command(CLI::App& app, Action& action);
 void add_rotate_command(CLI::App& app, Action& action);
+void add_splat_command(CLI::App& app, Action& action);
 
 }  // namespace zhf::cli

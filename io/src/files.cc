@@ -105,6 +105,7 @@ PendingFile::~PendingFile() {
 }
 
 void PendingFile::write(const std::string& text) { write_all(fd_, text.data(), text.size(), destination_); }
+void PendingFile::write(const char* data, std::size_t size) { write_all(fd_, data, size, destination_); }
 
 void PendingFile::commit() {
   // fsync flushes the file whoever wrote it: zhf through fd_, or another program by name.

@@ -8,10 +8,8 @@
 #include "zhf/runtime/rotation.h"
 
 namespace zhf::io {
-namespace {
 
-// Numbers separated by spaces, tabs or commas; each token must be a whole finite number.
-std::vector<double> numbers(const std::string& text, size_t expected, const std::string& option) {
+std::vector<double> parse_numbers(const std::string& text, std::size_t expected, const std::string& option) {
   std::vector<double> out;
   size_t i = 0;
   auto separator = [](char c) { return c == ' ' || c == ',' || c == '\t'; };
@@ -33,25 +31,23 @@ std::vector<double> numbers(const std::string& text, size_t expected, const std:
   return out;
 }
 
-}  // namespace
-
 ParsedRotation parse_rotation(const std::string& text, RotationForm form, const std::string& option, const EulerAxes& euler) {
   ParsedRotation out;
   switch (form) {
     case RotationForm::kMatrix:
     case RotationForm::kMatrixColumnMajor: {
-      const std::vector<double> v = numbers(text, 9, option);
+      const std::vector<double> v = parse_numbers(text, 9, option);
       std::copy(v.begin(), v.end(), out.matrix.begin());
       if (form == RotationForm::kMatrixColumnMajor) out.matrix = runtime::transpose(out.matrix);
       return out;
     }
     case RotationForm::kZyz: {
-      const std::vector<double> v = numbers(text, 3, option);
+      const std::vector<double> v = parse_numbers(text, 3, option);
       out.matrix = runtime::rotation_from_zyz(v[0], v[1], v[2]);
       return out;
     }
     case RotationForm::kAxisAngle: {
-      const std::vector<double> v = numbers(text, 4, option);
+      const std::vector<double> v = parse_numbers(text, 4, option);
       const double norm = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
       if (!(norm > 0) || !std::isfinite(norm)) throw InputError(option + ": the axis (" + excerpt(text) + ") has no direction");
       const double u[3] = {v[0] / norm, v[1] / norm, v[2] / norm};
@@ -60,7 +56,7 @@ ParsedRotation parse_rotation(const std::string& text, RotationForm form, const 
     }
     case RotationForm::kQuaternionWxyz:
     case RotationForm::kQuaternionXyzw: {
-      const std::vector<double> v = numbers(text, 4, option);
+      const std::vector<double> v = parse_numbers(text, 4, option);
       const bool first = form == RotationForm::kQuaternionWxyz;
       const double w = first ? v[0] : v[3], x = first ? v[1] : v[0], y = first ? v[2] : v[1], z = first ? v[3] : v[2];
       if (!runtime::rotation_from_quaternion(w, x, y, z, out.matrix))
@@ -69,7 +65,7 @@ ParsedRotation parse_rotation(const std::string& text, RotationForm form, const 
       return out;
     }
     case RotationForm::kEuler: {
-      const std::vector<double> v = numbers(text, 3, option);
+      const std::vector<double> v = parse_numbers(text, 3, option);
       if (!runtime::rotation_from_euler(v.data(), euler.order, euler.extrinsic, out.matrix))
         throw InputError("--euler-order: '" + excerpt(euler.order) +
                          "' is not three of X, Y, Z with no axis twice in a row (e.g. XYZ, ZYX, ZXZ)");

@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include "sh_bases.h"
+
 #include "zhf/runtime/conventions.h"
 #include "zhf/runtime/orthogonal.h"
 #include "zhf/runtime/rotator.h"
@@ -172,37 +174,11 @@ TEST(Orthogonal, EulerAnglesComposeAsStated) {
   EXPECT_EQ(untouched, Matrix3{});
 }
 
-// Degree <= 3 bases written out from each system's evaluation code (docs/conventions.md).
 using Basis = std::function<std::vector<double>(double x, double y, double z)>;
-
-// zhf's, as polynomials (no recurrence): Sloan's real SH without the phase.
-std::vector<double> zhf_polynomials(double x, double y, double z) {
-  const double xx = x * x, yy = y * y, zz = z * z;
-  return {0.28209479177387814,
-          0.4886025119029199 * y, 0.4886025119029199 * z, 0.4886025119029199 * x,
-          1.0925484305920792 * x * y, 1.0925484305920792 * y * z, 0.31539156525252005 * (2 * zz - xx - yy),
-          1.0925484305920792 * x * z, 0.5462742152960396 * (xx - yy),
-          0.5900435899266435 * y * (3 * xx - yy), 2.890611442640554 * x * y * z, 0.4570457994644658 * y * (4 * zz - xx - yy),
-          0.3731763325901154 * z * (2 * zz - 3 * xx - 3 * yy), 0.4570457994644658 * x * (4 * zz - xx - yy),
-          1.445305721320277 * z * (xx - yy), 0.5900435899266435 * x * (xx - 3 * yy)};
-}
-
-// graphdeco-inria/gaussian-splatting utils/sh_utils.py, eval_sh: C0..C3 and their signs.
-std::vector<double> gaussian_splatting_basis(double x, double y, double z) {
-  const double c1 = 0.4886025119029199;
-  const double c2[5] = {1.0925484305920792, -1.0925484305920792, 0.31539156525252005, -1.0925484305920792, 0.5462742152960396};
-  const double c3[7] = {-0.5900435899266435, 2.890611442640554, -0.4570457994644658, 0.3731763325901154,
-                        -0.4570457994644658, 1.445305721320277, -0.5900435899266435};
-  const double xx = x * x, yy = y * y, zz = z * z;
-  return {0.28209479177387814, -c1 * y, c1 * z, -c1 * x,
-          c2[0] * x * y, c2[1] * y * z, c2[2] * (2 * zz - xx - yy), c2[3] * x * z, c2[4] * (xx - yy),
-          c3[0] * y * (3 * xx - yy), c3[1] * x * y * z, c3[2] * y * (4 * zz - xx - yy), c3[3] * z * (2 * zz - 3 * xx - 3 * yy),
-          c3[4] * x * (4 * zz - xx - yy), c3[5] * z * (xx - yy), c3[6] * x * (xx - 3 * yy)};
-}
 
 // The textbook real SH with the Condon-Shortley phase: (-1)^m times the phase-free ones.
 std::vector<double> condon_shortley_basis(double x, double y, double z) {
-  std::vector<double> b = zhf_polynomials(x, y, z);
+  std::vector<double> b = test::zhf_polynomials(x, y, z);
   for (int l = 0; l < 4; ++l)
     for (int m = -l; m <= l; ++m)
       if (m % 2) b[runtime::index(l, m)] = -b[runtime::index(l, m)];
@@ -215,11 +191,11 @@ TEST(Conventions, EveryPresetIsItsSystemsFunctionInZhfsAxes) {
   // Each system evaluates its basis formula in its own coordinates u; three.js's
   // SphericalHarmonics3 and Unity use the phase-free polynomials, in axes of their own.
   const std::vector<std::pair<std::string, Basis>> systems = {
-      {"zhf", zhf_polynomials},
+      {"zhf", test::zhf_polynomials},
       {"condon-shortley", condon_shortley_basis},
-      {"3dgs", gaussian_splatting_basis},
-      {"y-up-rh", zhf_polynomials},
-      {"y-up-lh", zhf_polynomials},
+      {"3dgs", test::gaussian_splatting_basis},
+      {"y-up-rh", test::zhf_polynomials},
+      {"y-up-lh", test::zhf_polynomials},
   };
   ASSERT_EQ(systems.size(), runtime::conventions().size());
   std::mt19937_64 rng(3);

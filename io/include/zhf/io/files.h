@@ -37,6 +37,7 @@ class PendingFile {
   int fd() const { return fd_; }  // open for writing until commit()
   // Writes all of text to the file (for zhf's own outputs; another program writes by path()).
   void write(const std::string& text);
+  void write(const char* data, std::size_t size);
   // Flushes to disk, closes and moves (or copies) the bytes to the destination.
   void commit();
 

@@ -10,7 +10,9 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <string>
+#include <vector>
 
 namespace zhf::io {
 
@@ -25,6 +27,10 @@ struct ParsedRotation {
   std::array<double, 9> matrix{};
   double quaternion_length = 1;  // for a quaternion: its length before normalising
 };
+
+// Exactly expected numbers separated by spaces, tabs or commas (an option's text, e.g. a
+// translation); throws InputError "<option>: ..." otherwise.
+std::vector<double> parse_numbers(const std::string& text, std::size_t expected, const std::string& option);
 
 // Throws InputError "<option>: ..." naming what is wrong (count, a non-number, non-finite,
 // a zero axis or quaternion, an Euler order that is not one).

@@ -179,6 +179,35 @@ inline bool rotation_from_quaternion(double w, double x, double y, double z, Mat
   return true;
 }
 
+// The unit quaternion (w, x, y, z) of a rotation matrix, w >= 0 (Shepperd's method: the largest
+// of the four squared components is computed directly, the others from it). Accuracy: a few ulps.
+inline std::array<double, 4> quaternion_from_rotation(const Matrix3& r) {
+  const double trace = r[0] + r[4] + r[8];
+  std::array<double, 4> q;
+  if (trace >= r[0] && trace >= r[4] && trace >= r[8]) {
+    const double s = 2 * std::sqrt(1 + trace);
+    q = {s / 4, (r[7] - r[5]) / s, (r[2] - r[6]) / s, (r[3] - r[1]) / s};
+  } else if (r[0] >= r[4] && r[0] >= r[8]) {
+    const double s = 2 * std::sqrt(1 + r[0] - r[4] - r[8]);
+    q = {(r[7] - r[5]) / s, s / 4, (r[1] + r[3]) / s, (r[2] + r[6]) / s};
+  } else if (r[4] >= r[8]) {
+    const double s = 2 * std::sqrt(1 + r[4] - r[0] - r[8]);
+    q = {(r[2] - r[6]) / s, (r[1] + r[3]) / s, s / 4, (r[5] + r[7]) / s};
+  } else {
+    const double s = 2 * std::sqrt(1 + r[8] - r[0] - r[4]);
+    q = {(r[3] - r[1]) / s, (r[2] + r[6]) / s, (r[5] + r[7]) / s, s / 4};
+  }
+  if (q[0] < 0)
+    for (double& c : q) c = -c;
+  return q;
+}
+
+// The Hamilton product a b of quaternions (w, x, y, z): the rotation of b, then of a.
+inline std::array<double, 4> quaternion_product(const std::array<double, 4>& a, const std::array<double, 4>& b) {
+  return {a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3], a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
+          a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1], a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]};
+}
+
 // R = Rz(alpha) Ry(beta) Rz(gamma), radians.
 inline Matrix3 rotation_from_zyz(double alpha, double beta, double gamma) {
   const double z[3] = {0, 0, 1}, y[3] = {0, 1, 0};

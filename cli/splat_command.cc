@@ -1,0 +1,82 @@
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include <unistd.h>
+
+#include "commands.h"
+#include "options.h"
+#include "transform_options.h"
+#include "zhf/io/errors.h"
+#include "zhf/io/rotation_text.h"
+#include "zhf/runtime/conventions.h"
+#include "zhf/splat/scene.h"
+
+namespace zhf::cli {
+namespace {
+
+// The bound on --threads (and on every thread pool zhf starts).
+constexpr int kMaxThreads = 256;
+
+struct SplatOptions {
+  std::string in, out;
+  TransformOptions transform;
+  std::string translate, scale = "1", convention = "3dgs", threads = "0";
+  bool identity = false, quiet = false;
+};
+
+std::array<double, 3> translation(const std::string& text) {
+  if (text.empty()) return {};
+  try {
+    const std::vector<double> v = io::parse_numbers(text, 3, "--translate");
+    return {v[0], v[1], v[2]};
+  } catch (const io::InputError& e) {
+    throw UsageError(e.what());
+  }
+}
+
+int run_splat(const SplatOptions& o) {
+  const runtime::Convention* convention = runtime::find_convention(o.convention);
+  if (!convention)
+    throw UsageError("--convention: '" + runtime::excerpt(o.convention) + "' is not one of " + runtime::convention_names());
+  splat::Transform t;
+  if (!o.identity) t.r = transform_matrix(o.transform);
+  t.scale = number_option("--scale", o.scale, 1e-30, 1e30);
+  t.translation = translation(o.translate);
+  t.convention = convention;
+  const int threads = static_cast<int>(integer_option("--threads", o.threads, 0, kMaxThreads));
+  const bool bar = !o.quiet && isatty(STDERR_FILENO);
+  const splat::Summary summary = splat::transform_file(o.in, o.out, t, threads, [bar](std::uint64_t done, std::uint64_t total) {
+    if (bar) std::fprintf(stderr, "\rzhf splat: %3d%% (%llu of %llu splats)", int(100.0 * done / total), (unsigned long long)done,
+                          (unsigned long long)total);
+  });
+  if (bar) std::fprintf(stderr, "\n");
+  if (!o.quiet)
+    std::printf("transformed %llu splats (%s, SH degree %s) into %s\n", (unsigned long long)summary.splats,
+                summary.ascii ? "ascii" : "binary", summary.sh_degree < 0 ? "none" : std::to_string(summary.sh_degree).c_str(),
+                o.out.c_str());
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_splat_command(CLI::App& app, Action& action) {
+  auto o = std::make_shared<SplatOptions>();
+  CLI::App* c = app.add_subcommand(
+      "splat",
+      "Transform a 3D Gaussian Splatting scene (.ply): p' = s R p + t (rotate and scale about the origin, then translate), "
+      "orientations, normals, log-scales and SH colours with it; in the file's own axes");
+  c->add_option("--in", o->in, "The scene: binary little-endian or ASCII .ply")->required();
+  c->add_option("--out", o->out, "Write the transformed scene here (same format, columns and comments)")->required();
+  add_transform_options(c, o->transform);
+  c->add_flag("--identity", o->identity, "No rotation (with --translate or --scale alone)");
+  c->add_option("--translate", o->translate, "x y z: added after rotating and scaling");
+  c->add_option("--scale", o->scale, "Uniform scale s > 0 (positions times s, log-scales plus log s); non-uniform is not a similarity");
+  c->add_option("--convention", o->convention,
+                "The SH coefficients' convention (default 3dgs): " + runtime::convention_names() + " (docs/conventions.md)");
+  c->add_option("--threads", o->threads, "Threads, 0..256 (0: all cores); never changes the result");
+  c->add_flag("--quiet", o->quiet, "No progress bar and no summary line");
+  c->callback([o, &action] { action = [o] { return run_splat(*o); }; });
+}
+
+}  // namespace zhf::cli

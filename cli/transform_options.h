@@ -1,0 +1,25 @@
+// The orthogonal transform a user types, shared by zhf rotate and zhf splat: one of --matrix
+// (row-major, or --column-major), --zyz, --axis-angle, --quat, --quat-xyzw, --euler with
+// --euler-order and --intrinsic or --extrinsic; reflections included. Checked, repaired on
+// request (--repair), and replaced by the nearest orthogonal matrix.
+#pragma once
+
+#include <array>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace zhf::cli {
+
+struct TransformOptions {
+  std::string matrix, zyz, axis_angle, quat, quat_xyzw, euler, euler_order;
+  bool column_major = false, intrinsic = false, extrinsic = false;
+  bool repair = false;
+};
+
+void add_transform_options(CLI::App* command, TransformOptions& o);
+
+// Throws UsageError naming the option.
+std::array<double, 9> transform_matrix(const TransformOptions& o);
+
+}  // namespace zhf::cli

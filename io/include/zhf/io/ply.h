@@ -1,0 +1,52 @@
+// PLY headers, as 3D Gaussian Splatting tools write them: one element "vertex" of scalar
+// properties, ascii or binary_little_endian 1.0, with comments and obj_info lines kept as they
+// are. Limits are checked before any data is read: a header of at most 64 KiB, at most 1024
+// properties, at most 2^31 vertices; list properties, other elements and big-endian data are
+// refused with the line that says so.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <istream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace zhf::io::ply {
+
+enum class Format { kAscii, kBinaryLittleEndian };
+enum class Type { kInt8, kUint8, kInt16, kUint16, kInt32, kUint32, kFloat32, kFloat64 };
+
+inline constexpr std::size_t kMaxHeaderBytes = std::size_t(64) << 10;
+inline constexpr std::size_t kMaxProperties = 1024;
+inline constexpr std::uint64_t kMaxVertices = std::uint64_t(1) << 31;
+
+struct Property {
+  std::string name;
+  Type type = Type::kFloat32;
+  std::size_t offset = 0;  // in a binary record
+};
+
+struct Header {
+  Format format = Format::kBinaryLittleEndian;
+  std::string text;  // the header's bytes, from "ply" through "end_header\n", written back as they are
+  std::uint64_t vertices = 0;
+  std::vector<Property> properties;
+  std::size_t record_bytes = 0;  // binary: bytes per vertex
+
+  // The property's position, or -1.
+  int find(std::string_view name) const;
+};
+
+std::size_t type_size(Type type);
+bool is_float(Type type);
+
+// Reads the header from the start of the stream; throws InputError "<source>: header line K: ...".
+Header read_header(std::istream& in, const std::string& source);
+
+// A binary little-endian value of the property in a record, as a double, and back (rounded to
+// the property's type; integer properties are never written by zhf).
+double read_binary(const unsigned char* record, const Property& property);
+void write_binary(unsigned char* record, const Property& property, double value);
+
+}  // namespace zhf::io::ply

@@ -1,0 +1,155 @@
+#include "zhf/io/ply.h"
+
+#include <cstring>
+#include <sstream>
+
+#include "zhf/io/errors.h"
+
+namespace zhf::io::ply {
+namespace {
+
+struct TypeName {
+  std::string_view name;
+  Type type;
+};
+constexpr TypeName kTypeNames[] = {
+    {"char", Type::kInt8},     {"int8", Type::kInt8},       {"uchar", Type::kUint8},    {"uint8", Type::kUint8},
+    {"short", Type::kInt16},   {"int16", Type::kInt16},     {"ushort", Type::kUint16},  {"uint16", Type::kUint16},
+    {"int", Type::kInt32},     {"int32", Type::kInt32},     {"uint", Type::kUint32},    {"uint32", Type::kUint32},
+    {"float", Type::kFloat32}, {"float32", Type::kFloat32}, {"double", Type::kFloat64}, {"float64", Type::kFloat64},
+};
+
+std::vector<std::string> words(const std::string& line) {
+  std::istringstream in(line);
+  std::vector<std::string> out;
+  for (std::string w; in >> w;) out.push_back(w);
+  return out;
+}
+
+template <class T>
+T load(const unsigned char* p) {
+  T value;
+  std::memcpy(&value, p, sizeof value);
+  return value;
+}
+
+}  // namespace
+
+int Header::find(std::string_view name) const {
+  for (std::size_t i = 0; i < properties.size(); ++i)
+    if (properties[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
+std::size_t type_size(Type type) {
+  switch (type) {
+    case Type::kInt8:
+    case Type::kUint8: return 1;
+    case Type::kInt16:
+    case Type::kUint16: return 2;
+    case Type::kInt32:
+    case Type::kUint32:
+    case Type::kFloat32: return 4;
+    case Type::kFloat64: return 8;
+  }
+  return 0;
+}
+
+bool is_float(Type type) { return type == Type::kFloat32 || type == Type::kFloat64; }
+
+Header read_header(std::istream& in, const std::string& source) {
+  Header header;
+  bool format_seen = false, vertex_seen = false;
+  for (int number = 1;; ++number) {
+    std::string line;
+    // A line ends at '\n'; the header's size is bounded before any line is kept.
+    for (char c; in.get(c) && c != '\n';) {
+      line += c;
+      if (header.text.size() + line.size() > kMaxHeaderBytes)
+        throw InputError(source + ": the header is longer than " + std::to_string(kMaxHeaderBytes) + " bytes");
+    }
+    if (!in) throw InputError(source + ": the header ends before end_header");
+    header.text += line + "\n";
+    const std::string where = source + ": header line " + std::to_string(number);
+    if (!line.empty() && line.back() == '\r') throw InputError(where + ": a CR line ending (zhf reads LF-terminated PLY only)");
+    const std::vector<std::string> w = words(line);
+    if (number == 1) {
+      if (line != "ply") throw InputError(source + ": not a PLY file (it does not start with \"ply\")");
+      continue;
+    }
+    if (w.empty()) throw InputError(where + ": an empty line");
+    const std::string& keyword = w[0];
+    if (keyword == "comment" || keyword == "obj_info") continue;
+    if (keyword == "end_header") {
+      if (w.size() != 1) throw InputError(where + ": end_header followed by '" + excerpt(line) + "'");
+      break;
+    }
+    if (keyword == "format") {
+      if (format_seen || w.size() != 3 || w[2] != "1.0") throw InputError(where + ": expected 'format <kind> 1.0' once");
+      if (w[1] == "ascii") {
+        header.format = Format::kAscii;
+      } else if (w[1] == "binary_little_endian") {
+        header.format = Format::kBinaryLittleEndian;
+      } else if (w[1] == "binary_big_endian") {
+        throw InputError(where + ": big-endian PLY is not supported (convert it to little-endian)");
+      } else {
+        throw InputError(where + ": unknown format '" + excerpt(w[1]) + "'");
+      }
+      format_seen = true;
+    } else if (keyword == "element") {
+      if (vertex_seen) throw InputError(where + ": a second element ('" + excerpt(line) + "'); a splat file has vertices only");
+      if (w.size() != 3 || w[1] != "vertex") throw InputError(where + ": expected 'element vertex <count>'");
+      const std::string& count = w[2];
+      if (count.empty() || count.size() > 10 || count.find_first_not_of("0123456789") != std::string::npos ||
+          std::stoull(count) > kMaxVertices)
+        throw InputError(where + ": the vertex count '" + excerpt(count) + "' is not a count up to 2^31");
+      header.vertices = std::stoull(count);
+      vertex_seen = true;
+    } else if (keyword == "property") {
+      if (!vertex_seen) throw InputError(where + ": a property before 'element vertex'");
+      if (w.size() >= 2 && w[1] == "list") throw InputError(where + ": list properties are not supported in a splat file");
+      if (w.size() != 3) throw InputError(where + ": expected 'property <type> <name>'");
+      if (header.properties.size() == kMaxProperties)
+        throw InputError(where + ": more than " + std::to_string(kMaxProperties) + " properties");
+      const TypeName* type = nullptr;
+      for (const TypeName& t : kTypeNames)
+        if (t.name == w[1]) type = &t;
+      if (!type) throw InputError(where + ": unknown property type '" + excerpt(w[1]) + "'");
+      if (header.find(w[2]) >= 0) throw InputError(where + ": property '" + excerpt(w[2]) + "' appears twice");
+      header.properties.push_back({w[2], type->type, header.record_bytes});
+      header.record_bytes += type_size(type->type);
+    } else {
+      throw InputError(where + ": unknown header line '" + excerpt(line) + "'");
+    }
+  }
+  if (!format_seen) throw InputError(source + ": the header has no format line");
+  if (!vertex_seen || header.properties.empty()) throw InputError(source + ": the header has no vertex element with properties");
+  return header;
+}
+
+double read_binary(const unsigned char* record, const Property& property) {
+  const unsigned char* p = record + property.offset;
+  switch (property.type) {
+    case Type::kInt8: return load<std::int8_t>(p);
+    case Type::kUint8: return load<std::uint8_t>(p);
+    case Type::kInt16: return load<std::int16_t>(p);
+    case Type::kUint16: return load<std::uint16_t>(p);
+    case Type::kInt32: return load<std::int32_t>(p);
+    case Type::kUint32: return load<std::uint32_t>(p);
+    case Type::kFloat32: return load<float>(p);
+    case Type::kFloat64: return load<double>(p);
+  }
+  return 0;
+}
+
+void write_binary(unsigned char* record, const Property& property, double value) {
+  unsigned char* p = record + property.offset;
+  if (property.type == Type::kFloat32) {
+    const float f = static_cast<float>(value);
+    std::memcpy(p, &f, sizeof f);
+  } else {
+    std::memcpy(p, &value, sizeof value);
+  }
+}
+
+}  // namespace zhf::io::ply

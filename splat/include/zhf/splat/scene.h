@@ -1,0 +1,46 @@
+// 3D Gaussian Splatting scenes (.ply, as the 3DGS tools write them) transformed as a whole:
+// p' = s R p + t for positions (rotate and scale about the origin, then translate), the
+// Gaussians' orientations and normals turned by R, log-scales plus log s, and each splat's
+// view-dependent colour (SH of degree 0..3 in the file's convention, 3dgs by default) turned
+// with R, so that the colour seen from R d after equals the colour seen from d before.
+// R may be a reflection (a mirrored scene): an orientation then becomes R Q F, F = diag(1, 1, -1),
+// which is a rotation and keeps the Gaussian's shape.
+//
+// The file's columns, their types and order, its comments and every property zhf does not
+// transform are written back unchanged. ASCII and binary little-endian are read and written in
+// the same format. Streaming: a bounded chunk of splats is in memory at a time, spread over
+// threads. Any bad input (header, counts, truncation, trailing bytes, a non-finite number)
+// throws InputError before the output is committed: nothing is written.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "zhf/runtime/conventions.h"
+#include "zhf/runtime/rotation.h"
+
+namespace zhf::splat {
+
+struct Transform {
+  runtime::Matrix3 r{1, 0, 0, 0, 1, 0, 0, 0, 1};  // orthogonal, v -> R v, in the file's axes
+  double scale = 1;                                 // uniform, > 0
+  std::array<double, 3> translation{};
+  const runtime::Convention* convention = nullptr;  // the SH's; nullptr: 3dgs
+};
+
+struct Summary {
+  std::uint64_t splats = 0;
+  int sh_degree = -1;  // -1: no colour properties
+  bool ascii = false;
+};
+
+// Splats per chunk: the memory bound (a degree-3 binary splat is 248 bytes).
+inline constexpr std::uint64_t kChunkSplats = 1 << 16;
+
+// progress(done, total) after each chunk; threads 0: all cores.
+Summary transform_file(const std::string& in, const std::string& out, const Transform& transform, int threads,
+                       const std::function<void(std::uint64_t, std::uint64_t)>& progress);
+
+}  // namespace zhf::splat
