@@ -20,6 +20,7 @@
 #include "zhf/io/files.h"
 #include "zhf/io/lobe_table_writer.h"
 #include "zhf/runtime/conventions.h"
+#include "zhf/runtime/finite.h"
 #include "zhf/runtime/lobe_table.h"
 #include "zhf/runtime/orthogonal.h"
 #include "zhf/runtime/rotation.h"
@@ -55,21 +56,6 @@ int order_of(const py::buffer_info& coeffs) {
                        std::to_string(rt::kMaxTableOrder));
 }
 
-// Whether every entry of p[0, count) is finite, by the exponent bits (integer work that
-// vectorises, unlike a float test with an early exit).
-template <class T>
-bool all_finite(const T* p, std::size_t count) {
-  using Bits = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;
-  constexpr Bits exponent = sizeof(T) == 4 ? Bits(0x7f800000u) : Bits(0x7ff0000000000000ull);
-  Bits bad = 0;
-  for (std::size_t i = 0; i < count; ++i) {
-    Bits bits;
-    std::memcpy(&bits, p + i, sizeof bits);
-    bad |= Bits((bits & exponent) == exponent);
-  }
-  return bad == 0;
-}
-
 // Throws InputError naming the first non-finite entry of data[from, total) (vectors of n), if any.
 template <class T>
 void refuse_non_finite(const T* data, std::size_t from, std::size_t total, std::size_t n) {
@@ -89,7 +75,7 @@ void rotate_checked(const T* in, T* out, std::size_t count, std::size_t n, int t
   rt::parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
     for (std::size_t b = begin; b < end; b += kBlock) {
       const std::size_t e = std::min(end, b + kBlock);
-      if (!all_finite(in + b * n, (e - b) * n)) {
+      if (!rt::all_finite(in + b * n, (e - b) * n)) {
         std::size_t seen = first_bad_block.load();
         while (b < seen && !first_bad_block.compare_exchange_weak(seen, b)) {
         }

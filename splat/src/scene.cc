@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <memory>
 #include <optional>
 #include <string_view>
@@ -18,6 +19,7 @@
 #include "zhf/io/numbers.h"
 #include "zhf/io/ply.h"
 #include "zhf/io/signals.h"
+#include "zhf/runtime/finite.h"
 #include "zhf/runtime/orthogonal.h"
 #include "zhf/runtime/rotator.h"
 #include "zhf_kernels.h"
@@ -181,43 +183,76 @@ void transform_binary(std::istream& file, io::PendingFile& pending, const ply::H
                       const SplatMath& math, const std::string& source, int threads,
                       const std::function<void(std::uint64_t, std::uint64_t)>& progress) {
   const std::size_t bytes = header.record_bytes, properties = header.properties.size();
-  std::vector<unsigned char> chunk;
-  for (std::uint64_t done = 0; done < header.vertices;) {
-    const std::uint64_t count = std::min(kChunkSplats, header.vertices - done);
-    chunk.resize(count * bytes);
-    file.read(reinterpret_cast<char*>(chunk.data()), std::streamsize(chunk.size()));
-    if (std::uint64_t(file.gcount()) != chunk.size())
-      throw InputError(source + ": truncated: the data ends in splat " + std::to_string(done + file.gcount() / bytes) + " of " +
+  const bool all_float = std::all_of(header.properties.begin(), header.properties.end(),
+                                     [](const ply::Property& p) { return p.type == ply::Type::kFloat32; });
+  // Chunk `first` onwards into buffer; returns how many splats it holds.
+  auto read_chunk = [&](std::vector<unsigned char>& buffer, std::uint64_t first) {
+    const std::uint64_t count = std::min(kChunkSplats, header.vertices - first);
+    buffer.resize(count * bytes);
+    file.read(reinterpret_cast<char*>(buffer.data()), std::streamsize(buffer.size()));
+    if (std::uint64_t(file.gcount()) != buffer.size())
+      throw InputError(source + ": truncated: the data ends in splat " + std::to_string(first + file.gcount() / bytes) + " of " +
                        std::to_string(header.vertices));
+    return count;
+  };
+  // Two buffers: while the workers transform one, another thread writes the one before and reads
+  // the next into it (or the calling thread does, when no thread can be started).
+  std::vector<unsigned char> chunk, other;
+  std::uint64_t count = header.vertices > 0 ? read_chunk(chunk, 0) : 0;
+  bool other_holds_output = false;
+  for (std::uint64_t done = 0; done < header.vertices;) {
+    const std::uint64_t next = done + count;
+    std::future<std::uint64_t> io = std::async(std::launch::async | std::launch::deferred, [&, next, other_holds_output] {
+      if (other_holds_output) pending.write(reinterpret_cast<const char*>(other.data()), other.size());
+      return next < header.vertices ? read_chunk(other, next) : std::uint64_t(0);
+    });
     FirstFailure failure;
     runtime::parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
       std::vector<double> v(properties);
+      std::vector<float> floats(all_float ? properties : 0);
       for (std::size_t s = begin; s < end; ++s) {
         unsigned char* record = chunk.data() + s * bytes;
         bool finite = true;
-        for (std::size_t i = 0; i < properties; ++i) {
-          v[i] = ply::read_binary(record, header.properties[i]);
-          finite = finite && std::isfinite(v[i]);
+        if (all_float) {
+          // The common file: every property float32. Values converted in one loop, and all written
+          // back (an unchanged float survives float -> double -> float exactly).
+          std::memcpy(floats.data(), record, bytes);
+          for (std::size_t i = 0; i < properties; ++i) v[i] = floats[i];
+          finite = runtime::all_finite(floats.data(), properties);
+        } else {
+          for (std::size_t i = 0; i < properties; ++i) {
+            v[i] = ply::read_binary(record, header.properties[i]);
+            finite = finite && std::isfinite(v[i]);
+          }
         }
         if (!finite) {
           failure.note(done + s);
           return;
         }
         math.apply(v.data());
-        for (int i : layout.changed) ply::write_binary(record, header.properties[i], v[i]);
+        if (all_float) {
+          for (std::size_t i = 0; i < properties; ++i) floats[i] = static_cast<float>(v[i]);
+          std::memcpy(record, floats.data(), bytes);
+        } else {
+          for (int i : layout.changed) ply::write_binary(record, header.properties[i], v[i]);
+        }
       }
     });
+    const std::uint64_t next_count = io.get();
     if (const auto bad = failure.splat()) {
       const unsigned char* record = chunk.data() + (*bad - done) * bytes;
       for (const ply::Property& p : header.properties)
         if (!std::isfinite(ply::read_binary(record, p)))
           throw InputError(splat_where(source, *bad, p) + " is " + runtime::format_number(ply::read_binary(record, p)));
     }
-    pending.write(reinterpret_cast<const char*>(chunk.data()), chunk.size());
-    done += count;
+    std::swap(chunk, other);  // other: this chunk's output, to write; chunk: the next input
+    other_holds_output = true;
+    done = next;
+    count = next_count;
     io::throw_if_interrupted();
     progress(done, header.vertices);
   }
+  if (other_holds_output) pending.write(reinterpret_cast<const char*>(other.data()), other.size());
   if (file.peek() != std::char_traits<char>::eof()) throw InputError(source + ": bytes after the last splat");
 }
 

@@ -1,0 +1,67 @@
+"""zhf splat against @playcanvas/splat-transform on the same scene: the rotation splat-transform
+applied (fitted from its positions), then zhf splat with that matrix, compared field by field:
+positions, orientations (up to sign) and SH per band, the largest absolute difference of each.
+
+    /usr/bin/python3 bench/splat_crosscheck.py SCENE.ply SPLAT_TRANSFORM ZHF [--rotate 10,20,30]
+
+SCENE.ply: binary 3DGS scene (examples/make_splats.py); SPLAT_TRANSFORM: its executable (npm
+install @playcanvas/splat-transform); ZHF: the zhf binary.
+"""
+
+import argparse
+import subprocess
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+
+def read_ply(path):
+    """A binary little-endian PLY of scalar float/int properties, as {name: array}."""
+    data = Path(path).read_bytes()
+    end = data.index(b"end_header\n") + len(b"end_header\n")
+    header = data[:end].decode().splitlines()
+    count = next(int(l.split()[2]) for l in header if l.startswith("element vertex"))
+    types = {"float": "<f4", "double": "<f8", "int": "<i4", "uint": "<u4", "uchar": "u1", "char": "i1"}
+    dtype = [(l.split()[2], types[l.split()[1]]) for l in header if l.startswith("property")]
+    records = np.frombuffer(data, dtype=dtype, count=count, offset=end)
+    return {name: records[name].astype(np.float64) for name, _ in dtype}
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("scene")
+    parser.add_argument("splat_transform")
+    parser.add_argument("zhf")
+    parser.add_argument("--rotate", default="10,20,30", help="splat-transform's -r (Euler degrees, its axes)")
+    args = parser.parse_args()
+    with tempfile.TemporaryDirectory() as work:
+        peer_out, zhf_out = f"{work}/peer.ply", f"{work}/zhf.ply"
+        subprocess.run([args.splat_transform, args.scene, "-r", args.rotate, peer_out], check=True, capture_output=True)
+        a, b = read_ply(args.scene), read_ply(peer_out)
+        p_in = np.stack([a["x"], a["y"], a["z"]], axis=1)
+        p_out = np.stack([b["x"], b["y"], b["z"]], axis=1)
+        r = np.linalg.lstsq(p_in, p_out, rcond=None)[0].T  # p_out = R p_in
+        u, _, vt = np.linalg.svd(r)
+        r = u @ vt  # the nearest orthogonal matrix
+        print(f"splat-transform -r {args.rotate} applied, in the file's axes:\n{np.array2string(r, precision=6)}")
+        subprocess.run([args.zhf, "splat", "--in", args.scene, "--out", zhf_out, "--quiet",
+                        "--matrix", " ".join(f"{x:.17g}" for x in r.ravel())], check=True)
+        c = read_ply(zhf_out)
+    print("| field | max abs difference, zhf vs splat-transform |")
+    print("| --- | --- |")
+    print(f"| positions | {max(np.abs(c[k] - b[k]).max() for k in 'xyz'):.3g} |")
+    qc = np.stack([c[f"rot_{i}"] for i in range(4)], axis=1)
+    qb = np.stack([b[f"rot_{i}"] for i in range(4)], axis=1)
+    qc /= np.linalg.norm(qc, axis=1, keepdims=True)
+    qb /= np.linalg.norm(qb, axis=1, keepdims=True)
+    sign = np.sign(np.sum(qc * qb, axis=1, keepdims=True))
+    print(f"| orientations (unit, up to sign) | {np.abs(qc - sign * qb).max():.3g} |")
+    print(f"| log-scales | {max(np.abs(c[f'scale_{i}'] - b[f'scale_{i}']).max() for i in range(3)):.3g} |")
+    for band, (first, last) in enumerate([(0, 3), (3, 8), (8, 15)], start=1):
+        diff = max(np.abs(c[f"f_rest_{15 * ch + j}"] - b[f"f_rest_{15 * ch + j}"]).max() for ch in range(3) for j in range(first, last))
+        print(f"| SH band {band} | {diff:.3g} |")
+
+
+if __name__ == "__main__":
+    main()
