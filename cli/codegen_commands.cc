@@ -11,6 +11,7 @@
 #include "zhf/io/files.h"
 #include "zhf/io/signals.h"
 #include "zhf/pipeline/project.h"
+#include "zhf/runtime/conventions.h"
 #include "zhf/runtime/lobe_table.h"
 
 namespace zhf::cli {
@@ -35,6 +36,7 @@ struct EmitCommandOptions {
   std::string precision = "float";
   std::string lobe_stage = "auto";
   int channels = 0;  // 0: both
+  std::string convention = "zhf";
   std::string out;
 };
 
@@ -49,6 +51,9 @@ codegen::ModuleOptions channel_options(int channels, const std::string& stage) {
 }
 
 int run_emit(const EmitCommandOptions& o, const std::string& command) {
+  const runtime::Convention* convention = runtime::find_convention(o.convention);
+  if (!convention)
+    throw UsageError("--convention: '" + runtime::excerpt(o.convention) + "' is not one of " + runtime::convention_names());
   const runtime::LobeTable table = runtime::read_lobe_table(o.table);
   codegen::EmitOptions emit;
   emit.precision = o.precision == "double" ? codegen::Precision::kDouble : codegen::Precision::kFloat;
@@ -56,7 +61,11 @@ int run_emit(const EmitCommandOptions& o, const std::string& command) {
   emit.table_path = o.table;
   codegen::Language language = codegen::Language::kCpp;
   codegen::parse_language(o.language, language);  // CLI11 has checked the name
-  const codegen::EmittedFile file = codegen::emit_file(table, language, emit, channel_options(o.channels, o.lobe_stage));
+  codegen::ModuleOptions module = channel_options(o.channels, o.lobe_stage);
+  // A frame alone changes nothing in a kernel (a rotation in the system's axes on its own
+  // coefficients is zhf's); the sign pattern is folded in.
+  module.condon_shortley = convention->condon_shortley;
+  const codegen::EmittedFile file = codegen::emit_file(table, language, emit, module);
   std::error_code ec;
   fs::create_directories(o.out, ec);
   if (ec || !fs::is_directory(o.out, ec)) throw io::OutputError(o.out + ": cannot create the directory" + (ec ? ": " + ec.message() : ""));
@@ -132,6 +141,8 @@ void add_codegen_commands(CLI::App& app, Action& action, const std::string& comm
   emit->add_option("--lobe-stage", e->lobe_stage, kLobeStageHelp)
       ->check(CLI::IsMember({"auto", "float", "double-rotation", "double"}));
   emit->add_option("--channels", e->channels, "1, 3 or 4 (default: 1 and 3)")->check(CLI::IsMember({1, 3, 4}));
+  emit->add_option("--convention", e->convention,
+                   "The kernels' convention, folded in: " + runtime::convention_names() + " (docs/conventions.md)");
   emit->add_option("--out", e->out, "Output directory")->required();
   emit->callback([e, &action, command_line] { action = [e, command_line] { return run_emit(*e, command_line); }; });
 

@@ -31,7 +31,13 @@ int Graph::input(int param, int element, int lanes) {
   n.param = param;
   n.element = element;
   n.lanes = lanes;
-  return intern(n);
+  const int raw = intern(n);
+  const bool negated = std::find(negated_.begin(), negated_.end(), std::make_pair(param, element)) != negated_.end();
+  return negated ? neg(raw) : raw;
+}
+
+void Graph::negate_inputs(int param, const std::vector<int>& elements) {
+  for (int e : elements) negated_.push_back({param, e});
 }
 
 int Graph::constant(double value) {

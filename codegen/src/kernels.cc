@@ -150,10 +150,11 @@ std::vector<int> orthonormalized_rotation(Graph& g) {
 class Builder {
  public:
   Builder(const runtime::LobeTable& table, const std::vector<Lobe>& lobes, const std::vector<int>& zero_bands,
-          runtime::LobeStage stage)
+          runtime::LobeStage stage, bool condon_shortley)
       : table_(table), lobes_(lobes), order_(table.order), count_(runtime::coefficient_count(table.order)),
         legendre_(std::max(table.order, 1)), live_(std::max(table.order, 1), true),
-        wide_rotation_(stage != runtime::LobeStage::kFloat), wide_lobes_(stage == runtime::LobeStage::kDouble) {
+        wide_rotation_(stage != runtime::LobeStage::kFloat), wide_lobes_(stage == runtime::LobeStage::kDouble),
+        condon_shortley_(condon_shortley) {
     for (int l : zero_bands)
       if (l >= 0 && l < order_) live_[l] = false;
   }
@@ -186,6 +187,12 @@ class Builder {
           terms.push_back({transpose ? band.inverse(k, i) : band.inverse(i, k), g.input(0, base + k)});
         put(f, 1, base + i, g.linear(terms));
       }
+    }
+    if (!transpose && condon_shortley_) {
+      // The system's coefficients are S f: the odd-m outputs negated (folded into their sums).
+      const std::vector<int> odd = odd_m_indices();
+      for (Output& o : f.outputs)
+        if (std::find(odd.begin(), odd.end(), o.element) != odd.end()) o.node = g.neg(o.node);
     }
     return f;
   }
@@ -349,7 +356,42 @@ class Builder {
     f.name = f.member + "_order" + std::to_string(order_);
     f.doc = doc;
     f.params = std::move(params);
+    if (condon_shortley_) {
+      f.doc += "; Condon-Shortley signs ((-1)^m), R and directions in the same system's axes";
+      take_condon_shortley_arguments(f);
+    }
     return f;
+  }
+  // The system's arguments as zhf's: R -> K R K, a direction d -> K d (K = diag(-1, -1, 1): the
+  // entries with exactly one index 2 of R, x and y of d), coefficients f -> S f (S: (-1)^m).
+  void take_condon_shortley_arguments(Function& f) const {
+    switch (f.kind) {
+      case KernelKind::kRotate:
+      case KernelKind::kSignalTailored:
+      case KernelKind::kBatch:
+      case KernelKind::kRotationMatrices:
+        f.graph.negate_inputs(0, {2, 5, 6, 7});
+        break;
+      case KernelKind::kZonal:
+        f.graph.negate_inputs(0, {2, 5, 6, 7});
+        f.graph.negate_inputs(1, {0, 1});
+        break;
+      case KernelKind::kShEval:
+        f.graph.negate_inputs(0, {0, 1});
+        break;
+      case KernelKind::kLobeWeights:
+        f.graph.negate_inputs(0, odd_m_indices());
+        break;
+      case KernelKind::kFromSamples:  // its outputs: negated where it puts them (sparse_multiply)
+      case KernelKind::kApplyMatrices:  // the matrices are the system's already
+        break;
+    }
+  }
+  std::vector<int> odd_m_indices() const {
+    std::vector<int> odd;
+    for (int i = 0; i < count_; ++i)
+      if ((i - runtime::band_of(i) * (runtime::band_of(i) + 1)) % 2) odd.push_back(i);
+    return odd;
   }
   static std::string channel_doc(int channels) {
     return channels == 1 ? "" : channels == 3 ? ", for three channels" : ", for four channels";
@@ -430,6 +472,7 @@ class Builder {
   std::vector<bool> live_;  // bands not known to be zero
   bool wide_rotation_;  // the lobes are rotated in the wide type
   bool wide_lobes_;     // ... and R projected, their SH and the sums over lobes too
+  bool condon_shortley_;  // ModuleOptions::condon_shortley
 };
 
 }  // namespace
@@ -507,7 +550,7 @@ Module build_module(const runtime::LobeTable& table, const ModuleOptions& option
     module.lobes.push_back(lobe);
   }
   module.lobe_stage = lobe_stage_for(module.table, options);
-  const Builder builder(module.table, module.lobes, options.zero_bands, module.lobe_stage);
+  const Builder builder(module.table, module.lobes, options.zero_bands, module.lobe_stage, options.condon_shortley);
   auto wants = [](const std::vector<int>& list, int channels) {
     return std::find(list.begin(), list.end(), channels) != list.end();
   };

@@ -59,6 +59,8 @@ TEST_F(BadInput, OptionsOutOfRangeOrNotNumbers) {
                   "--objective amplification", "amplification without sharing");
   expect_one_line(run_zhf("emit --table " + kTable3.string() + " --lang metal --out " + dir_), 2, "--lang", "lang");
   expect_one_line(run_zhf("emit --table " + kTable3.string() + " --lang cpp --channels 2 --out " + dir_), 2, "--channels", "channels");
+  expect_one_line(run_zhf("emit --table " + kTable3.string() + " --lang cpp --convention y-down --out " + dir_), 2,
+                  "--convention: 'y-down' is not one of", "convention");
   expect_one_line(run_zhf("verify --langs cpp,cuda"), 2, "--langs", "langs");
   expect_one_line(run_zhf("verify --orders two"), 2, "--orders", "orders");
   expect_one_line(run_zhf("bench --orders 1"), 2, "--orders: must be 2..16 (got '1')", "bench order 1");

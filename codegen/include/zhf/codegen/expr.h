@@ -32,6 +32,10 @@ struct OpCount {
 class Graph {
  public:
   int input(int param, int element, int lanes = 1);
+  // Those inputs are read negated from now on: input(param, element) gives -x. How a kernel
+  // takes its arguments in another sign convention (ModuleOptions::condon_shortley); the
+  // simplifier folds the negations into the adds and constants that use them.
+  void negate_inputs(int param, const std::vector<int>& elements);
   int constant(double value);
   int add(int a, int b);
   int sub(int a, int b);
@@ -61,6 +65,7 @@ class Graph {
   int intern(const Node& n);
   int binary(Op op, int a, int b);
   std::vector<Node> nodes_;
+  std::vector<std::pair<int, int>> negated_;  // (param, element)
   std::map<std::tuple<int, int, int, double, int, int, bool>, int> index_;
   bool wide_ = false;
 };

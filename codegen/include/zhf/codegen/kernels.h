@@ -95,6 +95,13 @@ struct ModuleOptions {
   std::vector<int> dense_channels;               // rotation_matrices + apply_rotation_matrices[_rgb|_rgba]
   std::vector<int> zonal_channels;               // rotate_zonal[_rgb|_rgba]
   std::vector<int> zero_bands;                   // known zero: their outputs are 0 and cost nothing
+  // Every function in the Condon-Shortley sign convention (runtime/conventions.h: 3dgs,
+  // condon-shortley): coefficients carry (-1)^m, R and directions are in the system's axes. The
+  // system's coefficients are zhf's of f(K u) (K = diag(-1, -1, 1)), so rotations compute zhf's
+  // with K R K, sh_eval and zonal axes take K d, and the lobe functions, whose lobes stay at the
+  // table's coordinates in the system's axes, take or give S f (S = (-1)^m). All folded into the
+  // graph: the same multiplies, a few negations at most.
+  bool condon_shortley = false;
   // Where float rotations run their lobe stage (runtime/lobe_stage.h); none: automatic, the
   // cheapest stage whose float error model meets tolerance::kFloatRotation.
   std::optional<runtime::LobeStage> lobe_stage;
