@@ -122,13 +122,8 @@ Array<T> rotate_shared(const Array<T>& coeffs, const Array<double>& rotation, co
     } else {
       const rt::Rotator<T> rotator = rotator_for<T>(order, table);
       const rt::OrthogonalTransform<T> transform(rotator, r);
-      if (transform.exact() || count < n) {
-        // An exact axis map, or fewer vectors than the band matrices would cost to build.
-        rotate_checked(src, dst, count, n, threads, [&](std::size_t, const T* f, T* g) { transform.apply(f, g); });
-      } else {
-        const rt::DenseRotation<T> d = transform.dense();
-        rotate_checked(src, dst, count, n, threads, [&](std::size_t, const T* f, T* g) { d.apply(f, g); });
-      }
+      const auto prepared = transform.prepare(count);
+      rotate_checked(src, dst, count, n, threads, [&](std::size_t, const T* f, T* g) { prepared.apply(f, g); });
     }
   }
   return out;
@@ -283,6 +278,7 @@ PYBIND11_MODULE(_zhf, m) {
   m.attr("__version__") = ZHF_VERSION;
   m.attr("max_table_order") = rt::kMaxTableOrder;
   m.attr("max_generated_order") = rt::kMaxGeneratedOrder;
+  m.attr("max_threads") = rt::kMaxThreads;
   // The named tolerances the Python tests hold results to (runtime/tolerances.h).
   py::dict tolerances;
   tolerances["double"] = rt::tolerance::kDouble;

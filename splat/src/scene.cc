@@ -89,10 +89,10 @@ Layout layout_of(const ply::Header& header, const std::string& source) {
 // One splat's transform, on the values of all its properties.
 class SplatMath {
  public:
-  SplatMath(const Layout& layout, const Transform& t) : layout_(layout), t_(t) {
+  // splats: how many there are (three colour vectors each decide how the SH is applied).
+  SplatMath(const Layout& layout, const Transform& t, std::uint64_t splats) : layout_(layout), t_(t) {
     const runtime::Matrix3& r = t.r;
-    const double det = r[0] * (r[4] * r[8] - r[5] * r[7]) - r[1] * (r[3] * r[8] - r[5] * r[6]) + r[2] * (r[3] * r[7] - r[4] * r[6]);
-    reflection_ = det < 0;
+    reflection_ = runtime::determinant(r.data()) < 0;
     runtime::Matrix3 proper = r;
     if (reflection_)
       for (double& x : proper) x = -x;
@@ -104,7 +104,7 @@ class SplatMath {
       rotator_ = std::make_unique<runtime::Rotator<double>>(
           runtime::Rotator<double>::with(gen::fastest_kernels<double>(layout.degree + 1)));
       sh_ = std::make_unique<runtime::OrthogonalTransform<double>>(*rotator_, q.data());
-      if (!sh_->exact()) dense_.emplace(sh_->dense());
+      prepared_.emplace(sh_->prepare(3 * splats));
     }
   }
 
@@ -128,17 +128,13 @@ class SplatMath {
     }
     if (layout_.log_scale[0] >= 0)
       for (int i : layout_.log_scale) v[i] += log_scale_;
-    if (sh_) {
+    if (prepared_) {
       const int n2 = (layout_.degree + 1) * (layout_.degree + 1), per = n2 - 1;
       double in[16], out[16];
       for (int c = 0; c < 3; ++c) {
         in[0] = v[layout_.dc[c]];
         for (int j = 0; j < per; ++j) in[1 + j] = v[layout_.rest[c * per + j]];
-        if (dense_) {
-          dense_->apply(in, out);
-        } else {
-          sh_->apply(in, out);
-        }
+        prepared_->apply(in, out);
         for (int j = 0; j < per; ++j) v[layout_.rest[c * per + j]] = out[1 + j];
       }
     }
@@ -152,7 +148,7 @@ class SplatMath {
   double log_scale_ = 0;
   std::unique_ptr<runtime::Rotator<double>> rotator_;
   std::unique_ptr<runtime::OrthogonalTransform<double>> sh_;
-  std::optional<runtime::DenseRotation<double>> dense_;
+  std::optional<runtime::OrthogonalTransform<double>::Prepared> prepared_;
 };
 
 // The first failing splat of a chunk, found by the workers; its message is made once, after.
@@ -295,6 +291,8 @@ void transform_ascii(std::istream& file, io::PendingFile& pending, const ply::He
                      const SplatMath& math, const std::string& source, int threads,
                      const std::function<void(std::uint64_t, std::uint64_t)>& progress) {
   const std::size_t properties = header.properties.size();
+  std::vector<bool> changed(properties, false);
+  for (int i : layout.changed) changed[i] = true;
   std::vector<std::string> lines;
   std::vector<std::string> output;
   std::vector<char> buffer(kMaxAsciiLine + 2);
@@ -328,20 +326,19 @@ void transform_ascii(std::istream& file, io::PendingFile& pending, const ply::He
           return;
         }
         math.apply(v.data());
-        std::vector<std::string> changed(properties);
-        for (int i : layout.changed) {
-          char text[40];
-          if (header.properties[i].type == ply::Type::kFloat32) {
-            std::snprintf(text, sizeof text, "%.9g", double(float(v[i])));
-          } else {
-            std::snprintf(text, sizeof text, "%.17g", v[i]);
-          }
-          changed[i] = text;
-        }
+        // Transformed values written anew (float32: 9 digits, double: 17, both round-trip);
+        // every other token as it was.
         std::string& line = output[s];
         for (std::size_t i = 0; i < properties; ++i) {
           if (i) line += ' ';
-          line += changed[i].empty() ? std::string(tokens[i]) : changed[i];
+          if (!changed[i]) {
+            line.append(tokens[i]);
+            continue;
+          }
+          char text[40];
+          const bool single = header.properties[i].type == ply::Type::kFloat32;
+          std::snprintf(text, sizeof text, single ? "%.9g" : "%.17g", single ? double(float(v[i])) : v[i]);
+          line += text;
         }
         line += '\n';
       }
@@ -385,7 +382,7 @@ Summary transform_file(const std::string& in, const std::string& out, const Tran
                        std::to_string(header.vertices) + " splats of " + std::to_string(header.record_bytes) + " bytes)" +
                        (size < expected ? ": truncated" : ": bytes after the last splat"));
   }
-  const SplatMath math(layout, transform);
+  const SplatMath math(layout, transform, header.vertices);
   io::PendingFile pending(out);
   pending.write(header.text);
   if (header.format == ply::Format::kAscii) {

@@ -20,6 +20,8 @@
 
 namespace zhf::runtime {
 
+inline constexpr Matrix3 kIdentity{1, 0, 0, 0, 1, 0, 0, 0, 1};
+
 struct Convention {
   std::string_view name;
   bool condon_shortley;  // coefficient (l, m) carries (-1)^m
@@ -28,7 +30,7 @@ struct Convention {
 
   // K: Rz(pi) with the Condon-Shortley sign pattern, else the identity.
   Matrix3 sign_rotation() const {
-    return condon_shortley ? Matrix3{-1, 0, 0, 0, -1, 0, 0, 0, 1} : Matrix3{1, 0, 0, 0, 1, 0, 0, 0, 1};
+    return condon_shortley ? Matrix3{-1, 0, 0, 0, -1, 0, 0, 0, 1} : kIdentity;
   }
   // M = P K: the system's coefficients -> zhf's, in zhf's axes.
   Matrix3 to_zhf() const { return multiply(frame, sign_rotation()); }
@@ -39,8 +41,6 @@ struct Convention {
     return multiply(multiply(sign_rotation(), r), sign_rotation());
   }
 };
-
-inline constexpr Matrix3 kIdentity{1, 0, 0, 0, 1, 0, 0, 0, 1};
 
 inline const std::array<Convention, 5>& conventions() {
   static const std::array<Convention, 5> presets{{

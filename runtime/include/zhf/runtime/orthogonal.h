@@ -97,8 +97,7 @@ class OrthogonalTransform {
   // the map is exact, and must outlive this.
   OrthogonalTransform(const Rotator<T>& rotator, const T q[9]) : rotator_(&rotator) {
     exact_ = exact_coefficient_map(q, rotator.order());
-    const T det = q[0] * (q[4] * q[8] - q[5] * q[7]) - q[1] * (q[3] * q[8] - q[5] * q[6]) + q[2] * (q[3] * q[7] - q[4] * q[6]);
-    invert_ = det < 0;
+    invert_ = determinant(q) < 0;
     for (int i = 0; i < 9; ++i) rotation_[i] = invert_ ? -q[i] : q[i];
   }
   bool exact() const { return exact_.has_value(); }
@@ -121,20 +120,28 @@ class OrthogonalTransform {
     return DenseRotation<T>(d.order(), std::move(bands));
   }
 
-  // count vectors (in[N^2 v + i]) under this one transform: the exact map, or the band matrices
-  // built once when there are at least N^2 vectors; threads 0: all cores.
-  void apply_shared(std::size_t count, const T* in, T* out, int threads = 0) const {
-    const std::size_t n = std::size_t(rotator_->coefficients());
-    if (exact_ || count < n) {
-      parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t v = begin; v < end; ++v) apply(in + n * v, out + n * v);
-      });
-      return;
+  // The transform prepared for count vectors: the exact map, the band matrices when they pay
+  // (band_matrices_pay), else vector by vector. It refers to this transform, which must outlive it.
+  class Prepared {
+   public:
+    void apply(const T* in, T* out) const {
+      if (dense_) {
+        dense_->apply(in, out);
+      } else {
+        transform_->apply(in, out);
+      }
     }
-    const DenseRotation<T> d = dense();
-    parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t v = begin; v < end; ++v) d.apply(in + n * v, out + n * v);
-    });
+
+   private:
+    friend class OrthogonalTransform;
+    const OrthogonalTransform* transform_ = nullptr;
+    std::optional<DenseRotation<T>> dense_;
+  };
+  Prepared prepare(std::size_t count) const {
+    Prepared p;
+    p.transform_ = this;
+    if (!exact_ && band_matrices_pay(count, rotator_->order())) p.dense_.emplace(dense());
+    return p;
   }
 
   static void negate_odd_bands(int order, T* f) {

@@ -42,6 +42,14 @@ struct RotationCheck {
   std::string message;        // empty when ok
 };
 
+// det r, r row-major 3x3, in double.
+template <class T>
+double determinant(const T r[9]) {
+  const double m[9] = {double(r[0]), double(r[1]), double(r[2]), double(r[3]), double(r[4]),
+                       double(r[5]), double(r[6]), double(r[7]), double(r[8])};
+  return m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) + m[2] * (m[3] * m[7] - m[4] * m[6]);
+}
+
 // Which determinant is accepted: +1 only (the rotators), or -1 too (orthogonal.h).
 enum class Handedness { kProper, kEither };
 
@@ -63,8 +71,7 @@ RotationCheck validate_rotation(const T r[9], double max_defect = tolerance::kRo
       for (int k = 0; k < 3; ++k) dot += m[3 * i + k] * m[3 * j + k];
       check.orthonormality = std::max(check.orthonormality, std::abs(dot - (i == j ? 1.0 : 0.0)));
     }
-  check.determinant = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
-                      m[2] * (m[3] * m[7] - m[4] * m[6]);
+  check.determinant = determinant(r);
   if (check.determinant < 0 && handedness == Handedness::kProper) {
     check.message = "rotation matrix is a reflection (det " + format_number(check.determinant) + ")";
   } else if (check.orthonormality > max_defect || std::abs(std::abs(check.determinant) - 1) > max_defect) {
@@ -113,8 +120,7 @@ bool nearest_rotation(const T r[9], T out[9]) {
 // nearest_rotation for either handedness: a reflection Q is -(-Q), with -Q a rotation.
 template <class T>
 bool nearest_orthogonal(const T r[9], T out[9]) {
-  const double det = r[0] * (r[4] * r[8] - r[5] * r[7]) - r[1] * (r[3] * r[8] - r[5] * r[6]) + r[2] * (r[3] * r[7] - r[4] * r[6]);
-  if (!(det < 0)) return nearest_rotation(r, out);
+  if (!(determinant(r) < 0)) return nearest_rotation(r, out);
   T negated[9];
   for (int i = 0; i < 9; ++i) negated[i] = -r[i];
   if (!nearest_rotation(negated, out)) return false;

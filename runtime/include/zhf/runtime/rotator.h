@@ -68,6 +68,10 @@ void parallel_chunks(std::size_t count, int threads, Work&& work) {
   for (std::thread& t : pool) t.join();
 }
 
+// Whether count vectors under one rotation are cheaper through the band matrices, which cost
+// about N^2 single rotations to build, than one by one.
+inline bool band_matrices_pay(std::size_t count, int order) { return count >= std::size_t(order) * order; }
+
 // One implementation of an order's single-rotation entry points.
 template <class T>
 struct KernelSet {
@@ -229,10 +233,10 @@ class Rotator {
   }
 
   // count vectors under one rotation R: in[N^2 v + i], out[N^2 v + i]; threads = 0: all cores.
-  // Fewer vectors than N^2 are rotated one by one (building the band matrices would cost more).
+  // Through the band matrices when they pay (band_matrices_pay), else one by one.
   void rotate_shared(std::size_t count, const T r[9], const T* in, T* out, int threads = 0) const {
     const std::size_t n = static_cast<std::size_t>(coefficients());
-    if (count < n) {
+    if (!band_matrices_pay(count, order_)) {
       for (std::size_t v = 0; v < count; ++v) rotate(r, in + n * v, out + n * v);
       return;
     }
