@@ -15,9 +15,6 @@
 namespace zhf::cli {
 namespace {
 
-// The bound on --threads (and on every thread pool zhf starts).
-constexpr int kMaxThreads = 256;
-
 struct OptimizeOptions {
   std::string order, seed = "1", time_limit = "0", threads = "0", population = "500", generations = "0", stall = "50",
                      local_search_stall = "100", max_condition = "50", starts = "8";
@@ -56,7 +53,7 @@ int run_optimize(const OptimizeOptions& o, const std::string& command) {
   r.objective = o.objective == "amplification" ? pipeline::Objective::kAmplification : pipeline::Objective::kSparsity;
   r.seed = seed_option("--seed", o.seed);
   r.time_limit = number_option("--time-limit", o.time_limit, 0, 1e7);
-  r.threads = static_cast<int>(integer_option("--threads", o.threads, 0, kMaxThreads));
+  r.threads = static_cast<int>(integer_option("--threads", o.threads, 0, runtime::kMaxThreads));
   r.population = static_cast<int>(integer_option("--population", o.population, 4, 1000000));
   r.generations = static_cast<int>(integer_option("--generations", o.generations, 0, 100000000));
   r.stall = static_cast<int>(integer_option("--stall", o.stall, 1, 1000000));

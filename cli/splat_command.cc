@@ -10,13 +10,11 @@
 #include "zhf/io/errors.h"
 #include "zhf/io/rotation_text.h"
 #include "zhf/runtime/conventions.h"
+#include "zhf/runtime/limits.h"
 #include "zhf/splat/scene.h"
 
 namespace zhf::cli {
 namespace {
-
-// The bound on --threads (and on every thread pool zhf starts).
-constexpr int kMaxThreads = 256;
 
 struct SplatOptions {
   std::string in, out;
@@ -44,7 +42,7 @@ int run_splat(const SplatOptions& o) {
   t.scale = number_option("--scale", o.scale, 1e-30, 1e30);
   t.translation = translation(o.translate);
   t.convention = convention;
-  const int threads = static_cast<int>(integer_option("--threads", o.threads, 0, kMaxThreads));
+  const int threads = static_cast<int>(integer_option("--threads", o.threads, 0, runtime::kMaxThreads));
   const bool bar = !o.quiet && isatty(STDERR_FILENO);
   const splat::Summary summary = splat::transform_file(o.in, o.out, t, threads, [bar](std::uint64_t done, std::uint64_t total) {
     if (bar) std::fprintf(stderr, "\rzhf splat: %3d%% (%llu of %llu splats)", int(100.0 * done / total), (unsigned long long)done,

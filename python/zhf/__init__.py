@@ -222,8 +222,8 @@ def _in_zhf_terms(matrices, convention):
 
 
 def _threads(threads):
-    if not isinstance(threads, (int, np.integer)) or threads < 0 or threads > 1024:
-        raise ValueError(f"threads: {threads!r} is not a count in 0..1024 (0: all cores)")
+    if not isinstance(threads, (int, np.integer)) or threads < 0 or threads > _zhf.max_threads:
+        raise ValueError(f"threads: {threads!r} is not a count in 0..{_zhf.max_threads} (0: all cores)")
     return int(threads)
 
 

@@ -28,6 +28,8 @@ inline constexpr int kMaxEmitOrder = 12;
 // The lobe-parallel kernel (lanes.h) and its tables.
 inline constexpr int kMinLanesOrder = 3;
 inline constexpr int kMaxLanesOrder = 8;
+// Threads a caller may ask for (--threads, threads=): the bound on every thread pool zhf starts.
+inline constexpr int kMaxThreads = 256;
 
 // Input files, by kind: checked before they are read (the largest checked-in table, order 32,
 // is 0.9 MiB; a coefficient file of this size holds tens of millions of numbers).
