@@ -20,8 +20,6 @@
 
 namespace zhf::runtime {
 
-inline constexpr Matrix3 kIdentity{1, 0, 0, 0, 1, 0, 0, 0, 1};
-
 struct Convention {
   std::string_view name;
   bool condon_shortley;  // coefficient (l, m) carries (-1)^m

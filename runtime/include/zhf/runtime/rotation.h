@@ -150,6 +150,7 @@ inline void polar_step(const T r[9], W q[9]) {
 }
 
 using Matrix3 = std::array<double, 9>;
+inline constexpr Matrix3 kIdentity{1, 0, 0, 0, 1, 0, 0, 0, 1};
 
 // a b, row-major.
 inline Matrix3 multiply(const Matrix3& a, const Matrix3& b) {

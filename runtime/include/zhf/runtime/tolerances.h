@@ -93,6 +93,16 @@ inline double hlsl_ulps(int order, double worst_condition) {
   return model > 256 ? model : 256;
 }
 
+// ---- SH products (runtime/gaunt.h, runtime/product.h) -------------------------------------------
+// Gaunt coefficients (3j closed form, long double) against a long-double product quadrature in
+// double nodes: both round at ~1e-16 on values below 0.6.
+inline constexpr double kGauntAgainstQuadrature = 1e-14;
+// Products, double- and triple-product integrals of random functions (coefficients ~N(0, 1/N^2))
+// against numerical integration of the reconstructed functions: sums of up to N^4 terms in double.
+inline constexpr double kProductAgainstIntegration = 1e-12;
+// The same products in float: each output sums up to ~2N^2 products of float terms.
+inline constexpr double kFloatProduct = 2e-6;
+
 // ---- Reference math (tests of sh/ and candidates/) ----------------------------------------------
 // What is exact in exact arithmetic and rounds once or twice in double (the identity rotation's
 // band matrices, a recurrence at a pole).
