@@ -34,5 +34,6 @@ void add_analyze_command(CLI::App& app, Action& action);
 void add_bench_command(CLI::App& app, Action& action);
 void add_rotate_command(CLI::App& app, Action& action);
 void add_splat_command(CLI::App& app, Action& action);
+void add_product_command(CLI::App& app, Action& action);
 
 }  // namespace zhf::cli

@@ -384,15 +384,12 @@ class Builder {
         break;
       case KernelKind::kFromSamples:  // its outputs: negated where it puts them (sparse_multiply)
       case KernelKind::kApplyMatrices:  // the matrices are the system's already
+      case KernelKind::kProduct:        // built without a table: build_module folds their signs
+      case KernelKind::kSquare:
         break;
     }
   }
-  std::vector<int> odd_m_indices() const {
-    std::vector<int> odd;
-    for (int i = 0; i < count_; ++i)
-      if ((i - runtime::band_of(i) * (runtime::band_of(i) + 1)) % 2) odd.push_back(i);
-    return odd;
-  }
+  std::vector<int> odd_m_indices() const { return codegen::odd_m_indices(count_); }
   static std::string channel_doc(int channels) {
     return channels == 1 ? "" : channels == 3 ? ", for three channels" : ", for four channels";
   }
@@ -494,12 +491,14 @@ const char* kernel_kind_name(KernelKind kind) {
     case KernelKind::kRotationMatrices: return "rotation_matrices";
     case KernelKind::kApplyMatrices: return "apply_rotation_matrices";
     case KernelKind::kZonal: return "rotate_zonal";
+    case KernelKind::kProduct: return "product";
+    case KernelKind::kSquare: return "square";
   }
   return "?";
 }
 
 bool parse_kernel_kind(const std::string& name, KernelKind& kind) {
-  for (int k = 0; k <= static_cast<int>(KernelKind::kZonal); ++k)
+  for (int k = 0; k <= static_cast<int>(KernelKind::kSquare); ++k)
     if (name == kernel_kind_name(static_cast<KernelKind>(k))) {
       kind = static_cast<KernelKind>(k);
       return true;
@@ -532,6 +531,13 @@ std::string lobe_stage_choice_name(const std::optional<runtime::LobeStage>& stag
 runtime::LobeStage lobe_stage_for(const runtime::LobeTable& table, const ModuleOptions& options) {
   if (table.order <= 2) return runtime::LobeStage::kFloat;  // no lobes
   return options.lobe_stage ? *options.lobe_stage : automatic_lobe_stage(table);
+}
+
+std::vector<int> odd_m_indices(int count) {
+  std::vector<int> odd;
+  for (int i = 0; i < count; ++i)
+    if ((i - runtime::band_of(i) * (runtime::band_of(i) + 1)) % 2) odd.push_back(i);
+  return odd;
 }
 
 std::string channel_suffix(int channels) { return channels == 3 ? "_rgb" : channels == 4 ? "_rgba" : ""; }
@@ -569,6 +575,8 @@ Module build_module(const runtime::LobeTable& table, const ModuleOptions& option
     if (wants(options.dense_channels, channels)) module.functions.push_back(builder.apply_rotation_matrices(channels));
   for (int channels : {1, 3, 4})
     if (wants(options.zonal_channels, channels)) module.functions.push_back(builder.zonal_rotation(channels));
+  if (options.products)
+    for (bool square : {false, true}) module.functions.push_back(product_function(table.order, square, options.condon_shortley));
   return module;
 }
 

@@ -13,7 +13,7 @@ namespace {
 
 // The variant names a scene may list, in the order they are documented.
 const std::initializer_list<std::string_view> kVariants = {"standard", "signal-tailored", "batch", "dense-matrix",
-                                                           "zonal",    "sh-eval",         "lobe-multiplies"};
+                                                           "zonal",    "sh-eval",         "lobe-multiplies", "products"};
 
 }  // namespace
 
@@ -28,7 +28,7 @@ std::map<int, ModuleOptions> Scene::module_options() const {
   for (const SceneSignal& signal : signals) {
     if (!out.count(signal.order)) {
       ModuleOptions none;
-      none.sh_eval = none.lobe_multiplies = none.batch = false;
+      none.sh_eval = none.lobe_multiplies = none.batch = none.products = false;
       none.standard_channels.clear();
       none.tailored_channels.clear();
       none.zero_bands = signal.zero_bands;
@@ -47,6 +47,7 @@ std::map<int, ModuleOptions> Scene::module_options() const {
       if (v == "zonal") add(m.zonal_channels, signal.channels);
       if (v == "sh-eval") m.sh_eval = true;
       if (v == "lobe-multiplies") m.lobe_multiplies = true;
+      if (v == "products") m.products = true;
     }
   }
   return out;

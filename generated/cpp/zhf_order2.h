@@ -6,6 +6,8 @@
 //   rotate_signal_tailored_order2: 9 multiplies, 6 adds
 //   rotate_rgb_order2: 27 multiplies, 18 adds
 //   rotate_batch_order2: 9 multiplies, 6 adds
+//   product_order2: 13 multiplies, 6 adds
+//   square_order2: 9 multiplies, 6 adds
 #pragma once
 
 #include <cstddef>
@@ -160,6 +162,58 @@ inline void rotate_batch_order2(std::size_t count, const T* R, const T* coeffs, 
   }
 }
 
+// product_order2: h = f g projected to order 2 (SH product; factoring: pairs).
+template <class T>
+inline void product_order2(const T f[4], const T g[4], T h[4]) {
+  const T t2 = T(0.28209479177387814) * f[0];
+  const T t4 = T(0.28209479177387814) * g[0];
+  const T t5 = t2 * g[0];
+  const T t8 = f[1] * g[1];
+  const T t11 = f[2] * g[2];
+  const T t14 = f[3] * g[3];
+  const T t15 = t4 * f[1];
+  const T t16 = t2 * g[1];
+  const T t17 = t15 + t16;
+  const T t18 = t4 * f[2];
+  const T t19 = t2 * g[2];
+  const T t20 = t18 + t19;
+  const T t21 = t4 * f[3];
+  const T t22 = t2 * g[3];
+  const T t23 = t21 + t22;
+  const T t26 = t8 + t11;
+  const T t27 = t14 + t26;
+  const T t28 = T(0.28209479177387814) * t27;
+  const T t29 = t5 + t28;
+  h[0] = t29;
+  h[1] = t17;
+  h[2] = t20;
+  h[3] = t23;
+}
+
+// square_order2: h = f^2 projected to order 2 (SH product; factoring: pairs).
+template <class T>
+inline void square_order2(const T f[4], T h[4]) {
+  const T t2 = T(0.28209479177387814) * f[0];
+  const T t3 = f[0] * t2;
+  const T t5 = f[1] * f[1];
+  const T t7 = f[2] * f[2];
+  const T t9 = f[3] * f[3];
+  const T t10 = t2 * f[1];
+  const T t11 = t10 + t10;
+  const T t12 = t2 * f[2];
+  const T t13 = t12 + t12;
+  const T t14 = t2 * f[3];
+  const T t15 = t14 + t14;
+  const T t18 = t5 + t7;
+  const T t19 = t9 + t18;
+  const T t20 = T(0.28209479177387814) * t19;
+  const T t21 = t3 + t20;
+  h[0] = t21;
+  h[1] = t11;
+  h[2] = t13;
+  h[3] = t15;
+}
+
 // The functions above for generic code (runtime/rotator.h, zhf_kernels.h).
 template <int N>
 struct Kernels;
@@ -177,6 +231,10 @@ struct Kernels<2> {
   static void rotate_rgb(const T R[9], const T coeffs[3][4], T rotated[3][4]) { rotate_rgb_order2<T>(R, coeffs, rotated); }
   template <class T>
   static void rotate_batch(std::size_t count, const T* R, const T* coeffs, T* rotated) { rotate_batch_order2<T>(count, R, coeffs, rotated); }
+  template <class T>
+  static void product(const T f[4], const T g[4], T h[4]) { product_order2<T>(f, g, h); }
+  template <class T>
+  static void square(const T f[4], T h[4]) { square_order2<T>(f, h); }
 };
 
 }  // namespace zhf::gen

@@ -8,6 +8,8 @@
 //   rotate_signal_tailored_order3: 70 multiplies, 65 adds
 //   rotate_rgb_order3: 160 multiplies, 125 adds
 //   rotate_batch_order3: 70 multiplies, 65 adds
+//   product_order3: 96 multiplies, 74 adds
+//   square_order3: 64 multiplies, 51 adds
 #pragma once
 
 #include <cstddef>
@@ -879,6 +881,319 @@ inline void rotate_batch_order3(std::size_t count, const T* R, const T* coeffs, 
   }
 }
 
+// product_order3: h = f g projected to order 3 (SH product; factoring: pairs).
+template <class T>
+inline void product_order3(const T f[9], const T g[9], T h[9]) {
+  const T t2 = T(0.28209479177387814) * f[0];
+  const T t4 = T(0.28209479177387814) * g[0];
+  const T t5 = t2 * g[0];
+  const T t8 = f[1] * g[1];
+  const T t11 = f[2] * g[2];
+  const T t14 = f[3] * g[3];
+  const T t17 = f[4] * g[4];
+  const T t20 = f[5] * g[5];
+  const T t23 = f[6] * g[6];
+  const T t26 = f[7] * g[7];
+  const T t29 = f[8] * g[8];
+  const T t30 = t4 * f[1];
+  const T t31 = t2 * g[1];
+  const T t32 = t30 + t31;
+  const T t33 = g[1] * f[6];
+  const T t34 = f[1] * g[6];
+  const T t35 = t33 + t34;
+  const T t36 = g[1] * f[8];
+  const T t37 = f[1] * g[8];
+  const T t38 = t36 + t37;
+  const T t39 = g[2] * f[5];
+  const T t40 = f[2] * g[5];
+  const T t41 = t39 + t40;
+  const T t42 = g[3] * f[4];
+  const T t43 = f[3] * g[4];
+  const T t44 = t42 + t43;
+  const T t45 = t4 * f[2];
+  const T t46 = t2 * g[2];
+  const T t47 = t45 + t46;
+  const T t48 = g[1] * f[5];
+  const T t49 = f[1] * g[5];
+  const T t50 = t48 + t49;
+  const T t51 = g[2] * f[6];
+  const T t52 = f[2] * g[6];
+  const T t53 = t51 + t52;
+  const T t54 = g[3] * f[7];
+  const T t55 = f[3] * g[7];
+  const T t56 = t54 + t55;
+  const T t57 = t4 * f[3];
+  const T t58 = t2 * g[3];
+  const T t59 = t57 + t58;
+  const T t60 = g[1] * f[4];
+  const T t61 = f[1] * g[4];
+  const T t62 = t60 + t61;
+  const T t63 = g[2] * f[7];
+  const T t64 = f[2] * g[7];
+  const T t65 = t63 + t64;
+  const T t66 = g[3] * f[6];
+  const T t67 = f[3] * g[6];
+  const T t68 = t66 + t67;
+  const T t69 = g[3] * f[8];
+  const T t70 = f[3] * g[8];
+  const T t71 = t69 + t70;
+  const T t72 = t4 * f[4];
+  const T t73 = t2 * g[4];
+  const T t74 = t72 + t73;
+  const T t75 = g[1] * f[3];
+  const T t76 = f[1] * g[3];
+  const T t77 = t75 + t76;
+  const T t78 = g[4] * f[6];
+  const T t79 = f[4] * g[6];
+  const T t80 = t78 + t79;
+  const T t81 = g[5] * f[7];
+  const T t82 = f[5] * g[7];
+  const T t83 = t81 + t82;
+  const T t84 = t4 * f[5];
+  const T t85 = t2 * g[5];
+  const T t86 = t84 + t85;
+  const T t87 = g[1] * f[2];
+  const T t88 = f[1] * g[2];
+  const T t89 = t87 + t88;
+  const T t90 = g[4] * f[7];
+  const T t91 = f[4] * g[7];
+  const T t92 = t90 + t91;
+  const T t93 = g[5] * f[6];
+  const T t94 = f[5] * g[6];
+  const T t95 = t93 + t94;
+  const T t96 = g[5] * f[8];
+  const T t97 = f[5] * g[8];
+  const T t98 = t96 + t97;
+  const T t99 = t4 * f[6];
+  const T t100 = t2 * g[6];
+  const T t101 = t99 + t100;
+  const T t102 = t4 * f[7];
+  const T t103 = t2 * g[7];
+  const T t104 = t102 + t103;
+  const T t105 = g[2] * f[3];
+  const T t106 = f[2] * g[3];
+  const T t107 = t105 + t106;
+  const T t108 = g[4] * f[5];
+  const T t109 = f[4] * g[5];
+  const T t110 = t108 + t109;
+  const T t111 = g[6] * f[7];
+  const T t112 = f[6] * g[7];
+  const T t113 = t111 + t112;
+  const T t114 = g[7] * f[8];
+  const T t115 = f[7] * g[8];
+  const T t116 = t114 + t115;
+  const T t117 = t4 * f[8];
+  const T t118 = t2 * g[8];
+  const T t119 = t117 + t118;
+  const T t120 = g[6] * f[8];
+  const T t121 = f[6] * g[8];
+  const T t122 = t120 + t121;
+  const T t125 = t8 + t11;
+  const T t126 = t14 + t125;
+  const T t127 = t17 + t126;
+  const T t128 = t20 + t127;
+  const T t129 = t23 + t128;
+  const T t130 = t26 + t129;
+  const T t131 = t29 + t130;
+  const T t132 = T(0.28209479177387814) * t131;
+  const T t133 = t5 + t132;
+  const T t135 = T(-0.126156626101008) * t35;
+  const T t136 = t32 + t135;
+  const T t137 = t41 + t44;
+  const T t138 = t137 - t38;
+  const T t140 = T(0.2185096861184158) * t138;
+  const T t141 = t136 + t140;
+  const T t142 = t50 + t56;
+  const T t143 = T(0.2185096861184158) * t142;
+  const T t144 = t47 + t143;
+  const T t146 = T(0.252313252202016) * t53;
+  const T t147 = t144 + t146;
+  const T t148 = t62 + t65;
+  const T t149 = t71 + t148;
+  const T t150 = T(0.2185096861184158) * t149;
+  const T t151 = t59 + t150;
+  const T t152 = T(-0.126156626101008) * t68;
+  const T t153 = t151 + t152;
+  const T t154 = T(0.2185096861184158) * t77;
+  const T t155 = t74 + t154;
+  const T t157 = T(-0.18022375157286857) * t80;
+  const T t158 = t155 + t157;
+  const T t160 = T(0.15607834722743988) * t83;
+  const T t161 = t158 + t160;
+  const T t162 = T(0.2185096861184158) * t89;
+  const T t163 = t86 + t162;
+  const T t164 = t92 - t98;
+  const T t165 = T(0.15607834722743988) * t164;
+  const T t166 = t163 + t165;
+  const T t168 = T(0.09011187578643429) * t95;
+  const T t169 = t166 + t168;
+  const T t170 = t8 + t14;
+  const T t171 = T(-0.126156626101008) * t170;
+  const T t172 = t101 + t171;
+  const T t173 = T(0.252313252202016) * t11;
+  const T t174 = t172 + t173;
+  const T t175 = t23 - t17;
+  const T t176 = t175 - t29;
+  const T t178 = T(0.18022375157286857) * t176;
+  const T t179 = t174 + t178;
+  const T t180 = t20 + t26;
+  const T t181 = T(0.09011187578643429) * t180;
+  const T t182 = t179 + t181;
+  const T t183 = T(0.2185096861184158) * t107;
+  const T t184 = t104 + t183;
+  const T t185 = t110 + t116;
+  const T t186 = T(0.15607834722743988) * t185;
+  const T t187 = t184 + t186;
+  const T t188 = T(0.09011187578643429) * t113;
+  const T t189 = t187 + t188;
+  const T t190 = t14 - t8;
+  const T t191 = T(0.2185096861184158) * t190;
+  const T t192 = t119 + t191;
+  const T t193 = t26 - t20;
+  const T t194 = T(0.15607834722743988) * t193;
+  const T t195 = t192 + t194;
+  const T t196 = T(-0.18022375157286857) * t122;
+  const T t197 = t195 + t196;
+  h[0] = t133;
+  h[1] = t141;
+  h[2] = t147;
+  h[3] = t153;
+  h[4] = t161;
+  h[5] = t169;
+  h[6] = t182;
+  h[7] = t189;
+  h[8] = t197;
+}
+
+// square_order3: h = f^2 projected to order 3 (SH product; factoring: pairs).
+template <class T>
+inline void square_order3(const T f[9], T h[9]) {
+  const T t2 = T(0.28209479177387814) * f[0];
+  const T t3 = f[0] * t2;
+  const T t5 = f[1] * f[1];
+  const T t7 = f[2] * f[2];
+  const T t9 = f[3] * f[3];
+  const T t11 = f[4] * f[4];
+  const T t13 = f[5] * f[5];
+  const T t15 = f[6] * f[6];
+  const T t17 = f[7] * f[7];
+  const T t19 = f[8] * f[8];
+  const T t20 = t2 * f[1];
+  const T t21 = t20 + t20;
+  const T t22 = f[1] * f[6];
+  const T t23 = f[1] * f[8];
+  const T t24 = f[2] * f[5];
+  const T t25 = f[3] * f[4];
+  const T t26 = t2 * f[2];
+  const T t27 = t26 + t26;
+  const T t28 = f[1] * f[5];
+  const T t29 = f[2] * f[6];
+  const T t30 = f[3] * f[7];
+  const T t31 = t2 * f[3];
+  const T t32 = t31 + t31;
+  const T t33 = f[1] * f[4];
+  const T t34 = f[2] * f[7];
+  const T t35 = f[3] * f[6];
+  const T t36 = f[3] * f[8];
+  const T t37 = t2 * f[4];
+  const T t38 = t37 + t37;
+  const T t39 = f[1] * f[3];
+  const T t40 = f[4] * f[6];
+  const T t41 = f[5] * f[7];
+  const T t42 = t2 * f[5];
+  const T t43 = t42 + t42;
+  const T t44 = f[1] * f[2];
+  const T t45 = f[4] * f[7];
+  const T t46 = f[5] * f[6];
+  const T t47 = f[5] * f[8];
+  const T t48 = t2 * f[6];
+  const T t49 = t48 + t48;
+  const T t50 = t2 * f[7];
+  const T t51 = t50 + t50;
+  const T t52 = f[2] * f[3];
+  const T t53 = f[4] * f[5];
+  const T t54 = f[6] * f[7];
+  const T t55 = f[7] * f[8];
+  const T t56 = t2 * f[8];
+  const T t57 = t56 + t56;
+  const T t58 = f[6] * f[8];
+  const T t61 = t5 + t7;
+  const T t62 = t9 + t61;
+  const T t63 = t11 + t62;
+  const T t64 = t13 + t63;
+  const T t65 = t15 + t64;
+  const T t66 = t17 + t65;
+  const T t67 = t19 + t66;
+  const T t68 = T(0.28209479177387814) * t67;
+  const T t69 = t3 + t68;
+  const T t71 = T(-0.252313252202016) * t22;
+  const T t72 = t21 + t71;
+  const T t73 = t24 + t25;
+  const T t74 = t73 - t23;
+  const T t76 = T(0.4370193722368316) * t74;
+  const T t77 = t72 + t76;
+  const T t78 = t28 + t30;
+  const T t79 = T(0.4370193722368316) * t78;
+  const T t80 = t27 + t79;
+  const T t82 = T(0.504626504404032) * t29;
+  const T t83 = t80 + t82;
+  const T t84 = t33 + t34;
+  const T t85 = t36 + t84;
+  const T t86 = T(0.4370193722368316) * t85;
+  const T t87 = t32 + t86;
+  const T t88 = T(-0.252313252202016) * t35;
+  const T t89 = t87 + t88;
+  const T t90 = T(0.4370193722368316) * t39;
+  const T t91 = t38 + t90;
+  const T t93 = T(-0.36044750314573715) * t40;
+  const T t94 = t91 + t93;
+  const T t96 = T(0.31215669445487976) * t41;
+  const T t97 = t94 + t96;
+  const T t98 = T(0.4370193722368316) * t44;
+  const T t99 = t43 + t98;
+  const T t100 = t45 - t47;
+  const T t101 = T(0.31215669445487976) * t100;
+  const T t102 = t99 + t101;
+  const T t104 = T(0.18022375157286857) * t46;
+  const T t105 = t102 + t104;
+  const T t106 = t5 + t9;
+  const T t108 = T(-0.126156626101008) * t106;
+  const T t109 = t49 + t108;
+  const T t111 = T(0.252313252202016) * t7;
+  const T t112 = t109 + t111;
+  const T t113 = t15 - t11;
+  const T t114 = t113 - t19;
+  const T t115 = T(0.18022375157286857) * t114;
+  const T t116 = t112 + t115;
+  const T t117 = t13 + t17;
+  const T t119 = T(0.09011187578643429) * t117;
+  const T t120 = t116 + t119;
+  const T t121 = T(0.4370193722368316) * t52;
+  const T t122 = t51 + t121;
+  const T t123 = t53 + t55;
+  const T t124 = T(0.31215669445487976) * t123;
+  const T t125 = t122 + t124;
+  const T t126 = T(0.18022375157286857) * t54;
+  const T t127 = t125 + t126;
+  const T t128 = t9 - t5;
+  const T t130 = T(0.2185096861184158) * t128;
+  const T t131 = t57 + t130;
+  const T t132 = t17 - t13;
+  const T t134 = T(0.15607834722743988) * t132;
+  const T t135 = t131 + t134;
+  const T t136 = T(-0.36044750314573715) * t58;
+  const T t137 = t135 + t136;
+  h[0] = t69;
+  h[1] = t77;
+  h[2] = t83;
+  h[3] = t89;
+  h[4] = t97;
+  h[5] = t105;
+  h[6] = t120;
+  h[7] = t127;
+  h[8] = t137;
+}
+
 // The functions above for generic code (runtime/rotator.h, zhf_kernels.h).
 template <int N>
 struct Kernels;
@@ -900,6 +1215,10 @@ struct Kernels<3> {
   static void rotate_rgb(const T R[9], const T coeffs[3][9], T rotated[3][9]) { rotate_rgb_order3<T>(R, coeffs, rotated); }
   template <class T>
   static void rotate_batch(std::size_t count, const T* R, const T* coeffs, T* rotated) { rotate_batch_order3<T>(count, R, coeffs, rotated); }
+  template <class T>
+  static void product(const T f[9], const T g[9], T h[9]) { product_order3<T>(f, g, h); }
+  template <class T>
+  static void square(const T f[9], T h[9]) { square_order3<T>(f, h); }
 };
 
 }  // namespace zhf::gen

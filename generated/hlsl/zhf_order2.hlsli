@@ -5,6 +5,8 @@
 //   rotate_order2: 9 multiplies, 6 adds
 //   rotate_signal_tailored_order2: 9 multiplies, 6 adds
 //   rotate_rgb_order2: 9 multiplies, 6 adds
+//   product_order2: 13 multiplies, 6 adds
+//   square_order2: 9 multiplies, 6 adds
 #ifndef ZHF_ORDER2_HLSLI
 #define ZHF_ORDER2_HLSLI
 
@@ -87,6 +89,56 @@ void rotate_rgb_order2(float R[9], float3 coeffs[4], out float3 rotated[4]) {
   rotated[1] = t12;
   rotated[2] = t21;
   rotated[3] = t29;
+}
+
+// product_order2: h = f g projected to order 2 (SH product; factoring: pairs).
+void product_order2(float f[4], float g[4], out float h[4]) {
+  const float t2 = 0.2820948f * f[0];
+  const float t4 = 0.2820948f * g[0];
+  const float t5 = t2 * g[0];
+  const float t8 = f[1] * g[1];
+  const float t11 = f[2] * g[2];
+  const float t14 = f[3] * g[3];
+  const float t15 = t4 * f[1];
+  const float t16 = t2 * g[1];
+  const float t17 = t15 + t16;
+  const float t18 = t4 * f[2];
+  const float t19 = t2 * g[2];
+  const float t20 = t18 + t19;
+  const float t21 = t4 * f[3];
+  const float t22 = t2 * g[3];
+  const float t23 = t21 + t22;
+  const float t26 = t8 + t11;
+  const float t27 = t14 + t26;
+  const float t28 = 0.2820948f * t27;
+  const float t29 = t5 + t28;
+  h[0] = t29;
+  h[1] = t17;
+  h[2] = t20;
+  h[3] = t23;
+}
+
+// square_order2: h = f^2 projected to order 2 (SH product; factoring: pairs).
+void square_order2(float f[4], out float h[4]) {
+  const float t2 = 0.2820948f * f[0];
+  const float t3 = f[0] * t2;
+  const float t5 = f[1] * f[1];
+  const float t7 = f[2] * f[2];
+  const float t9 = f[3] * f[3];
+  const float t10 = t2 * f[1];
+  const float t11 = t10 + t10;
+  const float t12 = t2 * f[2];
+  const float t13 = t12 + t12;
+  const float t14 = t2 * f[3];
+  const float t15 = t14 + t14;
+  const float t18 = t5 + t7;
+  const float t19 = t9 + t18;
+  const float t20 = 0.2820948f * t19;
+  const float t21 = t3 + t20;
+  h[0] = t21;
+  h[1] = t11;
+  h[2] = t13;
+  h[3] = t15;
 }
 
 #endif  // ZHF_ORDER2_HLSLI

@@ -90,14 +90,16 @@ TEST(Conventions, CondonShortleyKernelsAreZhfsOnTheArgumentsInZhfsTerms) {
           for (int i : {2, 5, 6, 7}) z[i] = -z[i];
         } else if (param.name == "dir" || param.name == "axis") {
           z[0] = -z[0], z[1] = -z[1];
-        } else if (cs.kind == codegen::KernelKind::kLobeWeights) {
+        } else if (cs.kind == codegen::KernelKind::kLobeWeights || cs.kind == codegen::KernelKind::kProduct ||
+                   cs.kind == codegen::KernelKind::kSquare) {
           for (int i = 0; i < param.size; ++i)
             if (odd_m(i)) z[i] = -z[i];
         }
       }
       const auto got = evaluate(cs, system);
       auto expected = evaluate(zhf, in_zhf_terms);
-      if (cs.kind == codegen::KernelKind::kFromSamples)
+      if (cs.kind == codegen::KernelKind::kFromSamples || cs.kind == codegen::KernelKind::kProduct ||
+          cs.kind == codegen::KernelKind::kSquare)
         for (auto& [where, value] : expected)
           if (odd_m(where.second)) value = -value;
       for (const auto& [where, value] : expected)

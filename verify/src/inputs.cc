@@ -1,11 +1,13 @@
 #include "inputs.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <utility>
 
 #include <Eigen/Core>
 
+#include "zhf/runtime/product.h"
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
@@ -65,6 +67,10 @@ std::vector<std::vector<double>> reference_outputs(const Inputs& in, const runti
   const int n = in.order * in.order;
   const size_t block = size_t(kMaxChannels) * n;
   std::vector<std::vector<double>> ref(modes.size(), std::vector<double>(block * in.count, 0.0));
+  const bool products = std::any_of(modes.begin(), modes.end(), [](const Mode& m) {
+    return m.kind == KernelKind::kProduct || m.kind == KernelKind::kSquare;
+  });
+  const runtime::ShProduct product(products ? in.order : 1);
   for (int v = 0; v < in.count; ++v) {
     sh::Matrix3 r;
     for (int i = 0; i < 9; ++i) r(i / 3, i % 3) = in.rotations[9 * v + i];
@@ -99,6 +105,12 @@ std::vector<std::vector<double>> reference_outputs(const Inputs& in, const runti
         case KernelKind::kZonal:
           for (int c = 0; c < m.channels; ++c)
             for (int i = 0; i < n; ++i) out[c * n + i] = zonal[c][i];
+          break;
+        case KernelKind::kProduct:  // channel 1 is the next input's coefficients
+          product.product(f, &in.coeffs[size_t(n) * ((v + 1) % in.count)], out);
+          break;
+        case KernelKind::kSquare:
+          product.square(f, out);
           break;
         case KernelKind::kShEval:
           runtime::eval_sh(in.order, &in.rotations[9 * v], out);  // the first row of R is a unit direction

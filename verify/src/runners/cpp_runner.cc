@@ -29,6 +29,8 @@ std::string call(const Mode& m, int order) {
     case KernelKind::kFromSamples: return f + "(c1, o1);";
     case KernelKind::kApplyMatrices: return "zhf::gen::rotation_matrices_order" + n + "<T>(r, mats); " + f + "(mats, " + c + ", " + o + ");";
     case KernelKind::kZonal: return f + "(r, axis, " + z + ", " + o + ");";
+    case KernelKind::kProduct: return f + "(c[0], c[1], o1);";
+    case KernelKind::kSquare: return f + "(c1, o1);";
     case KernelKind::kBatch:
     case KernelKind::kRotationMatrices: break;
   }

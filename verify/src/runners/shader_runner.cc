@@ -31,6 +31,8 @@ std::string call(const Mode& m, int order) {
     case KernelKind::kApplyMatrices:
       return "rotation_matrices_order" + std::to_string(order) + "(r, mats); " + m.function + "(mats, " + c + ", " + o + ");";
     case KernelKind::kZonal: return m.function + "(r, axis, " + z + ", " + o + ");";
+    case KernelKind::kProduct: return m.function + "(c[0], c[1], o1);";
+    case KernelKind::kSquare: return m.function + "(c1, o1);";
     case KernelKind::kBatch:
     case KernelKind::kRotationMatrices: break;
   }

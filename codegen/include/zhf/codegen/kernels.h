@@ -46,6 +46,8 @@ enum class KernelKind {
   kRotationMatrices,    // rotation_matrices_orderN(R, M): the dense band matrices
   kApplyMatrices,       // apply_rotation_matrices[_rgb|_rgba]_orderN(M, coeffs, rotated)
   kZonal,               // rotate_zonal[_rgb|_rgba]_orderN(R, axis, zonal, rotated)
+  kProduct,             // product_orderN(f, g, h): h = P_N(f g), the SH product (runtime/product.h)
+  kSquare,              // square_orderN(f, h): h = P_N(f^2)
 };
 const char* kernel_kind_name(KernelKind kind);
 bool parse_kernel_kind(const std::string& name, KernelKind& kind);
@@ -95,6 +97,7 @@ struct ModuleOptions {
   std::vector<int> dense_channels;               // rotation_matrices + apply_rotation_matrices[_rgb|_rgba]
   std::vector<int> zonal_channels;               // rotate_zonal[_rgb|_rgba]
   std::vector<int> zero_bands;                   // known zero: their outputs are 0 and cost nothing
+  bool products = true;                          // product and square (no table needed)
   // Every function in the Condon-Shortley sign convention (runtime/conventions.h: 3dgs,
   // condon-shortley): coefficients carry (-1)^m, R and directions are in the system's axes. The
   // system's coefficients are zhf's of f(K u) (K = diag(-1, -1, 1)), so rotations compute zhf's
@@ -121,6 +124,18 @@ std::string channel_suffix(int channels);
 // Packed dense band matrices for bands 0..order-1: band l's (2l+1)^2 block, row-major, starts at
 // l(2l-1)(2l+1)/3.
 int dense_matrix_offset(int band);
+
+// The SH product kernels (product_kernels.cc): the Gaunt sum with shared pair products, or
+// Gauss-Legendre nodes in z with the phi products done by trigonometric identities.
+// condon_shortley: coefficients in and out carry (-1)^m (S h = P(S f, S g): products commute with
+// the change of axes), folded into the graph.
+enum class ProductFactoring { kPairs, kGaussFourier };
+const char* product_factoring_name(ProductFactoring factoring);
+Function product_function(int order, bool square, ProductFactoring factoring, bool condon_shortley = false);
+// The one of the two with fewer multiplies.
+Function product_function(int order, bool square, bool condon_shortley = false);
+// The flat indices of odd m below count: where S = (-1)^m negates.
+std::vector<int> odd_m_indices(int count);
 
 // Order 2 needs no table: pass runtime::lobe_free_table().
 Module build_module(const runtime::LobeTable& table, const ModuleOptions& options);

@@ -102,6 +102,12 @@ inline constexpr double kGauntAgainstQuadrature = 1e-14;
 inline constexpr double kProductAgainstIntegration = 1e-12;
 // The same products in float: each output sums up to ~2N^2 products of float terms.
 inline constexpr double kFloatProduct = 2e-6;
+// Shader product kernels against the C++ float kernel, in ulps at the outputs' scale (floor
+// kUlpFloor = 1/64): their sums run over intermediates of size ~|f||g| = 1 for unit inputs, so one
+// rounding that the driver does differently (lavapipe may fuse a multiply into an add; C++ is
+// built with -ffp-contract=off) moves a small output by up to 64 such ulps. Measured at most 16
+// (GLSL, square, orders 4..8), 8 for the product.
+inline constexpr double kProductShaderUlps = 64;
 
 // ---- Reference math (tests of sh/ and candidates/) ----------------------------------------------
 // What is exact in exact arithmetic and rounds once or twice in double (the identity rotation's
