@@ -269,6 +269,56 @@ class Builder {
     return f;
   }
 
+  // Shading: int L(R^T w) t(w) dw, the lighting rotated by R against a transfer vector, in one
+  // function. Per band l >= 2 (RZHB, coupling C^D = Y_R): with zhat_d the lobe weights of L,
+  //   int = sum_d zhat_d t_l(R w_d),  t_l(R w_d) = sum_m (K_lm t_lm) H_lm(R u_d) / |u_d|^l,
+  // so t is scaled once and evaluated at each rotated lobe. from_lobes: the lighting comes as its
+  // lobe weights z = A^T L (lobe_weights' layout: bands 0 and 1 SH), which skips the sparse stage
+  // for lighting that is shaded under many rotations.
+  Function shading(bool from_lobes) const {
+    const std::string doc = std::string("result[0] = integral of the lighting rotated by R (f(R^T w)) times transfer") +
+                            (from_lobes ? ", the lighting given as lobe weights z (lobe_weights)" : "");
+    Function f = make(from_lobes ? KernelKind::kShadeLobes : KernelKind::kShade, from_lobes ? "shade_lobes" : "shade", 1, doc,
+                      {{"R", 9, false, 1}, {from_lobes ? "z" : "light", count_, false, 1}, {"transfer", count_, false, 1},
+                       {"result", 1, true, 1}});
+    Graph& g = f.graph;
+    const int light = 1, transfer = 2;
+    std::vector<std::pair<double, int>> total;
+    if (live_[0]) total.push_back({1.0, g.mul(g.input(light, 0), g.input(transfer, 0))});
+    if (order_ > 1 && live_[1])
+      for (int m = -1; m <= 1; ++m) {
+        std::vector<std::pair<double, int>> terms;
+        for (int n = -1; n <= 1; ++n)
+          terms.push_back({1.0, g.mul(g.input(0, 3 * kBand1Axis[m + 1] + kBand1Axis[n + 1]), g.input(light, runtime::index(1, n)))});
+        total.push_back({1.0, g.mul(g.linear(terms), g.input(transfer, runtime::index(1, m)))});
+      }
+    const std::vector<std::vector<int>> h = lobe_polynomials(g, /*transpose=*/false);
+    for (const runtime::TableBand& band : table_.bands) {
+      const int l = band.l, base = l * l;
+      if (!live_[l]) continue;
+      std::vector<int> scaled(2 * l + 1);
+      for (int m = -l; m <= l; ++m) scaled[m + l] = g.scale(legendre_.output_scale(l, m), g.input(transfer, base + m + l));
+      for (int d = 0; d < 2 * l + 1; ++d) {
+        g.set_wide(false);
+        int zhat = 0;
+        if (from_lobes) {
+          zhat = g.scale(lobe_scale(band, d), g.input(light, base + d));
+        } else {
+          std::vector<std::pair<double, int>> terms;
+          for (int k = 0; k < 2 * l + 1; ++k) terms.push_back({band.inverse(k, d) * lobe_scale(band, d), g.input(light, base + k)});
+          zhat = g.linear(terms);
+        }
+        g.set_wide(wide_lobes_);
+        std::vector<std::pair<double, int>> at_lobe;
+        for (int m = -l; m <= l; ++m) at_lobe.push_back({1.0, g.mul(h[band.lobes[d]][runtime::index(l, m)], scaled[m + l])});
+        total.push_back({1.0, g.mul(zhat, g.linear(at_lobe))});
+      }
+    }
+    put(f, 3, 0, total.empty() ? g.constant(0) : g.linear(total));
+    g.set_wide(false);
+    return f;
+  }
+
   // The dense band matrices of R through the lobes: D_l[m][m'] = sum_d y_l^m(R w_d) A_l[m'][d]
   // (the standard rotation with f the unit vectors), packed as dense_matrix_offset says.
   Function rotation_matrices() const {
@@ -384,8 +434,18 @@ class Builder {
         break;
       case KernelKind::kFromSamples:  // its outputs: negated where it puts them (sparse_multiply)
       case KernelKind::kApplyMatrices:  // the matrices are the system's already
-      case KernelKind::kProduct:        // built without a table: build_module folds their signs
+      case KernelKind::kProduct:        // built without a table: product_function folds their signs
       case KernelKind::kSquare:
+        break;
+      case KernelKind::kShade:  // both vectors S f: the dot product is zhf's of the same vectors
+        f.graph.negate_inputs(0, {2, 5, 6, 7});
+        f.graph.negate_inputs(1, odd_m_indices());
+        f.graph.negate_inputs(2, odd_m_indices());
+        break;
+      case KernelKind::kShadeLobes:  // z as lobe_weights gives it: bands 0 and 1 S f, lobe weights as they are
+        f.graph.negate_inputs(0, {2, 5, 6, 7});
+        f.graph.negate_inputs(1, {1, 3});
+        f.graph.negate_inputs(2, odd_m_indices());
         break;
     }
   }
@@ -493,12 +553,14 @@ const char* kernel_kind_name(KernelKind kind) {
     case KernelKind::kZonal: return "rotate_zonal";
     case KernelKind::kProduct: return "product";
     case KernelKind::kSquare: return "square";
+    case KernelKind::kShade: return "shade";
+    case KernelKind::kShadeLobes: return "shade_lobes";
   }
   return "?";
 }
 
 bool parse_kernel_kind(const std::string& name, KernelKind& kind) {
-  for (int k = 0; k <= static_cast<int>(KernelKind::kSquare); ++k)
+  for (int k = 0; k <= static_cast<int>(KernelKind::kShadeLobes); ++k)
     if (name == kernel_kind_name(static_cast<KernelKind>(k))) {
       kind = static_cast<KernelKind>(k);
       return true;
@@ -575,6 +637,10 @@ Module build_module(const runtime::LobeTable& table, const ModuleOptions& option
     if (wants(options.dense_channels, channels)) module.functions.push_back(builder.apply_rotation_matrices(channels));
   for (int channels : {1, 3, 4})
     if (wants(options.zonal_channels, channels)) module.functions.push_back(builder.zonal_rotation(channels));
+  if (options.shading) {
+    module.functions.push_back(builder.shading(false));
+    if (options.lobe_multiplies && table.order > 2) module.functions.push_back(builder.shading(true));
+  }
   if (options.products)
     for (bool square : {false, true}) module.functions.push_back(product_function(table.order, square, options.condon_shortley));
   return module;

@@ -13,7 +13,8 @@ namespace {
 
 // The variant names a scene may list, in the order they are documented.
 const std::initializer_list<std::string_view> kVariants = {"standard", "signal-tailored", "batch", "dense-matrix",
-                                                           "zonal",    "sh-eval",         "lobe-multiplies", "products"};
+                                                           "zonal",    "sh-eval",         "lobe-multiplies", "products",
+                                                           "shading"};
 
 }  // namespace
 
@@ -28,7 +29,7 @@ std::map<int, ModuleOptions> Scene::module_options() const {
   for (const SceneSignal& signal : signals) {
     if (!out.count(signal.order)) {
       ModuleOptions none;
-      none.sh_eval = none.lobe_multiplies = none.batch = none.products = false;
+      none.sh_eval = none.lobe_multiplies = none.batch = none.products = none.shading = false;
       none.standard_channels.clear();
       none.tailored_channels.clear();
       none.zero_bands = signal.zero_bands;
@@ -48,6 +49,7 @@ std::map<int, ModuleOptions> Scene::module_options() const {
       if (v == "sh-eval") m.sh_eval = true;
       if (v == "lobe-multiplies") m.lobe_multiplies = true;
       if (v == "products") m.products = true;
+      if (v == "shading") m.shading = true;
     }
   }
   return out;

@@ -6,6 +6,7 @@
 //   rotate_signal_tailored_order2: 9 multiplies, 6 adds
 //   rotate_rgb_order2: 27 multiplies, 18 adds
 //   rotate_batch_order2: 9 multiplies, 6 adds
+//   shade_order2: 13 multiplies, 9 adds
 //   product_order2: 13 multiplies, 6 adds
 //   square_order2: 9 multiplies, 6 adds
 #pragma once
@@ -162,6 +163,34 @@ inline void rotate_batch_order2(std::size_t count, const T* R, const T* coeffs, 
   }
 }
 
+// shade_order2: result[0] = integral of the lighting rotated by R (f(R^T w)) times transfer.
+template <class T>
+inline void shade_order2(const T R[9], const T light[4], const T transfer[4], T result[1]) {
+  const T t2 = transfer[0] * light[0];
+  const T t5 = light[1] * R[4];
+  const T t8 = light[2] * R[5];
+  const T t11 = light[3] * R[3];
+  const T t14 = t5 + t8;
+  const T t15 = t11 + t14;
+  const T t17 = transfer[1] * t15;
+  const T t19 = light[1] * R[7];
+  const T t21 = light[2] * R[8];
+  const T t23 = light[3] * R[6];
+  const T t25 = t19 + t21;
+  const T t26 = t23 + t25;
+  const T t27 = transfer[2] * t26;
+  const T t29 = light[1] * R[1];
+  const T t31 = light[2] * R[2];
+  const T t33 = light[3] * R[0];
+  const T t35 = t29 + t31;
+  const T t36 = t33 + t35;
+  const T t37 = transfer[3] * t36;
+  const T t38 = t2 + t17;
+  const T t39 = t27 + t38;
+  const T t40 = t37 + t39;
+  result[0] = t40;
+}
+
 // product_order2: h = f g projected to order 2 (SH product; factoring: pairs).
 template <class T>
 inline void product_order2(const T f[4], const T g[4], T h[4]) {
@@ -231,6 +260,8 @@ struct Kernels<2> {
   static void rotate_rgb(const T R[9], const T coeffs[3][4], T rotated[3][4]) { rotate_rgb_order2<T>(R, coeffs, rotated); }
   template <class T>
   static void rotate_batch(std::size_t count, const T* R, const T* coeffs, T* rotated) { rotate_batch_order2<T>(count, R, coeffs, rotated); }
+  template <class T>
+  static void shade(const T R[9], const T light[4], const T transfer[4], T result[1]) { shade_order2<T>(R, light, transfer, result); }
   template <class T>
   static void product(const T f[4], const T g[4], T h[4]) { product_order2<T>(f, g, h); }
   template <class T>

@@ -8,6 +8,8 @@
 //   rotate_signal_tailored_order3: 70 multiplies, 65 adds
 //   rotate_rgb_order3: 160 multiplies, 125 adds
 //   rotate_batch_order3: 70 multiplies, 65 adds
+//   shade_order3: 79 multiplies, 73 adds
+//   shade_lobes_order3: 76 multiplies, 69 adds
 //   product_order3: 96 multiplies, 74 adds
 //   square_order3: 64 multiplies, 51 adds
 #pragma once
@@ -881,6 +883,315 @@ inline void rotate_batch_order3(std::size_t count, const T* R, const T* coeffs, 
   }
 }
 
+// shade_order3: result[0] = integral of the lighting rotated by R (f(R^T w)) times transfer.
+template <class T>
+inline void shade_order3(const T R[9], const T light[9], const T transfer[9], T result[1]) {
+  const T t2 = transfer[0] * light[0];
+  const T t5 = light[1] * R[4];
+  const T t8 = light[2] * R[5];
+  const T t11 = light[3] * R[3];
+  const T t14 = t5 + t8;
+  const T t15 = t11 + t14;
+  const T t17 = transfer[1] * t15;
+  const T t19 = light[1] * R[7];
+  const T t21 = light[2] * R[8];
+  const T t23 = light[3] * R[6];
+  const T t25 = t19 + t21;
+  const T t26 = t23 + t25;
+  const T t27 = transfer[2] * t26;
+  const T t29 = light[1] * R[1];
+  const T t31 = light[2] * R[2];
+  const T t33 = light[3] * R[0];
+  const T t35 = t29 + t31;
+  const T t36 = t33 + t35;
+  const T t37 = transfer[3] * t36;
+  const T t38 = R[1] + R[0];
+  const T t39 = t38 - R[2];
+  const T t40 = R[4] + R[3];
+  const T t41 = t40 - R[5];
+  const T t42 = R[7] + R[6];
+  const T t43 = t42 - R[8];
+  const T t44 = t43 * t43;
+  const T t45 = t44 - T(1.0);
+  const T t46 = t39 * t43;
+  const T t47 = t41 * t43;
+  const T t48 = t39 + t41;
+  const T t49 = t39 - t41;
+  const T t50 = t48 * t49;
+  const T t51 = t39 * t41;
+  const T t52 = t51 + t51;
+  const T t54 = R[6] * R[6];
+  const T t55 = t54 - T(0.33333333333333337);
+  const T t56 = R[6] * R[0];
+  const T t57 = R[3] * R[6];
+  const T t58 = R[3] + R[0];
+  const T t59 = R[0] - R[3];
+  const T t60 = t58 * t59;
+  const T t61 = R[3] * R[0];
+  const T t62 = t61 + t61;
+  const T t63 = R[2] + t38;
+  const T t64 = R[5] + t40;
+  const T t65 = R[8] + t42;
+  const T t66 = t65 * t65;
+  const T t67 = t66 - T(1.0);
+  const T t68 = t63 * t65;
+  const T t69 = t64 * t65;
+  const T t70 = t63 + t64;
+  const T t71 = t63 - t64;
+  const T t72 = t70 * t71;
+  const T t73 = t63 * t64;
+  const T t74 = t73 + t73;
+  const T t75 = R[1] - R[0];
+  const T t76 = t75 - R[2];
+  const T t77 = R[4] - R[3];
+  const T t78 = t77 - R[5];
+  const T t79 = R[7] - R[6];
+  const T t80 = t79 - R[8];
+  const T t81 = t80 * t80;
+  const T t82 = t81 - T(1.0);
+  const T t83 = t76 * t80;
+  const T t84 = t78 * t80;
+  const T t85 = t76 + t78;
+  const T t86 = t76 - t78;
+  const T t87 = t85 * t86;
+  const T t88 = t76 * t78;
+  const T t89 = t88 + t88;
+  const T t90 = R[8] * R[8];
+  const T t91 = t90 - T(0.33333333333333337);
+  const T t92 = R[8] * R[2];
+  const T t93 = R[5] * R[8];
+  const T t94 = R[5] + R[2];
+  const T t95 = R[2] - R[5];
+  const T t96 = t94 * t95;
+  const T t97 = R[5] * R[2];
+  const T t98 = t97 + t97;
+  const T t101 = T(0.5462742152960396) * transfer[4];
+  const T t104 = T(1.0925484305920792) * transfer[5];
+  const T t107 = T(0.94617469575756) * transfer[6];
+  const T t109 = T(1.0925484305920792) * transfer[7];
+  const T t111 = T(0.5462742152960396) * transfer[8];
+  const T t117 = light[4] - light[5];
+  const T t119 = T(0.4576456164318844) * t117;
+  const T t120 = t52 * t101;
+  const T t121 = t47 * t104;
+  const T t122 = t45 * t107;
+  const T t123 = t46 * t109;
+  const T t124 = t50 * t111;
+  const T t125 = t120 + t121;
+  const T t126 = t122 + t125;
+  const T t127 = t123 + t126;
+  const T t128 = t124 + t127;
+  const T t129 = t119 * t128;
+  const T t131 = T(1.8305824657275378) * light[8];
+  const T t132 = t62 * t101;
+  const T t133 = t57 * t104;
+  const T t134 = t55 * t107;
+  const T t135 = t56 * t109;
+  const T t136 = t60 * t111;
+  const T t137 = t132 + t133;
+  const T t138 = t134 + t137;
+  const T t139 = t135 + t138;
+  const T t140 = t136 + t139;
+  const T t141 = t131 * t140;
+  const T t142 = light[4] + light[7];
+  const T t143 = T(0.4576456164318844) * t142;
+  const T t144 = t74 * t101;
+  const T t145 = t69 * t104;
+  const T t146 = t67 * t107;
+  const T t147 = t68 * t109;
+  const T t148 = t72 * t111;
+  const T t149 = t144 + t145;
+  const T t150 = t146 + t149;
+  const T t151 = t147 + t150;
+  const T t152 = t148 + t151;
+  const T t153 = t143 * t152;
+  const T t154 = light[7] - light[5];
+  const T t156 = T(0.4576456164318845) * t154;
+  const T t157 = t89 * t101;
+  const T t158 = t84 * t104;
+  const T t159 = t82 * t107;
+  const T t160 = t83 * t109;
+  const T t161 = t87 * t111;
+  const T t162 = t157 + t158;
+  const T t163 = t159 + t162;
+  const T t164 = t160 + t163;
+  const T t165 = t161 + t164;
+  const T t166 = t156 * t165;
+  const T t168 = T(1.5853309190424048) * light[6];
+  const T t170 = T(0.9152912328637691) * light[8];
+  const T t171 = t168 + t170;
+  const T t172 = t98 * t101;
+  const T t173 = t93 * t104;
+  const T t174 = t91 * t107;
+  const T t175 = t92 * t109;
+  const T t176 = t96 * t111;
+  const T t177 = t172 + t173;
+  const T t178 = t174 + t177;
+  const T t179 = t175 + t178;
+  const T t180 = t176 + t179;
+  const T t181 = t171 * t180;
+  const T t182 = t2 + t17;
+  const T t183 = t27 + t182;
+  const T t184 = t37 + t183;
+  const T t185 = t129 + t184;
+  const T t186 = t141 + t185;
+  const T t187 = t153 + t186;
+  const T t188 = t166 + t187;
+  const T t189 = t181 + t188;
+  result[0] = t189;
+}
+
+// shade_lobes_order3: result[0] = integral of the lighting rotated by R (f(R^T w)) times transfer, the lighting given as lobe weights z (lobe_weights).
+template <class T>
+inline void shade_lobes_order3(const T R[9], const T z[9], const T transfer[9], T result[1]) {
+  const T t2 = transfer[0] * z[0];
+  const T t5 = z[1] * R[4];
+  const T t8 = z[2] * R[5];
+  const T t11 = z[3] * R[3];
+  const T t14 = t5 + t8;
+  const T t15 = t11 + t14;
+  const T t17 = transfer[1] * t15;
+  const T t19 = z[1] * R[7];
+  const T t21 = z[2] * R[8];
+  const T t23 = z[3] * R[6];
+  const T t25 = t19 + t21;
+  const T t26 = t23 + t25;
+  const T t27 = transfer[2] * t26;
+  const T t29 = z[1] * R[1];
+  const T t31 = z[2] * R[2];
+  const T t33 = z[3] * R[0];
+  const T t35 = t29 + t31;
+  const T t36 = t33 + t35;
+  const T t37 = transfer[3] * t36;
+  const T t38 = R[1] + R[0];
+  const T t39 = t38 - R[2];
+  const T t40 = R[4] + R[3];
+  const T t41 = t40 - R[5];
+  const T t42 = R[7] + R[6];
+  const T t43 = t42 - R[8];
+  const T t44 = t43 * t43;
+  const T t45 = t44 - T(1.0);
+  const T t46 = t39 * t43;
+  const T t47 = t41 * t43;
+  const T t48 = t39 + t41;
+  const T t49 = t39 - t41;
+  const T t50 = t48 * t49;
+  const T t51 = t39 * t41;
+  const T t52 = t51 + t51;
+  const T t54 = R[6] * R[6];
+  const T t55 = t54 - T(0.33333333333333337);
+  const T t56 = R[6] * R[0];
+  const T t57 = R[3] * R[6];
+  const T t58 = R[3] + R[0];
+  const T t59 = R[0] - R[3];
+  const T t60 = t58 * t59;
+  const T t61 = R[3] * R[0];
+  const T t62 = t61 + t61;
+  const T t63 = R[2] + t38;
+  const T t64 = R[5] + t40;
+  const T t65 = R[8] + t42;
+  const T t66 = t65 * t65;
+  const T t67 = t66 - T(1.0);
+  const T t68 = t63 * t65;
+  const T t69 = t64 * t65;
+  const T t70 = t63 + t64;
+  const T t71 = t63 - t64;
+  const T t72 = t70 * t71;
+  const T t73 = t63 * t64;
+  const T t74 = t73 + t73;
+  const T t75 = R[1] - R[0];
+  const T t76 = t75 - R[2];
+  const T t77 = R[4] - R[3];
+  const T t78 = t77 - R[5];
+  const T t79 = R[7] - R[6];
+  const T t80 = t79 - R[8];
+  const T t81 = t80 * t80;
+  const T t82 = t81 - T(1.0);
+  const T t83 = t76 * t80;
+  const T t84 = t78 * t80;
+  const T t85 = t76 + t78;
+  const T t86 = t76 - t78;
+  const T t87 = t85 * t86;
+  const T t88 = t76 * t78;
+  const T t89 = t88 + t88;
+  const T t90 = R[8] * R[8];
+  const T t91 = t90 - T(0.33333333333333337);
+  const T t92 = R[8] * R[2];
+  const T t93 = R[5] * R[8];
+  const T t94 = R[5] + R[2];
+  const T t95 = R[2] - R[5];
+  const T t96 = t94 * t95;
+  const T t97 = R[5] * R[2];
+  const T t98 = t97 + t97;
+  const T t101 = T(0.5462742152960396) * transfer[4];
+  const T t104 = T(1.0925484305920792) * transfer[5];
+  const T t107 = T(0.94617469575756) * transfer[6];
+  const T t109 = T(1.0925484305920792) * transfer[7];
+  const T t111 = T(0.5462742152960396) * transfer[8];
+  const T t114 = T(0.3333333333333333) * z[4];
+  const T t115 = t52 * t101;
+  const T t116 = t47 * t104;
+  const T t117 = t45 * t107;
+  const T t118 = t46 * t109;
+  const T t119 = t50 * t111;
+  const T t120 = t115 + t116;
+  const T t121 = t117 + t120;
+  const T t122 = t118 + t121;
+  const T t123 = t119 + t122;
+  const T t124 = t114 * t123;
+  const T t126 = t62 * t101;
+  const T t127 = t57 * t104;
+  const T t128 = t55 * t107;
+  const T t129 = t56 * t109;
+  const T t130 = t60 * t111;
+  const T t131 = t126 + t127;
+  const T t132 = t128 + t131;
+  const T t133 = t129 + t132;
+  const T t134 = t130 + t133;
+  const T t135 = z[5] * t134;
+  const T t137 = T(0.3333333333333333) * z[6];
+  const T t138 = t74 * t101;
+  const T t139 = t69 * t104;
+  const T t140 = t67 * t107;
+  const T t141 = t68 * t109;
+  const T t142 = t72 * t111;
+  const T t143 = t138 + t139;
+  const T t144 = t140 + t143;
+  const T t145 = t141 + t144;
+  const T t146 = t142 + t145;
+  const T t147 = t137 * t146;
+  const T t149 = T(0.3333333333333333) * z[7];
+  const T t150 = t89 * t101;
+  const T t151 = t84 * t104;
+  const T t152 = t82 * t107;
+  const T t153 = t83 * t109;
+  const T t154 = t87 * t111;
+  const T t155 = t150 + t151;
+  const T t156 = t152 + t155;
+  const T t157 = t153 + t156;
+  const T t158 = t154 + t157;
+  const T t159 = t149 * t158;
+  const T t161 = t98 * t101;
+  const T t162 = t93 * t104;
+  const T t163 = t91 * t107;
+  const T t164 = t92 * t109;
+  const T t165 = t96 * t111;
+  const T t166 = t161 + t162;
+  const T t167 = t163 + t166;
+  const T t168 = t164 + t167;
+  const T t169 = t165 + t168;
+  const T t170 = z[8] * t169;
+  const T t171 = t2 + t17;
+  const T t172 = t27 + t171;
+  const T t173 = t37 + t172;
+  const T t174 = t124 + t173;
+  const T t175 = t135 + t174;
+  const T t176 = t147 + t175;
+  const T t177 = t159 + t176;
+  const T t178 = t170 + t177;
+  result[0] = t178;
+}
+
 // product_order3: h = f g projected to order 3 (SH product; factoring: pairs).
 template <class T>
 inline void product_order3(const T f[9], const T g[9], T h[9]) {
@@ -1215,6 +1526,10 @@ struct Kernels<3> {
   static void rotate_rgb(const T R[9], const T coeffs[3][9], T rotated[3][9]) { rotate_rgb_order3<T>(R, coeffs, rotated); }
   template <class T>
   static void rotate_batch(std::size_t count, const T* R, const T* coeffs, T* rotated) { rotate_batch_order3<T>(count, R, coeffs, rotated); }
+  template <class T>
+  static void shade(const T R[9], const T light[9], const T transfer[9], T result[1]) { shade_order3<T>(R, light, transfer, result); }
+  template <class T>
+  static void shade_lobes(const T R[9], const T z[9], const T transfer[9], T result[1]) { shade_lobes_order3<T>(R, z, transfer, result); }
   template <class T>
   static void product(const T f[9], const T g[9], T h[9]) { product_order3<T>(f, g, h); }
   template <class T>

@@ -5,6 +5,7 @@
 //   rotate_order2: 9 multiplies, 6 adds
 //   rotate_signal_tailored_order2: 9 multiplies, 6 adds
 //   rotate_rgb_order2: 9 multiplies, 6 adds
+//   shade_order2: 13 multiplies, 9 adds
 //   product_order2: 13 multiplies, 6 adds
 //   square_order2: 9 multiplies, 6 adds
 #ifndef ZHF_ORDER2_GLSL
@@ -89,6 +90,33 @@ void rotate_rgb_order2(in float R[9], in vec3 coeffs[4], out vec3 rotated[4]) {
   rotated[1] = t12;
   rotated[2] = t21;
   rotated[3] = t29;
+}
+
+// shade_order2: result[0] = integral of the lighting rotated by R (f(R^T w)) times transfer.
+void shade_order2(in float R[9], in float light[4], in float transfer[4], out float result[1]) {
+  float t2 = transfer[0] * light[0];
+  float t5 = light[1] * R[4];
+  float t8 = light[2] * R[5];
+  float t11 = light[3] * R[3];
+  float t14 = t5 + t8;
+  float t15 = t11 + t14;
+  float t17 = transfer[1] * t15;
+  float t19 = light[1] * R[7];
+  float t21 = light[2] * R[8];
+  float t23 = light[3] * R[6];
+  float t25 = t19 + t21;
+  float t26 = t23 + t25;
+  float t27 = transfer[2] * t26;
+  float t29 = light[1] * R[1];
+  float t31 = light[2] * R[2];
+  float t33 = light[3] * R[0];
+  float t35 = t29 + t31;
+  float t36 = t33 + t35;
+  float t37 = transfer[3] * t36;
+  float t38 = t2 + t17;
+  float t39 = t27 + t38;
+  float t40 = t37 + t39;
+  result[0] = t40;
 }
 
 // product_order2: h = f g projected to order 2 (SH product; factoring: pairs).

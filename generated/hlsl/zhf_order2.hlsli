@@ -5,6 +5,7 @@
 //   rotate_order2: 9 multiplies, 6 adds
 //   rotate_signal_tailored_order2: 9 multiplies, 6 adds
 //   rotate_rgb_order2: 9 multiplies, 6 adds
+//   shade_order2: 13 multiplies, 9 adds
 //   product_order2: 13 multiplies, 6 adds
 //   square_order2: 9 multiplies, 6 adds
 #ifndef ZHF_ORDER2_HLSLI
@@ -89,6 +90,33 @@ void rotate_rgb_order2(float R[9], float3 coeffs[4], out float3 rotated[4]) {
   rotated[1] = t12;
   rotated[2] = t21;
   rotated[3] = t29;
+}
+
+// shade_order2: result[0] = integral of the lighting rotated by R (f(R^T w)) times transfer.
+void shade_order2(float R[9], float light[4], float transfer[4], out float result[1]) {
+  const float t2 = transfer[0] * light[0];
+  const float t5 = light[1] * R[4];
+  const float t8 = light[2] * R[5];
+  const float t11 = light[3] * R[3];
+  const float t14 = t5 + t8;
+  const float t15 = t11 + t14;
+  const float t17 = transfer[1] * t15;
+  const float t19 = light[1] * R[7];
+  const float t21 = light[2] * R[8];
+  const float t23 = light[3] * R[6];
+  const float t25 = t19 + t21;
+  const float t26 = t23 + t25;
+  const float t27 = transfer[2] * t26;
+  const float t29 = light[1] * R[1];
+  const float t31 = light[2] * R[2];
+  const float t33 = light[3] * R[0];
+  const float t35 = t29 + t31;
+  const float t36 = t33 + t35;
+  const float t37 = transfer[3] * t36;
+  const float t38 = t2 + t17;
+  const float t39 = t27 + t38;
+  const float t40 = t37 + t39;
+  result[0] = t40;
 }
 
 // product_order2: h = f g projected to order 2 (SH product; factoring: pairs).

@@ -1,6 +1,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <sstream>
 
@@ -97,6 +98,27 @@ TEST(GeneratedFiles, Order3RotationNeedsAtMost90Multiplies) {
       if (f.at("name") == "rotate_order3") {
         EXPECT_LE(f.at("multiplies").get<int>(), 90) << file.at("path");
       }
+}
+
+// The product kernels against Snyder 2006's greedy pair factoring (multiplies, orders 3..7), and
+// the one-function shading kernels against the two-step rotate-then-dot.
+TEST(GeneratedFiles, ProductKernelsNeedFewerMultipliesThanSnyderAndShadingNoMoreThanTwoSteps) {
+  const std::map<int, int> snyder = {{3, 120}, {4, 399}, {5, 1135}, {6, 2527}, {7, 5351}};
+  const nlohmann::json manifest = test::read_json((kGenerated / "manifest.json").string());
+  std::map<std::string, int> multiplies;
+  for (const auto& file : manifest.at("files"))
+    for (const auto& f : file.value("functions", nlohmann::json::array()))
+      if (file.at("language") == "cpp") multiplies[f.at("name").get<std::string>()] = f.at("multiplies").get<int>();
+  for (const auto& [order, count] : snyder)
+    EXPECT_LT(multiplies.at("product_order" + std::to_string(order)), count) << "order " << order;
+  for (int order = 2; order <= 8; ++order) {
+    const std::string n = std::to_string(order);
+    EXPECT_LE(multiplies.at("square_order" + n), multiplies.at("product_order" + n)) << "order " << order;
+    EXPECT_LE(multiplies.at("shade_order" + n), multiplies.at("rotate_order" + n) + order * order) << "order " << order;
+    if (order > 2) {
+      EXPECT_LE(multiplies.at("shade_lobes_order" + n), multiplies.at("shade_order" + n)) << "order " << order;
+    }
+  }
 }
 
 // generated/ is exactly what the generator makes from the checked-in tables. After changing

@@ -91,9 +91,12 @@ TEST(Conventions, CondonShortleyKernelsAreZhfsOnTheArgumentsInZhfsTerms) {
         } else if (param.name == "dir" || param.name == "axis") {
           z[0] = -z[0], z[1] = -z[1];
         } else if (cs.kind == codegen::KernelKind::kLobeWeights || cs.kind == codegen::KernelKind::kProduct ||
-                   cs.kind == codegen::KernelKind::kSquare) {
+                   cs.kind == codegen::KernelKind::kSquare || cs.kind == codegen::KernelKind::kShade ||
+                   param.name == "transfer") {
           for (int i = 0; i < param.size; ++i)
             if (odd_m(i)) z[i] = -z[i];
+        } else if (cs.kind == codegen::KernelKind::kShadeLobes) {  // bands 0 and 1 are coefficients
+          for (int i : {1, 3}) z[i] = -z[i];
         }
       }
       const auto got = evaluate(cs, system);

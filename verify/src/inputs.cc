@@ -112,6 +112,12 @@ std::vector<std::vector<double>> reference_outputs(const Inputs& in, const runti
         case KernelKind::kSquare:
           product.square(f, out);
           break;
+        case KernelKind::kShade:
+        case KernelKind::kShadeLobes: {  // the transfer vector is the next input's coefficients
+          const double* t = &in.coeffs[size_t(n) * ((v + 1) % in.count)];
+          for (int i = 0; i < n; ++i) out[0] += rotated[0][i] * t[i];
+          break;
+        }
         case KernelKind::kShEval:
           runtime::eval_sh(in.order, &in.rotations[9 * v], out);  // the first row of R is a unit direction
           break;

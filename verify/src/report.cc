@@ -32,6 +32,8 @@ double tolerance_for(const Mode& mode, const std::string& precision, int order, 
   if (mode.kind == KernelKind::kShEval || mode.kind == KernelKind::kZonal) return kFloatEvaluation;
   if (mode.kind == KernelKind::kLobeWeights || mode.kind == KernelKind::kFromSamples) return kFloatSparse;
   if (mode.kind == KernelKind::kProduct || mode.kind == KernelKind::kSquare) return kFloatProduct;
+  if (mode.kind == KernelKind::kShade || mode.kind == KernelKind::kShadeLobes)
+    return float_shading(order, c.worst_condition, c.lobe_stage == runtime::LobeStage::kDouble);
   if (mode.lanes) return kFloatRotation;  // its lobe stage is chosen from its own model to meet it
   return float_rotation(order, c.worst_condition, c.lobe_stage == runtime::LobeStage::kDouble);
 }
@@ -49,8 +51,9 @@ FunctionResult compare(const Inputs& in, const Conditioning& conditioning, const
                        const std::vector<double>& expected, const std::string& language, const std::string& precision,
                        const std::vector<double>* cpp_float) {
   FunctionResult r;
-  const bool product = mode.kind == KernelKind::kProduct || mode.kind == KernelKind::kSquare;
-  r.ulp_limit = product ? runtime::tolerance::kProductShaderUlps
+  const bool sums = mode.kind == KernelKind::kProduct || mode.kind == KernelKind::kSquare || mode.kind == KernelKind::kShade ||
+                    mode.kind == KernelKind::kShadeLobes;
+  r.ulp_limit = sums ? runtime::tolerance::kSumShaderUlps
                 : language == "hlsl" || mode.kind == KernelKind::kApplyMatrices
                     ? runtime::tolerance::hlsl_ulps(in.order, conditioning.worst_condition)
                     : runtime::tolerance::kGlslUlps;
@@ -100,7 +103,7 @@ nlohmann::ordered_json VerifyReport::to_json() const {
                      {"float_sh_eval", kFloatEvaluation},
                      {"float_sparse_multiply", kFloatSparse},
                      {"float_product", kFloatProduct},
-                     {"product_shader_ulps_vs_cpp_float", kProductShaderUlps},
+                     {"product_and_shading_shader_ulps_vs_cpp_float", kSumShaderUlps},
                      {"glsl_ulps_vs_cpp_float", kGlslUlps},
                      {"hlsl_ulps_vs_cpp_float", "max(256, 8 (N-1) k_max)"}};
   nlohmann::ordered_json rows = nlohmann::ordered_json::array();

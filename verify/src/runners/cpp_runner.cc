@@ -31,6 +31,9 @@ std::string call(const Mode& m, int order) {
     case KernelKind::kZonal: return f + "(r, axis, " + z + ", " + o + ");";
     case KernelKind::kProduct: return f + "(c[0], c[1], o1);";
     case KernelKind::kSquare: return f + "(c1, o1);";
+    case KernelKind::kShade: return f + "(r, c[0], c[1], o1);";
+    case KernelKind::kShadeLobes:
+      return "{ T lobes[kN]; zhf::gen::lobe_weights_order" + n + "<T>(c[0], lobes); " + f + "(r, lobes, c[1], o1); }";
     case KernelKind::kBatch:
     case KernelKind::kRotationMatrices: break;
   }

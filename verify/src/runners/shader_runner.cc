@@ -33,6 +33,10 @@ std::string call(const Mode& m, int order) {
     case KernelKind::kZonal: return m.function + "(r, axis, " + z + ", " + o + ");";
     case KernelKind::kProduct: return m.function + "(c[0], c[1], o1);";
     case KernelKind::kSquare: return m.function + "(c1, o1);";
+    case KernelKind::kShade: return "float s[1]; " + m.function + "(r, c[0], c[1], s); o1[0] = s[0];";
+    case KernelKind::kShadeLobes:
+      return "float lobes[" + std::to_string(order * order) + "]; float s[1]; lobe_weights_order" + std::to_string(order) +
+             "(c[0], lobes); " + m.function + "(r, lobes, c[1], s); o1[0] = s[0];";
     case KernelKind::kBatch:
     case KernelKind::kRotationMatrices: break;
   }

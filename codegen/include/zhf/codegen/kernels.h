@@ -48,6 +48,8 @@ enum class KernelKind {
   kZonal,               // rotate_zonal[_rgb|_rgba]_orderN(R, axis, zonal, rotated)
   kProduct,             // product_orderN(f, g, h): h = P_N(f g), the SH product (runtime/product.h)
   kSquare,              // square_orderN(f, h): h = P_N(f^2)
+  kShade,               // shade_orderN(R, light, transfer, result): int light(R^T w) transfer(w) dw
+  kShadeLobes,          // shade_lobes_orderN(R, z, transfer, result): the same from light's lobe weights
 };
 const char* kernel_kind_name(KernelKind kind);
 bool parse_kernel_kind(const std::string& name, KernelKind& kind);
@@ -98,6 +100,7 @@ struct ModuleOptions {
   std::vector<int> zonal_channels;               // rotate_zonal[_rgb|_rgba]
   std::vector<int> zero_bands;                   // known zero: their outputs are 0 and cost nothing
   bool products = true;                          // product and square (no table needed)
+  bool shading = true;                           // shade (and shade_lobes with lobe_multiplies)
   // Every function in the Condon-Shortley sign convention (runtime/conventions.h: 3dgs,
   // condon-shortley): coefficients carry (-1)^m, R and directions are in the system's axes. The
   // system's coefficients are zhf's of f(K u) (K = diag(-1, -1, 1)), so rotations compute zhf's

@@ -16,7 +16,8 @@
 // variants: standard, signal-tailored, batch (C++, one channel plane per call), dense-matrix
 // (build once, apply many), zonal (the signal is zonal: N^2 work, no lobes), sh-eval,
 // lobe-multiplies, products (product_orderN and square_orderN: SH products of signals of the
-// order, single channel). zero_bands: bands known to be zero; their outputs are 0 and cost nothing.
+// order, single channel), shading (shade_orderN: the signal rotated and integrated against a
+// transfer vector; shade_lobes_orderN too with lobe-multiplies). zero_bands: bands known to be zero; their outputs are 0 and cost nothing.
 // Signals of the same order share one file per language and must agree on zero_bands.
 #pragma once
 

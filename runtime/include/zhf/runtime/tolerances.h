@@ -52,6 +52,11 @@ inline double float_rotation(int order, double worst_condition, bool lobe_stage_
       lobe_stage_in_double ? 2 * (order - 1) * kFloatEpsilon : float_lobe_error_model(order, worst_condition);
   return model > kFloatRotation ? model : kFloatRotation;
 }
+// Shading (a rotation integrated against a unit-norm transfer vector in one kernel): the rotated
+// vector's error, at most float_rotation per coefficient, dotted with t: |e . t| <= |e| <= N max|e|.
+inline double float_shading(int order, double worst_condition, bool lobe_stage_in_double) {
+  return order * float_rotation(order, worst_condition, lobe_stage_in_double);
+}
 // The lobe-parallel kernel (lanes.h) multiplies A_l as dense columns; its error model is
 // eps_f (N-1) a_max with a_l = sqrt((2l+1)/4pi) ||A_l||_2. Measured max errors over 131072
 // rotations as multiples of it at N = 3..8: all float 0.86 to 2.1; lobes rotated in double 0.62
@@ -102,12 +107,12 @@ inline constexpr double kGauntAgainstQuadrature = 1e-14;
 inline constexpr double kProductAgainstIntegration = 1e-12;
 // The same products in float: each output sums up to ~2N^2 products of float terms.
 inline constexpr double kFloatProduct = 2e-6;
-// Shader product kernels against the C++ float kernel, in ulps at the outputs' scale (floor
-// kUlpFloor = 1/64): their sums run over intermediates of size ~|f||g| = 1 for unit inputs, so one
-// rounding that the driver does differently (lavapipe may fuse a multiply into an add; C++ is
-// built with -ffp-contract=off) moves a small output by up to 64 such ulps. Measured at most 16
-// (GLSL, square, orders 4..8), 8 for the product.
-inline constexpr double kProductShaderUlps = 64;
+// Shader product and shading kernels against the C++ float kernel, in ulps at the outputs' scale
+// (floor kUlpFloor = 1/64): their outputs are sums over intermediates of size ~|f||g| = 1 for unit
+// inputs, so one rounding the driver does differently (lavapipe may fuse a multiply into an add;
+// C++ is built with -ffp-contract=off) moves a small output by up to 64 such ulps. Measured at
+// most 16 (GLSL square, orders 4..8), 8 (product), 26 (GLSL shade_lobes, order 8).
+inline constexpr double kSumShaderUlps = 64;
 
 // ---- Reference math (tests of sh/ and candidates/) ----------------------------------------------
 // What is exact in exact arithmetic and rounds once or twice in double (the identity rotation's
