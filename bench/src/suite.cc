@@ -21,6 +21,7 @@
 #include "zhf/io/process.h"
 #include "zhf/io/signals.h"
 #include "zhf/runtime/lobe_table.h"
+#include "zhf/runtime/product.h"
 #include "zhf/runtime/rotator.h"
 #include "zhf_kernels.h"
 #include "zhf/sh/reference_rotation.h"
@@ -157,6 +158,53 @@ Row single(const Scale& scale, const Pool& pool, const std::string& method, cons
   time_calls(scale, pool.size, [&](int k) { rotate(pool.rot<T>(k), pool.coeffs<T>(k), &out[size_t(k) * channels * pool.n]); }, row);
   measure_error(pool, out, channels, pool.size, row);
   if (channels == 1) measure_worst_unit_input<T>(pool, scale.worst_rotations, rotate, row);
+  return row;
+}
+
+// Scenario "product": h = P_N(f g) of the pool's channels 0 and 1 (and f^2), against the double
+// Gaunt loop of runtime/product.h. product(f, g, h) on T; g null: the square.
+template <class T, class F>
+Row product_row(const Scale& scale, const Pool& pool, const std::string& method, bool square, F&& product) {
+  Row row = make_row(method, square ? "square" : "product", std::is_same_v<T, float> ? "float" : "double", pool.order);
+  const runtime::ShProduct exact(pool.order);
+  std::vector<T> out(size_t(pool.size) * pool.n);
+  time_calls(scale, pool.size, [&](int k) {
+    const T* f = pool.coeffs<T>(k);
+    product(f, square ? f : f + pool.n, &out[size_t(k) * pool.n]);
+  }, row);
+  double worst = 0, sum = 0;
+  std::vector<double> h(pool.n);
+  for (int k = 0; k < pool.size; ++k) {
+    const double* f = pool.coeffs<double>(k);
+    exact.product(f, square ? f : f + pool.n, h.data());
+    for (int i = 0; i < pool.n; ++i) {
+      const double e = std::abs(double(out[size_t(k) * pool.n + i]) - h[i]);
+      worst = std::isnan(e) ? INFINITY : std::max(worst, e);
+      sum += e * e;
+    }
+  }
+  row.max_error = worst;
+  row.rms_error = std::sqrt(sum / (double(pool.size) * pool.n));
+  return row;
+}
+
+// Scenario "shade": the pool's channel 0 rotated and integrated against channel 1, against the
+// quadrature reference. shade(R, light, transfer) -> T.
+template <class T, class F>
+Row shade_row(const Scale& scale, const Pool& pool, const std::string& method, const std::string& variant, F&& shade) {
+  Row row = make_row(method, "shade", std::is_same_v<T, float> ? "float" : "double", pool.order, variant);
+  std::vector<T> out(pool.size);
+  time_calls(scale, pool.size, [&](int k) { out[k] = shade(pool.rot<T>(k), k); }, row);
+  double worst = 0, sum = 0;
+  for (int k = 0; k < pool.size; ++k) {
+    double expected = 0;
+    for (int i = 0; i < pool.n; ++i) expected += pool.reference[3 * size_t(k) * pool.n + i] * pool.coeffs<double>(k)[pool.n + i];
+    const double e = std::abs(double(out[k]) - expected);
+    worst = std::isnan(e) ? INFINITY : std::max(worst, e);
+    sum += e * e;
+  }
+  row.max_error = worst;
+  row.rms_error = std::sqrt(sum / pool.size);
   return row;
 }
 
@@ -425,8 +473,50 @@ SuiteReport run_suite(const SuiteOptions& o) {
       say(convert);
     }
 
-    // Scenarios 3 and 4 at the generated orders.
     if (!generated) continue;
+    // Products and squares: the emitted kernels and the sparse Gaunt loop they replace.
+    gen::with_order(order, [&](auto n_) {
+      constexpr int N = decltype(n_)::value;
+      using K = gen::Kernels<N>;
+      const runtime::ShProduct sparse(N);
+      for (bool square : {false, true}) {
+        const std::string function = (square ? "square" : "product") + on;
+        auto kernel_float = [&](const float* a, const float* b, float* h) {
+          square ? K::template square<float>(a, h) : K::template product<float>(a, b, h);
+        };
+        auto kernel_double = [&](const double* a, const double* b, double* h) {
+          square ? K::template square<double>(a, h) : K::template product<double>(a, b, h);
+        };
+        say(with_counts(product_row<float>(scale, pool, "zhf", square, kernel_float), function));
+        say(with_counts(product_row<double>(scale, pool, "zhf", square, kernel_double), function));
+        say(product_row<float>(scale, pool, "gaunt_sparse", square, [&](auto a, auto b, auto h) { sparse.product(a, b, h); }));
+      }
+      // Shading: one function, the two steps it fuses, and from lobe weights computed beforehand.
+      auto transfer = [&](int k) { return pool.coeffs<float>(k) + pool.n; };
+      say(with_counts(shade_row<float>(scale, pool, "zhf_shade", "", [&](const float* r, int k) {
+        float result[1];
+        K::template shade<float>(r, pool.coeffs<float>(k), transfer(k), result);
+        return result[0];
+      }), "shade" + on));
+      say(shade_row<float>(scale, pool, "zhf_rotate_then_dot", "", [&](const float* r, int k) {
+        float rotated[N * N];
+        K::template rotate<float>(r, pool.coeffs<float>(k), rotated);
+        float sum = 0;
+        for (int i = 0; i < N * N; ++i) sum += rotated[i] * transfer(k)[i];
+        return sum;
+      }));
+      if constexpr (N > 2) {
+        std::vector<float> lobes(size_t(pool.size) * N * N);
+        for (int k = 0; k < pool.size; ++k) K::template lobe_weights<float>(pool.coeffs<float>(k), &lobes[size_t(k) * N * N]);
+        say(with_counts(shade_row<float>(scale, pool, "zhf_shade_lobes", "lobe weights precomputed", [&](const float* r, int k) {
+          float result[1];
+          K::template shade_lobes<float>(r, &lobes[size_t(k) * N * N], transfer(k), result);
+          return result[0];
+        }), "shade_lobes" + on));
+      }
+    });
+
+    // Scenarios 3 and 4 at the generated orders.
     const size_t count = scale.batch;
     const auto f = runtime::Rotator<float>::with(gen::scalar_kernels<float>(order));
     const sh::ZxzxzRotator<float> z(order);

@@ -60,6 +60,10 @@ TEST(Bench, QuickRunMeasuresEveryMethodWithinItsTolerance) {
               runtime::read_lobe_table((root / "generated" / "lobes" / ("lanes_order_" + std::to_string(order) + ".json")).string());
           tolerance = variant == "all float" ? std::max(kFloatRotation, kLanesFloatMargin * codegen::lanes_float_error_model(lanes))
                                              : kFloatRotation;
+        } else if (scenario == "product" || scenario == "square") {
+          tolerance = kFloatProduct;
+        } else if (scenario == "shade") {  // a rotation dotted with a unit vector: float_shading's model
+          tolerance = order * lobe_float_tolerance(order, table, false);
         } else {
           tolerance = lobe_float_tolerance(order, table, method == "zhf_runtime");
         }
@@ -78,6 +82,13 @@ TEST(Bench, QuickRunMeasuresEveryMethodWithinItsTolerance) {
   EXPECT_EQ((ran[{"zhf", "single"}]), generated);
   EXPECT_EQ((ran[{"zhf_signal_tailored", "single"}]), generated);
   EXPECT_EQ((ran[{"zhf", "rgb"}]), generated);
+  for (const char* scenario : {"product", "square"}) {
+    EXPECT_EQ((ran[{"zhf", scenario}]), generated) << scenario;
+    EXPECT_EQ((ran[{"gaunt_sparse", scenario}]), generated) << scenario;
+  }
+  EXPECT_EQ((ran[{"zhf_shade", "shade"}]), generated);
+  EXPECT_EQ((ran[{"zhf_rotate_then_dot", "shade"}]), generated);
+  EXPECT_EQ((ran[{"zhf_shade_lobes", "shade"}]), (std::set<int>{3, 4, 5, 6, 7, 8}));
   EXPECT_EQ((ran[{"zhf", "batch"}]), generated);
   EXPECT_EQ((ran[{"zhf_lanes", "single"}]), (std::set<int>{3, 4, 5, 6, 7, 8}));
   EXPECT_EQ((ran[{"zhf_batch_soa", "batch"}]), generated);
