@@ -25,6 +25,7 @@
 #include "test_support.h"
 #include "zhf/io/process.h"
 #include "zhf/runtime/lobe_table.h"
+#include "zhf/runtime/product.h"
 #include "zhf/runtime/rotator.h"
 #include "zhf/runtime/zonal.h"
 
@@ -273,6 +274,7 @@ TEST(Hostile, DeeplyNestedJsonIsRefusedEverywhere) {
   refused("generate --scene", box, {"generate", "--scene", box.path("deep.json"), "--out", box.path("out")}, 3, depth);
   refused("verify --generated", box, {"verify", "--generated", box.path("tree"), "--langs", "cpp"}, 3, depth);
   refused("analyze --coeffs", box, {"analyze", "--coeffs", box.path("deep.json")}, 3, depth);
+  refused("product --lhs", box, {"product", "--lhs", box.path("deep.json"), "--rhs", box.path("c9.json"), "--out", box.path("p.json")}, 3, depth);
   EXPECT_THROW(runtime::read_lobe_table(box.path("deep.json")), runtime::InputError);
 }
 
@@ -610,6 +612,8 @@ TEST(Hostile, EveryReaderRefusesEveryMalformedDocument) {
         {"analyze --coeffs", {"analyze", "--coeffs", box.path("bad.json"), "--json", box.path("a.json")}},
         {"rotate --coeffs", {"rotate", "--coeffs", box.path("bad.json"), "--zyz", "1 2 3", "--out", box.path("r.json")}},
         {"rotate --tables", {"rotate", "--coeffs", box.path("c9.json"), "--tables", box.path("tables9"), "--zyz", "1 2 3", "--out", box.path("r.json")}},
+        {"product --lhs", {"product", "--lhs", box.path("bad.json"), "--rhs", box.path("c9.json"), "--out", box.path("p.json")}},
+        {"product --rhs", {"product", "--lhs", box.path("c9.json"), "--rhs", box.path("bad.json"), "--out", box.path("p.json")}},
     };
     for (const auto& [reader, args] : readers) {
       const std::string file = reader == "verify --generated" ? "manifest.json"
@@ -645,6 +649,12 @@ TEST(Hostile, RuntimeEntryPointsRefuseWhatTheyCannotUse) {
   refuses("from_table with bands of another order", [&] { runtime::Rotator<double>::from_table(bands); });
   refuses("a NaN token", [] { runtime::json::parse("[NaN]", "t"); });
   refuses("a lone surrogate", [] { runtime::json::parse("\"\\ud800\"", "t"); });
+  refuses("ShProduct(0)", [] { runtime::ShProduct{0}; });
+  refuses("ShProduct(17)", [] { runtime::ShProduct{runtime::kMaxGauntOrder + 1}; });
+  refuses("a triple coupling beyond its order", [] {
+    const runtime::ZhfBasis* slots[3] = {nullptr, nullptr, nullptr};
+    runtime::triple_coupling(runtime::kMaxTripleCouplingOrder + 1, slots);
+  });
 }
 
 }  // namespace zhf::test

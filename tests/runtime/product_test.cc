@@ -183,9 +183,15 @@ TEST(ProductTable, NonzeroCountsMatchSnyder2006) {
   }
 }
 
-TEST(ProductTable, RefusesCouplingTensorsBeyondItsOrder) {
+TEST(ProductTable, RefusesCouplingTensorsBeyondItsOrderAndBasesOfAnotherOrder) {
   const ZhfBasis* slots[3] = {nullptr, nullptr, nullptr};
   EXPECT_THROW(triple_coupling(kMaxTripleCouplingOrder + 1, slots), std::invalid_argument);
+  const ZhfBasis basis(read_lobe_table(test::source_path("generated/lobes/order_4.json")));
+  const ZhfBasis* wrong[3] = {&basis, nullptr, nullptr};
+  EXPECT_THROW(triple_coupling(5, wrong), std::invalid_argument);
+  EXPECT_THROW(double_coupling(3, &basis, nullptr), std::invalid_argument);
+  const std::vector<double> x(25, 0.1);
+  EXPECT_THROW(double_product<double>(5, {x.data(), &basis}, {x.data(), nullptr}), std::invalid_argument);
 }
 
 }  // namespace

@@ -20,6 +20,7 @@
 #pragma once
 
 #include <cstddef>
+#include <initializer_list>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -127,6 +128,14 @@ class ZhfBasis {
   Matrix y_;
 };
 
+// Every basis given must be of the order the product is formed at.
+inline void check_bases(int order, std::initializer_list<const ZhfBasis*> bases, const char* who) {
+  for (const ZhfBasis* b : bases)
+    if (b && b->order() != order)
+      throw std::invalid_argument(std::string(who) + ": a basis of order " + std::to_string(b->order()) + " in a product of order " +
+                                  std::to_string(order));
+}
+
 // One term of a product integral: SH coefficients (basis null) or a ZHF-form vector z with the
 // basis (Y or Y_R) it is expressed in.
 template <class T>
@@ -138,6 +147,7 @@ struct ProductTerm {
 // The coupling of a double-product integral: I (both SH), Y (C^D, one ZHF term) or Y1 Y2^T (both):
 // int f g = x^T C y. Order N, N^2 x N^2.
 inline Matrix double_coupling(int order, const ZhfBasis* first, const ZhfBasis* second) {
+  check_bases(order, {first, second}, "double_coupling");
   const int n = order * order;
   Matrix c(n, n);
   for (int i = 0; i < n; ++i)
@@ -160,6 +170,7 @@ inline std::vector<double> triple_coupling(int order, const ZhfBasis* slots[3]) 
   if (order < 1 || order > kMaxTripleCouplingOrder)
     throw std::invalid_argument("triple_coupling: order " + std::to_string(order) + " is outside 1.." +
                                 std::to_string(kMaxTripleCouplingOrder));
+  check_bases(order, {slots[0], slots[1], slots[2]}, "triple_coupling");
   const std::size_t n = std::size_t(order) * order;
   std::vector<double> t(n * n * n, 0.0);
   for (const GauntEntry& e : gaunt_table(order)) {
@@ -185,6 +196,7 @@ inline std::vector<double> triple_coupling(int order, const ZhfBasis* slots[3]) 
 // int f g over the sphere, each term in SH or ZHF form (of one order).
 template <class T>
 T double_product(int order, ProductTerm<T> f, ProductTerm<T> g) {
+  check_bases(order, {f.basis, g.basis}, "double_product");
   const int n = order * order;
   std::vector<T> fs(f.values, f.values + n), gs(g.values, g.values + n);
   if (f.basis && g.basis) {  // z1 . (Y1 Y2^T) z2 = (Y1^T z1) . (Y2^T z2)
@@ -204,6 +216,7 @@ T double_product(int order, ProductTerm<T> f, ProductTerm<T> g) {
 // (cheaper per call than the stored coupling tensor, equal to it: tests compare both).
 template <class T>
 T triple_product(const ShProduct& product, ProductTerm<T> f, ProductTerm<T> g, ProductTerm<T> h) {
+  check_bases(product.order(), {f.basis, g.basis, h.basis}, "triple_product");
   const int n = product.order() * product.order();
   std::vector<T> sh[3];
   const ProductTerm<T>* terms[3] = {&f, &g, &h};
