@@ -114,6 +114,11 @@ inline constexpr double kFloatProduct = 2e-6;
 // most 16 (GLSL square, orders 4..8), 8 (product), 26 (GLSL shade_lobes, order 8).
 inline constexpr double kSumShaderUlps = 64;
 
+// ---- Spherical designs (frames/) -------------------------------------------------------------
+// A design's equal-weight rule against the closed-form integrals of monomials of degree <= t, in
+// long double: the points carry double rounding (1e-16) and the design residual (<= 1e-14).
+inline constexpr double kDesignQuadrature = 1e-14;
+
 // ---- Reference math (tests of sh/ and candidates/) ----------------------------------------------
 // What is exact in exact arithmetic and rounds once or twice in double (the identity rotation's
 // band matrices, a recurrence at a pole).

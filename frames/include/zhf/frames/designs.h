@@ -1,0 +1,77 @@
+// Spherical t-designs: M points whose equal-weight average integrates every polynomial of degree
+// <= t over the sphere exactly, i.e. sum_i y_l^m(x_i) = 0 for 1 <= l <= t. Found by minimising the
+// design energy E = sum_{1<=l<=t} sum_m (sum_i y_l^m(x_i))^2 with nlopt's L-BFGS from spiral starts,
+// then polished by Levenberg-Marquardt on the residual vector itself to the rounding floor.
+// Antipodal sets (x and -x) need only the even bands: half the points, a third fewer equations.
+//
+// Accuracy: a design is accepted when its residual, max_{l,m} |sum_i y_l^m(x_i)| / M, is at most
+// kDesignResidual (1e-14). Cost per start: O(M t^2) per energy evaluation and gradient, O(M^3) per
+// Levenberg-Marquardt step (M ~ t^2 / 2).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace zhf::frames {
+
+using Point = std::array<double, 3>;
+
+// Strengths zhf searches: t = 1..kMaxDesignStrength (efficient designs of 1302 points at t = 50).
+inline constexpr int kMaxDesignStrength = 50;
+// Accepted residual: a few roundings of sums of M terms of size <= 1.
+inline constexpr double kDesignResidual = 1e-14;
+
+// max over 1 <= l <= t and m of |sum_i y_l^m(x_i)| / M.
+double design_residual(const std::vector<Point>& points, int t);
+
+// The smallest point counts known for t = 1..21 (Hardin and Sloane's library; Womersley's
+// symmetric designs do better at t = 19 (192) and t = 21 (234)), and Womersley's efficient count
+// ceil((t+1)^2 / 2) + 1 for any t.
+int best_known_count(int t);
+int efficient_count(int t);
+// Antipodal designs (x and -x both in the set: every odd band vanishes): the smallest even count
+// whose free parameters, 2 (M/2) - 3, match the equations of the even bands 2..t. Womersley's
+// symmetric designs reach it (t = 19: 192, t = 21: 234).
+int symmetric_count(int t);
+
+// What zhf designs searches by default: the smallest known count for t <= 10; antipodal sets for
+// odd t >= 11 (the smallest known count up to 21, Womersley's at 19 and 21, the symmetric count
+// above); the efficient count for even t >= 12, where the smallest known (symmetric
+// constructions, more equations than unknowns) are out of reach of random starts.
+struct DesignChoice {
+  int points = 0;
+  bool symmetric = false;
+};
+DesignChoice default_design(int t);
+
+struct DesignSearch {
+  int t = 0;
+  int points = 0;            // M
+  int starts = 32;           // tried in order; the first that converges wins
+  std::uint64_t seed = 1;
+  int threads = 1;           // starts run in parallel; the result does not depend on this
+  bool symmetric = false;    // antipodal pairs (points even)
+  std::function<bool()> interrupted;  // checked between starts
+};
+
+struct Design {
+  int t = 0;
+  std::vector<Point> points;
+  double residual = 1;       // design_residual
+  int start = -1;            // which start converged (-1: none did; points are the best found)
+};
+
+// Throws std::invalid_argument for t outside 1..kMaxDesignStrength or a count below 2.
+Design search_design(const DesignSearch& search);
+
+// Point sets in files: a JSON array of [x, y, z], or an object with "points" such (a design file,
+// "format": "zhf-design-1"). Nonzero finite vectors, normalised; up to kMaxPoints of them, files up
+// to runtime::kMaxTableBytes. Throws runtime::InputError naming the file and entry.
+inline constexpr int kMaxPoints = 100000;
+std::vector<Point> read_points(const std::string& path);
+inline constexpr const char* kDesignFormat = "zhf-design-1";
+
+}  // namespace zhf::frames

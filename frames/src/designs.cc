@@ -1,0 +1,282 @@
+#include "zhf/frames/designs.h"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+#include <thread>
+
+#include <Eigen/Dense>
+#include <nlopt.hpp>
+
+#include "zhf/runtime/errors.h"
+#include "zhf/runtime/json.h"
+#include "zhf/runtime/limits.h"
+#include "zhf/runtime/read_file.h"
+#include "zhf/runtime/sh_eval.h"
+
+namespace zhf::frames {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Central differences along the tangent plane: error h^2 |y'''| ~ 1e-10 relative, plenty for the
+// descent and for Levenberg-Marquardt's steps (the residual itself is evaluated exactly).
+constexpr double kStep = 1e-5;
+
+Point normalized(const Point& p) {
+  const double n = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+  return {p[0] / n, p[1] / n, p[2] / n};
+}
+
+// Two unit vectors spanning the tangent plane at x.
+void tangents(const Point& x, Point& u, Point& v) {
+  const int k = std::abs(x[0]) < std::abs(x[1]) ? (std::abs(x[0]) < std::abs(x[2]) ? 0 : 2) : (std::abs(x[1]) < std::abs(x[2]) ? 1 : 2);
+  Point e{0, 0, 0};
+  e[k] = 1;
+  u = normalized({x[1] * e[2] - x[2] * e[1], x[2] * e[0] - x[0] * e[2], x[0] * e[1] - x[1] * e[0]});
+  v = {x[1] * u[2] - x[2] * u[1], x[2] * u[0] - x[0] * u[2], x[0] * u[1] - x[1] * u[0]};
+}
+
+// The SH of bands 1..t at one point (all bands; or, for antipodal sets, the even bands only: odd
+// ones cancel between x and -x).
+class Evaluator {
+ public:
+  Evaluator(int t, bool symmetric) : t_(t), all_((t + 1) * (t + 1)) {
+    for (int l = symmetric ? 2 : 1; l <= t; l += symmetric ? 2 : 1)
+      for (int m = -l; m <= l; ++m) rows_.push_back(runtime::index(l, m));
+  }
+  int size() const { return static_cast<int>(rows_.size()); }
+  void at(const Point& x, double* out) {
+    runtime::eval_sh(t_ + 1, x.data(), all_.data());
+    for (size_t k = 0; k < rows_.size(); ++k) out[k] = all_[rows_[k]];
+  }
+  // d/ds y(normalize(x + s w)) at s = 0.
+  void derivative(const Point& x, const Point& w, double* out) {
+    std::vector<double> plus(size()), minus(size());
+    at(normalized({x[0] + kStep * w[0], x[1] + kStep * w[1], x[2] + kStep * w[2]}), plus.data());
+    at(normalized({x[0] - kStep * w[0], x[1] - kStep * w[1], x[2] - kStep * w[2]}), minus.data());
+    for (int k = 0; k < size(); ++k) out[k] = (plus[k] - minus[k]) / (2 * kStep);
+  }
+
+ private:
+  int t_;
+  std::vector<double> all_;
+  std::vector<int> rows_;
+};
+
+Eigen::VectorXd residual_vector(const std::vector<Point>& x, Evaluator& e) {
+  Eigen::VectorXd r = Eigen::VectorXd::Zero(e.size()), y(e.size());
+  for (const Point& p : x) {
+    e.at(p, y.data());
+    r += y;
+  }
+  return r;
+}
+
+// Energy and gradient over 3M free coordinates (each point normalised inside).
+struct EnergyProblem {
+  int count;
+  Evaluator evaluator;
+};
+
+double energy(unsigned n, const double* p, double* gradient, void* data) {
+  auto& problem = *static_cast<EnergyProblem*>(data);
+  std::vector<Point> x(problem.count);
+  for (unsigned i = 0; i < n / 3; ++i) x[i] = normalized({p[3 * i], p[3 * i + 1], p[3 * i + 2]});
+  const Eigen::VectorXd r = residual_vector(x, problem.evaluator);
+  if (gradient) {
+    Eigen::VectorXd du(r.size()), dv(r.size());
+    for (unsigned i = 0; i < n / 3; ++i) {
+      Point u, v;
+      tangents(x[i], u, v);
+      problem.evaluator.derivative(x[i], u, du.data());
+      problem.evaluator.derivative(x[i], v, dv.data());
+      const double gu = 2 * r.dot(du), gv = 2 * r.dot(dv);
+      const double length = std::sqrt(p[3 * i] * p[3 * i] + p[3 * i + 1] * p[3 * i + 1] + p[3 * i + 2] * p[3 * i + 2]);
+      for (int c = 0; c < 3; ++c) gradient[3 * i + c] = (gu * u[c] + gv * v[c]) / length;
+    }
+  }
+  return r.squaredNorm();
+}
+
+// Levenberg-Marquardt on the residual vector, moving each point in its tangent plane.
+void polish(std::vector<Point>& x, int t, bool symmetric) {
+  Evaluator e(t, symmetric);
+  const int m = static_cast<int>(x.size()), rows = e.size(), cols = 2 * m;
+  Eigen::VectorXd r = residual_vector(x, e);
+  double lambda = 1e-6;
+  // On to the rounding floor, not just below kDesignResidual: integrals of polynomials weigh the
+  // residual by up to ~30 (4 pi over the SH normalisation).
+  for (int iteration = 0; iteration < 100 && r.cwiseAbs().maxCoeff() > 0; ++iteration) {
+    Eigen::MatrixXd j(rows, cols);
+    std::vector<Point> us(m), vs(m);
+    for (int i = 0; i < m; ++i) {
+      tangents(x[i], us[i], vs[i]);
+      e.derivative(x[i], us[i], j.col(2 * i).data());
+      e.derivative(x[i], vs[i], j.col(2 * i + 1).data());
+    }
+    bool improved = false;
+    for (int attempt = 0; attempt < 12 && !improved; ++attempt) {
+      // The smaller normal system: J^T (J J^T + lambda I)^-1 r when there are fewer equations.
+      Eigen::VectorXd step;
+      if (rows < cols) {
+        Eigen::MatrixXd a = j * j.transpose();
+        a.diagonal().array() += lambda * (1 + a.diagonal().array());
+        step = -j.transpose() * a.ldlt().solve(r);
+      } else {
+        Eigen::MatrixXd a = j.transpose() * j;
+        a.diagonal().array() += lambda * (1 + a.diagonal().array());
+        step = -a.ldlt().solve(j.transpose() * r);
+      }
+      std::vector<Point> trial(m);
+      for (int i = 0; i < m; ++i)
+        for (int c = 0; c < 3; ++c) trial[i][c] = x[i][c] + step[2 * i] * us[i][c] + step[2 * i + 1] * vs[i][c];
+      for (Point& p : trial) p = normalized(p);
+      const Eigen::VectorXd next = residual_vector(trial, e);
+      if (next.squaredNorm() < r.squaredNorm()) {
+        x.swap(trial);
+        r = next;
+        lambda = std::max(lambda / 10, 1e-15);
+        improved = true;
+      } else {
+        lambda *= 10;
+      }
+    }
+    if (!improved) break;
+  }
+}
+
+// Start k: the generalised spiral (equal-area rings), turned by a random rotation and, after the
+// first start, jittered in its tangent planes by up to half the spacing.
+std::vector<Point> start_points(int count, int k, std::uint64_t seed) {
+  std::mt19937_64 rng(seed * 1000003 + static_cast<std::uint64_t>(k));
+  std::normal_distribution<double> normal;
+  std::vector<Point> x(count);
+  const double golden = kPi * (3 - std::sqrt(5.0));
+  for (int i = 0; i < count; ++i) {
+    const double z = 1 - (2.0 * i + 1) / count, s = std::sqrt(std::max(0.0, 1 - z * z));
+    x[i] = {s * std::cos(golden * i), s * std::sin(golden * i), z};
+  }
+  if (k == 0) return x;
+  // A random rotation from a random unit quaternion.
+  double q[4];
+  double norm = 0;
+  for (double& c : q) c = normal(rng), norm += c * c;
+  for (double& c : q) c /= std::sqrt(norm);
+  const double w = q[0], a = q[1], b = q[2], c = q[3];
+  const double r[9] = {1 - 2 * (b * b + c * c), 2 * (a * b - w * c),     2 * (a * c + w * b),
+                       2 * (a * b + w * c),     1 - 2 * (a * a + c * c), 2 * (b * c - w * a),
+                       2 * (a * c - w * b),     2 * (b * c + w * a),     1 - 2 * (a * a + b * b)};
+  const double spacing = std::sqrt(4 * kPi / count);
+  for (Point& p : x) {
+    p = {r[0] * p[0] + r[1] * p[1] + r[2] * p[2], r[3] * p[0] + r[4] * p[1] + r[5] * p[2], r[6] * p[0] + r[7] * p[1] + r[8] * p[2]};
+    Point u, v;
+    tangents(p, u, v);
+    const double du = 0.5 * spacing * normal(rng) / 2, dv = 0.5 * spacing * normal(rng) / 2;
+    p = normalized({p[0] + du * u[0] + dv * v[0], p[1] + du * u[1] + dv * v[1], p[2] + du * u[2] + dv * v[2]});
+  }
+  return x;
+}
+
+// One start: count free points (symmetric: count points and their antipodes).
+Design run_start(int t, int count, bool symmetric, int k, std::uint64_t seed) {
+  std::vector<Point> x = start_points(count, k, seed);
+  EnergyProblem problem{count, Evaluator(t, symmetric)};
+  nlopt::opt opt(nlopt::LD_LBFGS, 3 * count);
+  opt.set_min_objective(energy, &problem);
+  opt.set_ftol_abs(1e-26);
+  opt.set_ftol_rel(1e-15);
+  opt.set_maxeval(4000);
+  std::vector<double> p;
+  for (const Point& q : x) p.insert(p.end(), q.begin(), q.end());
+  double value = 0;
+  try {
+    opt.optimize(p, value);
+  } catch (const std::exception&) {
+    // L-BFGS stops with a roundoff error near the minimum: the point reached is still its best.
+  }
+  for (int i = 0; i < count; ++i) x[i] = normalized({p[3 * i], p[3 * i + 1], p[3 * i + 2]});
+  polish(x, t, symmetric);
+  if (symmetric)
+    for (int i = 0; i < count; ++i) x.push_back({-x[i][0], -x[i][1], -x[i][2]});
+  Design d;
+  d.t = t;
+  d.residual = design_residual(x, t);
+  d.points = std::move(x);
+  d.start = d.residual <= kDesignResidual ? k : -1;
+  return d;
+}
+
+}  // namespace
+
+double design_residual(const std::vector<Point>& points, int t) {
+  Evaluator e(t, false);
+  const Eigen::VectorXd r = residual_vector(points, e);
+  return r.size() ? r.cwiseAbs().maxCoeff() / static_cast<double>(points.size()) : 0.0;
+}
+
+int best_known_count(int t) {
+  static const int counts[] = {2, 4, 6, 12, 12, 24, 24, 36, 48, 60, 70, 84, 94, 108, 120, 144, 156, 180, 204, 216, 240};
+  return t >= 1 && t <= 21 ? counts[t - 1] : -1;
+}
+
+int efficient_count(int t) { return ((t + 1) * (t + 1) + 1) / 2 + 1; }
+
+int symmetric_count(int t) {
+  int equations = 0;  // the even bands 2..t
+  for (int l = 2; l <= t; l += 2) equations += 2 * l + 1;
+  return 2 * ((equations + 3 + 1) / 2);  // 2K - 3 unknowns (the set turns freely) >= equations
+}
+
+DesignChoice default_design(int t) {
+  if (t <= 10) return {best_known_count(t), false};
+  if (t % 2 == 0) return {efficient_count(t), false};
+  if (t <= 21) return {t == 19 || t == 21 ? symmetric_count(t) : best_known_count(t), true};
+  return {symmetric_count(t), true};
+}
+
+Design search_design(const DesignSearch& s) {
+  if (s.t < 1 || s.t > kMaxDesignStrength)
+    throw std::invalid_argument("t " + std::to_string(s.t) + " is outside 1.." + std::to_string(kMaxDesignStrength));
+  if (s.points < 2) throw std::invalid_argument("a design needs at least 2 points (got " + std::to_string(s.points) + ")");
+  if (s.symmetric && s.points % 2) throw std::invalid_argument("a symmetric design has an even point count (got " + std::to_string(s.points) + ")");
+  const int threads = std::max(1, s.threads);
+  Design best;
+  best.t = s.t;
+  // Batches of `threads` starts; the lowest start that converged wins, whatever the thread count,
+  // and otherwise the lowest residual (ties: the lower start).
+  for (int first = 0; first < s.starts; first += threads) {
+    if (s.interrupted && s.interrupted()) break;
+    const int batch = std::min(threads, s.starts - first);
+    std::vector<Design> results(batch);
+    std::vector<std::thread> pool;
+    for (int b = 0; b < batch; ++b) pool.emplace_back([&, b] { results[b] = run_start(s.t, s.symmetric ? s.points / 2 : s.points, s.symmetric, first + b, s.seed); });
+    for (std::thread& th : pool) th.join();
+    for (int b = 0; b < batch; ++b) {
+      if (results[b].start >= 0) return results[b];
+      if (best.points.empty() || results[b].residual < best.residual) best = results[b];
+    }
+  }
+  return best;
+}
+
+std::vector<Point> read_points(const std::string& path) {
+  const runtime::json::Value root = runtime::json::parse(runtime::read_file(path, runtime::kMaxTableBytes), path);
+  runtime::json::Field top(root, path);
+  if (top.is(runtime::json::Value::Kind::kObject)) {
+    const runtime::json::Field format = top.member("format");
+    if (format.string() != kDesignFormat) format.fail("'" + runtime::excerpt(format.string()) + "' is not " + kDesignFormat);
+    top = top.member("points");
+  }
+  std::vector<Point> points;
+  for (const runtime::json::Field& item : top.items(1, kMaxPoints)) {
+    const std::vector<runtime::json::Field> xyz = item.items(3);
+    const Point p{xyz[0].number(), xyz[1].number(), xyz[2].number()};
+    const double norm = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    if (!(norm > 1e-150) || !std::isfinite(norm)) item.fail("not a direction (length " + std::to_string(norm) + ")");
+    points.push_back(normalized(p));
+  }
+  return points;
+}
+
+}  // namespace zhf::frames

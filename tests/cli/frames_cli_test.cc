@@ -1,0 +1,71 @@
+// zhf designs and zhf frame from the command line: byte-identical designs whatever the thread
+// count, the checked-in designs reproduced, frame reports, bad input refused in one line.
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "test_support.h"
+
+namespace zhf {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(DesignsCli, SameFileWhateverTheThreadsAndAsCheckedIn) {
+  const fs::path dir = test::make_temp_dir();
+  for (int t : {4, 9, 13}) {
+    const std::string one = (dir / "one.json").string(), two = (dir / "two.json").string();
+    const std::string base = "designs --t " + std::to_string(t) + " --json ";
+    const test::RunResult a = test::run_zhf(base + "'" + one + "' --threads 1");
+    const test::RunResult b = test::run_zhf(base + "'" + two + "' --threads 2");
+    ASSERT_EQ(a.exit_code, 0) << a.err;
+    ASSERT_EQ(b.exit_code, 0) << b.err;
+    EXPECT_EQ(test::read_text(one), test::read_text(two)) << "t " << t;
+    EXPECT_EQ(test::read_text(one), test::read_text(test::source_path("generated/designs/t_" + std::to_string(t) + ".json")))
+        << "t " << t << ": the checked-in design is stale (bash scripts/make_designs.sh)";
+  }
+  fs::remove_all(dir);
+}
+
+TEST(FrameCli, DesignsAreTightAndTablesReportTheirBands) {
+  const std::string design = test::source_path("generated/designs/t_6.json");
+  test::RunResult r = test::run_zhf("frame --points '" + design + "' --bands 0..3");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("tight"), std::string::npos) << r.out;
+  r = test::run_zhf("frame --points '" + design + "' --bands 0..4");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.find("tight"), std::string::npos) << r.out;  // 24 points, 25 functions: not even a frame
+  EXPECT_NE(r.out.find("not a frame"), std::string::npos) << r.out;
+  r = test::run_zhf("frame --table '" + test::source_path("generated/lobes/order_5.json") + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(test::line_count(r.out), 4) << r.out;  // the header and bands 2, 3, 4
+}
+
+TEST(FramesCli, BadInputGetsOneLineAndNoOutput) {
+  const fs::path dir = test::make_temp_dir();
+  const std::string zero = (dir / "zero.json").string(), out = (dir / "out.json").string();
+  test::write_text(zero, "[[0, 0, 1], [0, 0, 0]]");
+  struct Case {
+    std::string args;
+    int exit_code;
+    std::string says;
+  };
+  for (const Case& c : {Case{"designs --t 0 --json '" + out + "'", 2, "--t"}, Case{"designs --t 51 --json '" + out + "'", 2, "--t"},
+                        Case{"designs --t 3 --points 7 --symmetric --json '" + out + "'", 2, "even count"},
+                        Case{"designs --t 12 --points 13 --starts 1 --json '" + out + "'", 1, "no 13-point 12-design"},
+                        Case{"frame --points '" + zero + "' --bands 0..1 --json '" + out + "'", 3, "[1]: not a direction"},
+                        Case{"frame --points '" + zero + "' --json '" + out + "'", 2, "--bands"},
+                        Case{"frame --bands 0..2 --json '" + out + "'", 2, "--points or --table"},
+                        Case{"frame --points '" + zero + "' --bands 0..64", 2, "--bands"}}) {
+    const test::RunResult r = test::run_zhf(c.args);
+    EXPECT_EQ(r.exit_code, c.exit_code) << c.args << ": " << r.err;
+    EXPECT_EQ(test::line_count(r.err), 1) << c.args << ": " << r.err;
+    EXPECT_NE(r.err.find(c.says), std::string::npos) << c.args << ": " << r.err;
+    EXPECT_FALSE(fs::exists(out)) << c.args;
+  }
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace zhf

@@ -1,0 +1,146 @@
+// Spherical t-designs and frames (frames/): the shipped designs checked by a path that shares no
+// code with the search (monomials integrated in long double against their closed form), the
+// search's determinism, and frame bounds against what designs and lobe tables must give.
+#include <cmath>
+#include <filesystem>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "test_support.h"
+#include "zhf/frames/designs.h"
+#include "zhf/frames/frame.h"
+#include "zhf/runtime/lobe_table.h"
+#include "zhf/runtime/tolerances.h"
+
+namespace zhf::frames {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr long double kPi = 3.14159265358979323846264338327950288L;
+
+// int over the sphere of x^a y^b z^c: 2 G((a+1)/2) G((b+1)/2) G((c+1)/2) / G((a+b+c+3)/2), zero
+// when any power is odd.
+long double monomial_integral(int a, int b, int c) {
+  if (a % 2 || b % 2 || c % 2) return 0;
+  return 2 * std::tgamma((a + 1) / 2.0L) * std::tgamma((b + 1) / 2.0L) * std::tgamma((c + 1) / 2.0L) / std::tgamma((a + b + c + 3) / 2.0L);
+}
+
+long double power(long double x, int k) {
+  long double p = 1;
+  for (int i = 0; i < k; ++i) p *= x;
+  return p;
+}
+
+// The equal-weight rule of the points for x^a y^b z^c.
+long double rule(const std::vector<Point>& points, int a, int b, int c) {
+  long double sum = 0;
+  for (const Point& p : points) sum += power(p[0], a) * power(p[1], b) * power(p[2], c);
+  return 4 * kPi * sum / points.size();
+}
+
+TEST(Designs, ShippedDesignsIntegrateEveryPolynomialOfTheirDegree) {
+  std::mt19937_64 rng(9);
+  std::normal_distribution<double> normal;
+  int checked = 0;
+  for (const auto& entry : fs::directory_iterator(test::source_path("generated/designs"))) {
+    const nlohmann::json j = test::read_json(entry.path().string());
+    const int t = j.at("t");
+    const std::vector<Point> points = read_points(entry.path().string());
+    ASSERT_EQ(points.size(), j.at("count").get<size_t>()) << entry.path();
+    EXPECT_LE(design_residual(points, t), kDesignResidual) << "t " << t;
+    if (j.at("symmetric")) {
+      for (size_t i = 0; i < points.size() / 2; ++i)
+        for (int c = 0; c < 3; ++c) ASSERT_EQ(points[i][c], -points[i + points.size() / 2][c]) << "t " << t << ", point " << i;
+    }
+    // Every monomial of degree <= t, and random polynomials of degree t.
+    long double random_rule = 0, random_exact = 0;
+    for (int a = 0; a <= t; ++a)
+      for (int b = 0; a + b <= t; ++b)
+        for (int c = 0; a + b + c <= t; ++c) {
+          const long double got = rule(points, a, b, c), exact = monomial_integral(a, b, c);
+          EXPECT_NEAR(double(got), double(exact), runtime::tolerance::kDesignQuadrature) << "t " << t << ", x^" << a << " y^" << b << " z^" << c;
+          const double w = normal(rng);
+          random_rule += w * got;
+          random_exact += w * exact;
+        }
+    EXPECT_NEAR(double(random_rule), double(random_exact), 10 * runtime::tolerance::kDesignQuadrature) << "t " << t;
+    ++checked;
+  }
+  EXPECT_GE(checked, 21);
+}
+
+TEST(Designs, SearchIsDeterministicWhateverTheThreads) {
+  DesignSearch s;
+  s.t = 8;
+  s.points = 36;
+  s.starts = 8;
+  s.seed = 3;
+  s.threads = 1;
+  const Design one = search_design(s);
+  s.threads = 3;
+  const Design three = search_design(s);
+  ASSERT_GE(one.start, 0);
+  EXPECT_EQ(one.start, three.start);
+  ASSERT_EQ(one.points.size(), three.points.size());
+  for (size_t i = 0; i < one.points.size(); ++i) EXPECT_EQ(one.points[i], three.points[i]) << "point " << i;
+  s.symmetric = true;
+  s.t = 9;
+  s.points = symmetric_count(9);  // 48, the smallest known count
+  const Design antipodal = search_design(s);
+  ASSERT_GE(antipodal.start, 0);
+  EXPECT_LE(design_residual(antipodal.points, 9), kDesignResidual);
+}
+
+TEST(Designs, RefusesWhatItCannotSearch) {
+  DesignSearch s;
+  s.points = 10;
+  for (int t : {0, kMaxDesignStrength + 1}) {
+    s.t = t;
+    EXPECT_THROW(search_design(s), std::invalid_argument) << t;
+  }
+  s.t = 3;
+  s.points = 1;
+  EXPECT_THROW(search_design(s), std::invalid_argument);
+  s.points = 7;
+  s.symmetric = true;
+  EXPECT_THROW(search_design(s), std::invalid_argument);
+}
+
+TEST(Frames, DesignsMakeTightFramesUpToHalfTheirStrength) {
+  for (int t : {2, 4, 7, 10, 15}) {
+    const std::vector<Point> d = read_points(test::source_path("generated/designs/t_" + std::to_string(t) + ".json"));
+    const FrameBounds tight = frame_bounds(d, 0, t / 2);
+    EXPECT_TRUE(tight.tight()) << "t " << t << ": A " << tight.lower << ", B " << tight.upper;
+    EXPECT_NEAR(tight.lower, d.size() / (4 * double(kPi)), 1e-12 * tight.upper) << "t " << t;
+    // Scaled by sqrt(4 pi / M): Parseval.
+    std::vector<Point> same = d;
+    const FrameBounds one_band = frame_bounds(same, t / 2, t / 2);
+    EXPECT_TRUE(one_band.tight()) << "t " << t;
+    EXPECT_NEAR(one_band.condition(), 1.0, 1e-12) << "t " << t;
+  }
+}
+
+TEST(Frames, LobeTablesAreFramesWithTheirConditionNumbers) {
+  for (int order : {4, 6, 8, 12}) {
+    const runtime::LobeTable table = runtime::read_lobe_table(test::source_path("generated/lobes/order_" + std::to_string(order) + ".json"));
+    for (const runtime::TableBand& band : table.bands) {
+      std::vector<Point> lobes;
+      for (int d : band.lobes) lobes.push_back({table.lobes[d].xyz[0], table.lobes[d].xyz[1], table.lobes[d].xyz[2]});
+      const FrameBounds b = frame_bounds(lobes, band.l, band.l);
+      EXPECT_NEAR(b.condition(), band.condition, runtime::tolerance::kTableConditionRelative * band.condition)
+          << "order " << order << ", band " << band.l;
+      EXPECT_EQ(b.redundancy(), 1.0);
+    }
+  }
+  // Too few directions span nothing: not a frame.
+  const FrameBounds thin = frame_bounds({{0, 0, 1}, {1, 0, 0}}, 2, 2);
+  EXPECT_FALSE(thin.frame());
+  EXPECT_THROW(frame_bounds({}, 0, 1), std::invalid_argument);
+  EXPECT_THROW(frame_bounds({{0, 0, 1}}, 3, 2), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace zhf::frames
