@@ -124,6 +124,14 @@ TEST_P(ProductMixes, DoubleAndTripleProductsMatchIntegration) {
       return evaluate(terms[0], order_, w) * evaluate(terms[1], order_, w) * evaluate(terms[2], order_, w);
     });
     EXPECT_NEAR(triple_product(product, p[0], p[1], p[2]), triple, kProductAgainstIntegration) << where;
+    // The same in float.
+    std::vector<float> single[3];
+    ProductTerm<float> pf[3];
+    for (int k = 0; k < 3; ++k) {
+      single[k].assign(terms[k].values.begin(), terms[k].values.end());
+      pf[k] = {single[k].data(), p[k].basis};
+    }
+    EXPECT_NEAR(triple_product(product, pf[0], pf[1], pf[2]), triple, tolerance::kFloatProduct) << where << ", float";
     if (order_ <= kMaxTripleCouplingOrder) {
       const ZhfBasis* slots[3] = {p[0].basis, p[1].basis, p[2].basis};
       const std::vector<double> t = triple_coupling(order_, slots);
@@ -136,6 +144,7 @@ TEST_P(ProductMixes, DoubleAndTripleProductsMatchIntegration) {
     if (mix < 9) {  // the double products of f and g
       const double expected = integrate(order_, [&](const double* w) { return evaluate(terms[0], order_, w) * evaluate(terms[1], order_, w); });
       EXPECT_NEAR(double_product(order_, p[0], p[1]), expected, kProductAgainstIntegration) << where << ", double product";
+      EXPECT_NEAR(double_product(order_, pf[0], pf[1]), expected, tolerance::kFloatProduct) << where << ", double product in float";
       const Matrix c = double_coupling(order_, p[0].basis, p[1].basis);
       double coupled = 0;
       for (int i = 0; i < n; ++i)
