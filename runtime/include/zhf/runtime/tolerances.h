@@ -118,6 +118,14 @@ inline constexpr double kSumShaderUlps = 64;
 // A design's equal-weight rule against the closed-form integrals of monomials of degree <= t, in
 // long double: the points carry double rounding (1e-16) and the design residual (<= 1e-14).
 inline constexpr double kDesignQuadrature = 1e-14;
+// The needlet window: psi's integrals against a long-double tanh-sinh rule, closed forms
+// (psi(0) = 1/2, psi(u) + psi(-u) = 1) and the partition of unity sum_j b^2(l / B^j) = 1, each a
+// few roundings of values below 1 (measured at most 2.3e-15, B = 1.2).
+inline constexpr double kNeedletWindow = 1e-14;
+// The needlet frame on unit-norm signals of bands <= 16: reconstruction, Parseval, sampled analysis,
+// kernels and rotation, each sums of ~10^3 terms of size <= 1 over a cubature whose nodes carry
+// double rounding (the bound for exact reconstruction).
+inline constexpr double kNeedletFrame = 1e-12;
 
 // ---- Reference math (tests of sh/ and candidates/) ----------------------------------------------
 // What is exact in exact arithmetic and rounds once or twice in double (the identity rotation's

@@ -1,0 +1,374 @@
+#include "zhf/frames/needlets.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <sys/stat.h>
+
+#include "zhf/runtime/sh_eval.h"
+#include "zhf/sh/reference_rotation.h"
+
+namespace zhf::frames {
+namespace {
+
+double bump(double t) { return std::abs(t) < 1 ? std::exp(-1 / ((1 - t) * (1 + t))) : 0.0; }
+
+// Gauss-Kronrod 7-15 on [a, b]: the 15-point estimate, and its difference from the 7-point one.
+void kronrod(double a, double b, double& estimate, double& error) {
+  static const double x[8] = {0.991455371120812639206854697526329, 0.949107912342758524526189684047851,
+                              0.864864423359769072789712788640926, 0.741531185599394439863864773280788,
+                              0.586087235467691130294144845693013, 0.405845151377397166906606412076961,
+                              0.207784955007898467600689403773245, 0.0};
+  static const double wk[8] = {0.022935322010529224963732008058970, 0.063092092629978553290700663189204,
+                               0.104790010322250183839876322541518, 0.140653259715525918745189590510238,
+                               0.169004726639267902826583426598550, 0.190350578064785409913256402421014,
+                               0.204432940075298892414161999234649, 0.209482141084727828012999174891714};
+  static const double wg[4] = {0.129484966168869693270611432679082, 0.279705391489276667901467771423780,
+                               0.381830050505118944950369775488975, 0.417959183673469387755102040816327};
+  const double c = (a + b) / 2, h = (b - a) / 2;
+  double k = wk[7] * bump(c), g = wg[3] * bump(c);
+  for (int i = 0; i < 7; ++i) {
+    const double pair = bump(c - h * x[i]) + bump(c + h * x[i]);
+    k += wk[i] * pair;
+    if (i % 2) g += wg[i / 2] * pair;
+  }
+  estimate = k * h;
+  error = std::abs((k - g) * h);
+}
+
+double integrate(double a, double b, int depth = 0) {
+  double whole = 0, error = 0;
+  kronrod(a, b, whole, error);
+  if (error <= 1e-17 || depth >= 40) return whole;
+  const double m = (a + b) / 2;
+  return integrate(a, m, depth + 1) + integrate(m, b, depth + 1);
+}
+
+void check_dilation(double dilation) {
+  if (!(dilation >= kMinDilation && dilation <= kMaxDilation))
+    throw std::invalid_argument("B must be in [" + std::to_string(kMinDilation).substr(0, 4) + ", " + std::to_string(int(kMaxDilation)) +
+                                "] (got " + std::to_string(dilation) + ")");
+}
+
+}  // namespace
+
+double bump_integral() {
+  static const double value = integrate(-1, 0) + integrate(0, 1);
+  return value;
+}
+
+double needlet_psi(double u) {
+  if (u <= -1) return 0;
+  if (u >= 1) return 1;
+  // The smaller tail integrated: psi(u) = 1 - psi(-u), so the result is accurate near both ends.
+  if (u > 0) return 1 - integrate(u, 1) / bump_integral();
+  return integrate(-1, u) / bump_integral();
+}
+
+double needlet_phi(double t, double dilation) {
+  check_dilation(dilation);
+  if (t <= 1 / dilation) return 1;
+  if (t > 1) return 0;
+  return needlet_psi(1 - 2 * dilation / (dilation - 1) * (t - 1 / dilation));
+}
+
+double needlet_window(double x, double dilation) {
+  const double square = needlet_phi(x / dilation, dilation) - needlet_phi(x, dilation);
+  return square > 0 ? std::sqrt(square) : 0.0;
+}
+
+std::vector<WindowValue> needlet_windows(double dilation, int lmax) {
+  check_dilation(dilation);
+  if (lmax < 0 || lmax > kMaxNeedletBand)
+    throw std::invalid_argument("lmax must be 0.." + std::to_string(kMaxNeedletBand) + " (got " + std::to_string(lmax) + ")");
+  std::vector<WindowValue> out;
+  // Level j covers B^(j-1) < l < B^(j+1); stop once B^(j-1) passes lmax.
+  for (int j = 0; std::pow(dilation, j - 1) < lmax + 1; ++j) {
+    const int first = std::max(0, static_cast<int>(std::floor(std::pow(dilation, j - 1)))), last = std::min(lmax, static_cast<int>(std::ceil(std::pow(dilation, j + 1))));
+    for (int l = first; l <= last; ++l) {
+      const double b = needlet_window(l / std::pow(dilation, j), dilation);
+      if (b > 0) out.push_back({j, l, b});
+    }
+  }
+  return out;
+}
+
+// ---- Cubatures ----------------------------------------------------------------------------------
+
+namespace {
+
+bool is_file(const std::string& path) {
+  struct stat st;
+  return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
+// Every product of two functions of bands <= lmax integrated exactly: the cubature the level needs.
+void check_cubature(const Cubature& c, int degree) {
+  if (c.degree < degree || c.points.empty() || c.points.size() != c.weights.size())
+    throw std::invalid_argument("cubature '" + c.name + "' is exact to degree " + std::to_string(c.degree) + ", " +
+                                std::to_string(degree) + " needed");
+}
+
+// (2l+1)/(4 pi) P_l(t) for l = 0..lmax: the kernel of band l, sum_m y_l^m(x) y_l^m(xi) at t = x . xi.
+void band_kernels(int lmax, double t, std::vector<double>& out) {
+  out.resize(lmax + 1);
+  double p0 = 1, p1 = t;
+  for (int l = 0; l <= lmax; ++l) {
+    double p;
+    if (l == 0) {
+      p = 1;
+    } else if (l == 1) {
+      p = t;
+    } else {
+      p = ((2 * l - 1) * t * p1 - (l - 1) * p0) / l;
+      p0 = p1;
+      p1 = p;
+    }
+    out[l] = (2 * l + 1) / (4 * runtime::kPi) * p;
+  }
+}
+
+double dot(const Point& a, const Point& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+double clamp_dot(double t) { return std::min(1.0, std::max(-1.0, t)); }
+
+Point rotate_point(const runtime::Matrix3& r, const Point& p) {
+  return {r[0] * p[0] + r[1] * p[1] + r[2] * p[2], r[3] * p[0] + r[4] * p[1] + r[5] * p[2], r[6] * p[0] + r[7] * p[1] + r[8] * p[2]};
+}
+
+}  // namespace
+
+Cubature gauss_product_cubature(int degree) {
+  if (degree < 0 || degree > 4 * kMaxNeedletFrameBand) throw std::invalid_argument("cubature degree out of range");
+  const int nz = degree / 2 + 1, nphi = degree + 1;
+  std::vector<double> z, wz;
+  sh::gauss_legendre(nz, z, wz);
+  Cubature c;
+  c.degree = degree;
+  c.name = "gauss " + std::to_string(nz) + "x" + std::to_string(nphi);
+  for (int i = 0; i < nz; ++i) {
+    const double s = std::sqrt(std::max(0.0, 1 - z[i] * z[i]));
+    for (int k = 0; k < nphi; ++k) {
+      const double phi = 2 * runtime::kPi * k / nphi;
+      c.points.push_back({s * std::cos(phi), s * std::sin(phi), z[i]});
+      c.weights.push_back(wz[i] * 2 * runtime::kPi / nphi);
+    }
+  }
+  return c;
+}
+
+Cubature design_cubature(const std::string& folder, int degree) {
+  for (int t = std::max(degree, 1); t <= kMaxDesignStrength; ++t) {
+    const std::string path = folder + "/t_" + std::to_string(t) + ".json";
+    if (!is_file(path)) continue;
+    Cubature c;
+    c.degree = t;
+    c.name = "design t=" + std::to_string(t);
+    c.points = read_points(path);
+    c.weights.assign(c.points.size(), 4 * runtime::kPi / c.points.size());
+    return c;
+  }
+  return gauss_product_cubature(degree);
+}
+
+// ---- The needlet frame --------------------------------------------------------------------------
+
+NeedletFrame::NeedletFrame(double dilation, int band_limit, const CubatureSource& cubature)
+    : dilation_(dilation), band_limit_(band_limit) {
+  check_dilation(dilation);
+  if (band_limit < 0 || band_limit > kMaxNeedletFrameBand)
+    throw std::invalid_argument("band limit must be 0.." + std::to_string(kMaxNeedletFrameBand) + " (got " + std::to_string(band_limit) + ")");
+  NeedletLevel scaling;
+  scaling.j = -1;
+  scaling.window = {1.0};
+  scaling.cubature.points = {{0, 0, 1}};
+  scaling.cubature.weights = {4 * runtime::kPi};
+  scaling.cubature.name = "one node";
+  levels_.push_back(scaling);
+  for (const WindowValue& w : needlet_windows(dilation, band_limit)) {
+    if (levels_.back().j != w.j) {
+      NeedletLevel level;
+      level.j = w.j;
+      level.lmin = w.l;
+      levels_.push_back(level);
+    }
+    NeedletLevel& level = levels_.back();
+    level.window.resize(w.l - level.lmin + 1, 0.0);
+    level.window[w.l - level.lmin] = w.value;
+    level.lmax = w.l;
+  }
+  for (NeedletLevel& level : levels_) {
+    if (level.j >= 0) {
+      level.cubature = cubature(2 * level.lmax);
+      check_cubature(level.cubature, 2 * level.lmax);
+    }
+    level.offset = size_;
+    size_ += static_cast<int>(level.cubature.points.size());
+  }
+}
+
+void NeedletFrame::check_size(const std::vector<double>& v, std::size_t n, const char* what) const {
+  if (v.size() != n)
+    throw std::invalid_argument(std::string(what) + ": " + std::to_string(v.size()) + " values, " + std::to_string(n) + " expected");
+}
+
+std::vector<double> NeedletFrame::analyze(const std::vector<double>& sh) const {
+  check_size(sh, runtime::coefficient_count(band_limit_ + 1), "SH coefficients");
+  std::vector<double> beta(size_), y(sh.size());
+  for (const NeedletLevel& level : levels_) {
+    for (std::size_t k = 0; k < level.cubature.points.size(); ++k) {
+      runtime::eval_sh(level.lmax + 1, level.cubature.points[k].data(), y.data());
+      double sum = 0;
+      for (int l = level.lmin; l <= level.lmax; ++l) {
+        double band = 0;
+        for (int m = -l; m <= l; ++m) band += sh[runtime::index(l, m)] * y[runtime::index(l, m)];
+        sum += level.window[l - level.lmin] * band;
+      }
+      beta[level.offset + k] = std::sqrt(level.cubature.weights[k]) * sum;
+    }
+  }
+  return beta;
+}
+
+std::vector<double> NeedletFrame::synthesize(const std::vector<double>& beta) const {
+  check_size(beta, size_, "needlet coefficients");
+  std::vector<double> sh(runtime::coefficient_count(band_limit_ + 1), 0.0), y(sh.size());
+  for (const NeedletLevel& level : levels_) {
+    for (std::size_t k = 0; k < level.cubature.points.size(); ++k) {
+      runtime::eval_sh(level.lmax + 1, level.cubature.points[k].data(), y.data());
+      const double weight = std::sqrt(level.cubature.weights[k]) * beta[level.offset + k];
+      for (int l = level.lmin; l <= level.lmax; ++l) {
+        const double scale = weight * level.window[l - level.lmin];
+        for (int m = -l; m <= l; ++m) sh[runtime::index(l, m)] += scale * y[runtime::index(l, m)];
+      }
+    }
+  }
+  return sh;
+}
+
+std::vector<double> NeedletFrame::analyze_samples(const Cubature& samples, const std::vector<double>& values) const {
+  check_cubature(samples, 2 * band_limit_);
+  check_size(values, samples.points.size(), "samples");
+  std::vector<double> beta(size_, 0.0);
+  for (std::size_t s = 0; s < samples.points.size(); ++s) {
+    const double weighted = samples.weights[s] * values[s];
+    for (int a = 0; a < static_cast<int>(levels_.size()); ++a) {
+      const NeedletLevel& level = levels_[a];
+      for (std::size_t k = 0; k < level.cubature.points.size(); ++k)
+        beta[level.offset + k] +=
+            weighted * std::sqrt(level.cubature.weights[k]) * kernel(a, clamp_dot(dot(samples.points[s], level.cubature.points[k])));
+    }
+  }
+  return beta;
+}
+
+double NeedletFrame::evaluate(const std::vector<double>& beta, const Point& x) const {
+  check_size(beta, size_, "needlet coefficients");
+  double sum = 0;
+  for (int a = 0; a < static_cast<int>(levels_.size()); ++a) {
+    const NeedletLevel& level = levels_[a];
+    for (std::size_t k = 0; k < level.cubature.points.size(); ++k)
+      sum += beta[level.offset + k] * std::sqrt(level.cubature.weights[k]) * kernel(a, clamp_dot(dot(x, level.cubature.points[k])));
+  }
+  return sum;
+}
+
+double NeedletFrame::kernel(int a, double t) const {
+  const NeedletLevel& level = levels_.at(a);
+  std::vector<double> lk;
+  band_kernels(level.lmax, t, lk);
+  double sum = 0;
+  for (int l = level.lmin; l <= level.lmax; ++l) sum += level.window[l - level.lmin] * lk[l];
+  return sum;
+}
+
+bool NeedletFrame::levels_overlap(int a, int b) const {
+  const NeedletLevel &p = levels_.at(a), &q = levels_.at(b);
+  return std::max(p.lmin, q.lmin) <= std::min(p.lmax, q.lmax);
+}
+
+double NeedletFrame::cross_kernel(int a, int b, double t) const {
+  if (!levels_overlap(a, b)) return 0;
+  const NeedletLevel &p = levels_[a], &q = levels_[b];
+  const int lo = std::max(p.lmin, q.lmin), hi = std::min(p.lmax, q.lmax);
+  std::vector<double> lk;
+  band_kernels(hi, t, lk);
+  double sum = 0;
+  for (int l = lo; l <= hi; ++l) sum += p.window[l - p.lmin] * q.window[l - q.lmin] * lk[l];
+  return sum;
+}
+
+std::vector<double> NeedletFrame::rotate_exact(const std::vector<double>& beta, const runtime::Matrix3& r) const {
+  const std::vector<double> f = synthesize(beta);
+  const sh::BandMatrices bands = sh::ivanic_ruedenberg(sh::to_eigen(r), band_limit_ + 1);
+  const Eigen::VectorXd g = sh::apply_band_matrices(bands, Eigen::Map<const Eigen::VectorXd>(f.data(), f.size()));
+  return analyze(std::vector<double>(g.data(), g.data() + g.size()));
+}
+
+// ---- Look-up tables -----------------------------------------------------------------------------
+
+UniformTable::UniformTable(const std::function<double(double)>& f, int size) {
+  if (size < kMinTableSize || size > kMaxTableSize)
+    throw std::invalid_argument("table size must be " + std::to_string(kMinTableSize) + ".." + std::to_string(kMaxTableSize) +
+                                " (got " + std::to_string(size) + ")");
+  values_.resize(size);
+  for (int i = 0; i < size; ++i) values_[i] = f(i == size - 1 ? 1.0 : -1.0 + 2.0 * i / (size - 1));
+}
+
+double UniformTable::operator()(double t, Interpolation how) const {
+  const int last = size() - 1;
+  const double u = (clamp_dot(t) + 1) * 0.5 * last;
+  if (how == Interpolation::kLinear) {
+    const int i = std::min(static_cast<int>(u), last - 1);
+    const double s = u - i;
+    return values_[i] + s * (values_[i + 1] - values_[i]);
+  }
+  // The three nodes around the nearest one (shifted inwards at the ends), Lagrange form.
+  const int c = std::min(std::max(static_cast<int>(std::lround(u)), 1), last - 1);
+  const double s = u - c;
+  return values_[c - 1] * s * (s - 1) / 2 + values_[c] * (1 - s) * (1 + s) + values_[c + 1] * s * (s + 1) / 2;
+}
+
+double table_error(const UniformTable& table, const std::function<double(double)>& f, Interpolation how, int probes) {
+  double worst = 0, peak = 0;
+  for (int i = 0; i < probes; ++i) {
+    const double t = -1.0 + 2.0 * i / (probes - 1), exact = f(t);
+    worst = std::max(worst, std::abs(table(t, how) - exact));
+    peak = std::max(peak, std::abs(exact));
+  }
+  return peak > 0 ? worst / peak : worst;
+}
+
+TabulatedNeedletRotation::TabulatedNeedletRotation(const NeedletFrame& frame, int table_size, Interpolation how)
+    : frame_(frame), how_(how) {
+  const int n = static_cast<int>(frame.levels().size());
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b)
+      if (frame.levels_overlap(a, b))
+        pairs_.push_back({a, b, UniformTable([&](double t) { return frame.cross_kernel(a, b, t); }, table_size)});
+}
+
+std::vector<double> TabulatedNeedletRotation::rotate(const std::vector<double>& beta, const runtime::Matrix3& r) const {
+  if (beta.size() != static_cast<std::size_t>(frame_.size()))
+    throw std::invalid_argument("needlet coefficients: " + std::to_string(beta.size()) + " values, " + std::to_string(frame_.size()) +
+                                " expected");
+  // beta scaled by sqrt(lambda) once, so the inner loop is a dot product and a look-up.
+  std::vector<double> scaled(beta.size()), out(beta.size(), 0.0);
+  for (const NeedletLevel& level : frame_.levels())
+    for (std::size_t k = 0; k < level.cubature.points.size(); ++k)
+      scaled[level.offset + k] = beta[level.offset + k] * std::sqrt(level.cubature.weights[k]);
+  std::vector<Point> turned;
+  for (const Pair& pair : pairs_) {
+    const NeedletLevel &from = frame_.levels()[pair.a], &to = frame_.levels()[pair.b];
+    turned.clear();
+    for (const Point& p : from.cubature.points) turned.push_back(rotate_point(r, p));
+    for (std::size_t i = 0; i < to.cubature.points.size(); ++i) {
+      double sum = 0;
+      for (std::size_t k = 0; k < turned.size(); ++k) sum += scaled[from.offset + k] * pair.table(dot(turned[k], to.cubature.points[i]), how_);
+      out[to.offset + i] += std::sqrt(to.cubature.weights[i]) * sum;
+    }
+  }
+  return out;
+}
+
+}  // namespace zhf::frames
