@@ -16,6 +16,7 @@
 #include "healpix_method.h"
 #include "lanes_kernels.h"
 #include "zhf/codegen/manifest.h"
+#include "zhf/frames/tight_frame_rotation.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/io/process.h"
@@ -451,6 +452,13 @@ SuiteReport run_suite(const SuiteOptions& o) {
       count_zxzxz(order, row);
       say(row);
       say(single<float>(scale, pool, "zxzxz", "rgb", 3, [&](auto r, auto in, auto out) { z.rotate_channels(r, in, out, 3); }));
+    }
+    if (order <= 16) {
+      // Lobes at a design's points: a tight frame, no inverse, condition 1 at every order.
+      const frames::Cubature nodes = frames::design_cubature((root / "generated" / "designs").string(), 2 * (order - 1));
+      const frames::TightFrameRotator<float> tight(order, nodes);
+      say(single<float>(scale, pool, "tight_frame", "single", 1, [&](auto r, auto in, auto out) { tight.rotate(r, in, out); },
+                        nodes.name + ", " + std::to_string(tight.lobes()) + " lobes"));
     }
     {
       // The usual general method: band matrices per rotation (double, Eigen), then applied.

@@ -60,6 +60,8 @@ TEST(Bench, QuickRunMeasuresEveryMethodWithinItsTolerance) {
               runtime::read_lobe_table((root / "generated" / "lobes" / ("lanes_order_" + std::to_string(order) + ".json")).string());
           tolerance = variant == "all float" ? std::max(kFloatRotation, kLanesFloatMargin * codegen::lanes_float_error_model(lanes))
                                              : kFloatRotation;
+        } else if (method == "tight_frame") {  // condition 1 at every order: the plain float target
+          tolerance = kFloatRotation;
         } else if (scenario == "product" || scenario == "square") {
           tolerance = kFloatProduct;
         } else if (scenario == "shade") {  // a rotation dotted with a unit vector: float_shading's model
@@ -97,6 +99,7 @@ TEST(Bench, QuickRunMeasuresEveryMethodWithinItsTolerance) {
   EXPECT_EQ((ran[{"zxzxz", "single"}]), all);
   EXPECT_EQ((ran[{"zxzxz", "batch"}]), generated);
   EXPECT_EQ((ran[{"ivanic_ruedenberg", "single"}]), all);
+  EXPECT_EQ((ran[{"tight_frame", "single"}]), all);
   if (report["notes"].empty()) EXPECT_EQ((ran[{"healpix", "single"}]), all);
   else std::cout << "[ SKIPPED  ] HEALPix part: " << report["notes"][0] << "\n";
   // The script a user reruns by hand writes the final SVGs, not zhf's temporary ones.

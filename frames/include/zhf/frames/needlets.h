@@ -34,6 +34,7 @@
 #include <string>
 #include <vector>
 
+#include "zhf/frames/cubature.h"
 #include "zhf/frames/designs.h"
 #include "zhf/runtime/rotation.h"
 
@@ -55,23 +56,6 @@ struct WindowValue {
 // outside [kMinDilation, kMaxDilation] or lmax outside 0..kMaxNeedletBand.
 inline constexpr int kMaxNeedletBand = 4096;
 std::vector<WindowValue> needlet_windows(double dilation, int lmax);
-
-// ---- Cubatures --------------------------------------------------------------------------------
-
-// Nodes and weights (summing to 4 pi) integrating every polynomial of degree <= `degree` exactly.
-struct Cubature {
-  int degree = 0;
-  std::vector<Point> points;
-  std::vector<double> weights;
-  std::string name;  // "design t=6", "gauss 4x9"
-};
-// Gauss-Legendre in z (degree/2 + 1 nodes) times equally spaced phi (degree + 1): exact to
-// `degree`, for any degree; about degree^2 / 2 nodes, twice a design's count.
-Cubature gauss_product_cubature(int degree);
-// The equal-weight rule of a design of strength >= degree, read from `folder`/t_T.json (the
-// smallest T that is there); the Gauss product where no shipped design is strong enough.
-Cubature design_cubature(const std::string& folder, int degree);
-using CubatureSource = std::function<Cubature(int degree)>;
 
 // ---- The needlet frame ------------------------------------------------------------------------
 

@@ -126,6 +126,9 @@ inline constexpr double kNeedletWindow = 1e-14;
 // kernels and rotation, each sums of ~10^3 terms of size <= 1 over a cubature whose nodes carry
 // double rounding (the bound for exact reconstruction).
 inline constexpr double kNeedletFrame = 1e-12;
+// The tight-frame rotation in double against the reference band matrices, orders <= 16: sums of
+// M <= 500 lobe terms of size <= 1 for unit inputs, condition exactly 1.
+inline constexpr double kTightFrameRotation = 1e-13;
 
 // ---- Reference math (tests of sh/ and candidates/) ----------------------------------------------
 // What is exact in exact arithmetic and rounds once or twice in double (the identity rotation's
