@@ -1,4 +1,7 @@
+#include <algorithm>
 #include <chrono>
+#include <cstdint>
+#include <cstring>
 #include <cstdio>
 #include <memory>
 #include <thread>
@@ -9,13 +12,16 @@
 #include "options.h"
 #include "zhf/frames/designs.h"
 #include "zhf/frames/frame.h"
+#include "zhf/codegen/needlet_lut.h"
 #include "zhf/frames/needlets.h"
 #include "zhf/pipeline/project.h"
+#include "zhf/verify/needlets.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/io/signals.h"
 #include "zhf/runtime/limits.h"
 #include "zhf/runtime/lobe_table.h"
+#include "zhf/runtime/tolerances.h"
 
 namespace zhf::cli {
 namespace {
@@ -144,11 +150,112 @@ int run_frame(const FrameOptions& o) {
 struct NeedletOptions {
   std::string dilation = "2", lmax, sizes = "64,256,1024,4096,16384";
   bool gauss = false;
-  std::string out;
+  std::string size = "1024", interpolation = "linear", lang, langs = "cpp,glsl,hlsl", prefix = "zhf_needlets", compiler;
+  std::string out, data;
 };
 
 double dilation_option(const std::string& text) {
   return number_option("--B", text, frames::kMinDilation, frames::kMaxDilation);
+}
+
+// Each level on the smallest shipped design exact for it, or on Gauss product nodes.
+frames::NeedletFrame needlet_frame(double dilation, int lmax, bool gauss) {
+  if (gauss) return frames::NeedletFrame(dilation, lmax);
+  const std::string designs = pipeline::project().generated() + "/designs";
+  return frames::NeedletFrame(dilation, lmax, [&](int degree) { return frames::design_cubature(designs, degree); });
+}
+
+codegen::NeedletLutOptions lut_options(const NeedletOptions& o, const std::string& command) {
+  codegen::NeedletLutOptions lut;
+  lut.table_size = static_cast<int>(integer_option("--size", o.size, frames::kMinTableSize, frames::kMaxTableSize));
+  if (o.interpolation == "linear") lut.interpolation = frames::Interpolation::kLinear;
+  else if (o.interpolation == "quadratic") lut.interpolation = frames::Interpolation::kQuadratic;
+  else throw UsageError("--interpolation: '" + io::excerpt(o.interpolation) + "' is not linear or quadratic");
+  std::string why;
+  if (!codegen::valid_prefix(o.prefix, why)) throw UsageError("--prefix: " + why);
+  lut.prefix = o.prefix;
+  lut.command = command;
+  return lut;
+}
+
+codegen::Language language_option(const std::string& option, const std::string& name) {
+  codegen::Language language;
+  if (!codegen::parse_language(name, language)) throw UsageError(option + ": '" + io::excerpt(name) + "' is not cpp, glsl or hlsl");
+  return language;
+}
+
+int run_needlet_emit(const NeedletOptions& o, const std::string& command) {
+  const double dilation = dilation_option(o.dilation);
+  const int lmax = static_cast<int>(integer_option("--lmax", o.lmax, 1, frames::kMaxNeedletFrameBand));
+  const codegen::NeedletLutOptions lut = lut_options(o, command);
+  const codegen::Language language = language_option("--lang", o.lang);
+  io::PendingFile out(o.out);
+  std::unique_ptr<io::PendingFile> data;
+  if (!o.data.empty()) data = std::make_unique<io::PendingFile>(o.data);
+  const frames::NeedletFrame frame = needlet_frame(dilation, lmax, o.gauss);
+  const codegen::EmittedFile file = codegen::emit_needlet_lut(frame, language, lut);
+  out.write(file.text);
+  if (data) {
+    const std::vector<float> values = codegen::needlet_lut_data(frame, lut.table_size);
+    std::string bytes(values.size() * sizeof(float), '\0');
+    for (std::size_t i = 0; i < values.size(); ++i) {  // little-endian float32, whatever the host
+      std::uint32_t word;
+      std::memcpy(&word, &values[i], sizeof word);
+      for (int b = 0; b < 4; ++b) bytes[4 * i + b] = static_cast<char>((word >> (8 * b)) & 0xff);
+    }
+    data->write(bytes);
+    data->commit();
+  }
+  out.commit();
+  std::printf("%s: %s, %d multiplies and %d adds per evaluation\n", o.out.c_str(), file.functions[0].name.c_str(),
+              file.functions[0].ops.multiplies, file.functions[0].ops.adds);
+  return kExitOk;
+}
+
+int run_needlet_verify(const NeedletOptions& o) {
+  const double dilation = dilation_option(o.dilation);
+  const int lmax = static_cast<int>(integer_option("--lmax", o.lmax, 1, frames::kMaxNeedletFrameBand));
+  const codegen::NeedletLutOptions lut = lut_options(o, "zhf needlets verify");
+  verify::NeedletLutVerify v;
+  v.languages.clear();
+  for (std::size_t start = 0; start <= o.langs.size();) {
+    const std::size_t comma = std::min(o.langs.find(',', start), o.langs.size());
+    const codegen::Language language = language_option("--langs", o.langs.substr(start, comma - start));
+    if (std::find(v.languages.begin(), v.languages.end(), language) != v.languages.end())
+      throw UsageError("--langs: '" + o.langs.substr(start, comma - start) + "' is listed twice");
+    v.languages.push_back(language);
+    start = comma + 1;
+  }
+  v.compiler = o.compiler;
+  std::unique_ptr<io::PendingFile> out;
+  if (!o.out.empty()) out = std::make_unique<io::PendingFile>(o.out);
+  const frames::NeedletFrame frame = needlet_frame(dilation, lmax, o.gauss);
+  const std::vector<verify::NeedletLutResult> results = verify::verify_needlet_lut(frame, lut, v);
+  io::throw_if_interrupted();
+  std::printf("needlet frame B = %g, bands 0..%d, %d coefficients; %d-entry tables, %s\n", dilation, lmax, frame.size(), lut.table_size,
+              o.interpolation.c_str());
+  std::printf("%-6s %14s %14s  %s\n", "lang", "vs mirror", "table error", "result");
+  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+  bool pass = true, no_device = false;
+  for (const verify::NeedletLutResult& r : results) {
+    std::printf("%-6s %14.3e %14.3e  %s\n", r.language.c_str(), r.vs_mirror, r.table_error,
+                r.pass ? "pass" : ("FAIL" + (r.error.empty() ? "" : ": " + r.error)).c_str());
+    pass = pass && r.pass;
+    no_device = no_device || r.error.rfind("no Vulkan device", 0) == 0;
+    rows.push_back({{"language", r.language}, {"vs_mirror", r.vs_mirror}, {"table_error", r.table_error}, {"pass", r.pass},
+                    {"error", r.error}});
+  }
+  if (out) {
+    out->write(io::json_text(nlohmann::ordered_json{{"format", "zhf-needlet-verify-1"},
+                                                    {"B", dilation},
+                                                    {"lmax", lmax},
+                                                    {"size", lut.table_size},
+                                                    {"interpolation", o.interpolation},
+                                                    {"tolerance", runtime::tolerance::kNeedletLutFloat},
+                                                    {"results", rows}}));
+    out->commit();
+  }
+  return pass ? kExitOk : no_device ? kExitNoDevice : kExitFailure;
 }
 
 int run_needlet_window(const NeedletOptions& o) {
@@ -181,10 +288,7 @@ int run_needlet_tables(const NeedletOptions& o) {
   if (sizes.size() > 16) throw UsageError("--sizes: at most 16 sizes (got " + std::to_string(sizes.size()) + ")");
   std::unique_ptr<io::PendingFile> out;
   if (!o.out.empty()) out = std::make_unique<io::PendingFile>(o.out);
-  const std::string designs = pipeline::project().generated() + "/designs";
-  const frames::NeedletFrame frame =
-      o.gauss ? frames::NeedletFrame(dilation, lmax)
-              : frames::NeedletFrame(dilation, lmax, [&](int degree) { return frames::design_cubature(designs, degree); });
+  const frames::NeedletFrame frame = needlet_frame(dilation, lmax, o.gauss);
   nlohmann::ordered_json levels = nlohmann::ordered_json::array();
   std::printf("%6s %9s %7s  %s\n", "level", "bands", "points", "cubature");
   for (const frames::NeedletLevel& level : frame.levels()) {
@@ -259,7 +363,7 @@ int run_needlet_tables(const NeedletOptions& o) {
 
 }  // namespace
 
-void add_frames_commands(CLI::App& app, Action& action) {
+void add_frames_commands(CLI::App& app, Action& action, const std::string& command_line) {
   auto d = std::make_shared<DesignsOptions>();
   CLI::App* c = app.add_subcommand("designs", "Find a spherical t-design: equal-weight points exact for every SH of degree <= t");
   c->add_option("--t", d->t, "Strength t, 1..50")->required();
@@ -297,6 +401,29 @@ void add_frames_commands(CLI::App& app, Action& action) {
   tc->add_flag("--gauss", t->gauss, "Gauss product cubatures at every level instead of the shipped designs");
   tc->add_option("--json", t->out, "Write the tables here (zhf-needlet-tables-1)");
   tc->callback([t, &action] { action = [t] { return run_needlet_tables(*t); }; });
+  auto e = std::make_shared<NeedletOptions>();
+  CLI::App* ec = nc->add_subcommand("emit", "Emit a needlet expansion's evaluator (kernel look-up tables) as C++, GLSL or HLSL");
+  ec->add_option("--B", e->dilation, "Dilation B, in [1.05, 64] (default 2)");
+  ec->add_option("--lmax", e->lmax, "Band limit, 1..64")->required();
+  ec->add_option("--size", e->size, "Entries per kernel table, 3..1048576 (default 1024)");
+  ec->add_option("--interpolation", e->interpolation, "linear (default) or quadratic");
+  ec->add_option("--lang", e->lang, "cpp, glsl or hlsl")->required();
+  ec->add_option("--prefix", e->prefix, "Prefix of every emitted name (default zhf_needlets)");
+  ec->add_flag("--gauss", e->gauss, "Gauss product cubatures instead of the shipped designs");
+  ec->add_option("--out", e->out, "The file to write")->required();
+  ec->add_option("--data", e->data, "Also write the nodes, scales and tables as little-endian float32 (the shaders' storage buffer)");
+  ec->callback([e, &action, command_line] { action = [e, command_line] { return run_needlet_emit(*e, command_line); }; });
+  auto v = std::make_shared<NeedletOptions>();
+  CLI::App* vc = nc->add_subcommand("verify", "Compile and run the emitted needlet evaluators against their CPU mirror and the exact expansion");
+  vc->add_option("--B", v->dilation, "Dilation B, in [1.05, 64] (default 2)");
+  vc->add_option("--lmax", v->lmax, "Band limit, 1..64")->required();
+  vc->add_option("--size", v->size, "Entries per kernel table, 3..1048576 (default 1024)");
+  vc->add_option("--interpolation", v->interpolation, "linear (default) or quadratic");
+  vc->add_option("--langs", v->langs, "Languages, e.g. cpp,glsl (default cpp,glsl,hlsl)");
+  vc->add_option("--compiler", v->compiler, "C++ compiler and leading arguments (default $CXX, else c++)");
+  vc->add_flag("--gauss", v->gauss, "Gauss product cubatures instead of the shipped designs");
+  vc->add_option("--json", v->out, "Write the results here (zhf-needlet-verify-1)");
+  vc->callback([v, &action] { action = [v] { return run_needlet_verify(*v); }; });
 }
 
 }  // namespace zhf::cli

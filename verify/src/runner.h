@@ -32,6 +32,9 @@ struct RunOutputs {
   std::vector<std::vector<std::vector<double>>> outputs;
 };
 
+// The C++ compiler's argv from --compiler (split at spaces); empty: $CXX, else c++.
+std::vector<std::string> compiler_argv(const std::string& option);
+
 // A compile or run failure, one line (the runner's log excerpt included).
 struct RunFailure : std::runtime_error {
   using std::runtime_error::runtime_error;

@@ -51,6 +51,15 @@ std::vector<double> read_doubles(const std::string& path, size_t count) {
   return values;
 }
 
+std::vector<std::string> compiler_argv(const std::string& option) {
+  std::string text = option;
+  if (text.empty()) text = std::getenv("CXX") && *std::getenv("CXX") ? std::getenv("CXX") : "c++";
+  std::istringstream words(text);
+  std::vector<std::string> argv;
+  for (std::string word; words >> word;) argv.push_back(word);
+  return argv;
+}
+
 namespace {
 
 using codegen::KernelKind;
@@ -67,15 +76,6 @@ std::vector<Mode> modes_of(const ManifestFile& file) {
     modes.push_back({f.kind, f.channels, f.name, false});
   }
   return modes;
-}
-
-std::vector<std::string> compiler_argv(const std::string& option) {
-  std::string text = option;
-  if (text.empty()) text = std::getenv("CXX") && *std::getenv("CXX") ? std::getenv("CXX") : "c++";
-  std::istringstream words(text);
-  std::vector<std::string> argv;
-  for (std::string word; words >> word;) argv.push_back(word);
-  return argv;
 }
 
 // The scratch directory: the caller's (made if missing, kept) or a private one (removed).

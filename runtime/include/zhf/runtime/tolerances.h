@@ -129,6 +129,11 @@ inline constexpr double kNeedletFrame = 1e-12;
 // The tight-frame rotation in double against the reference band matrices, orders <= 16: sums of
 // M <= 500 lobe terms of size <= 1 for unit inputs, condition exactly 1.
 inline constexpr double kTightFrameRotation = 1e-13;
+// An emitted needlet evaluator (C++, GLSL, HLSL in float) against its CPU mirror (the same tables
+// read in double), relative to the sum of the terms' magnitudes: float rounding of the nodes, the
+// tables, the interpolation weight (u ~ table size, so its ulp grows with the table) and a sum of
+// a few hundred terms.
+inline constexpr double kNeedletLutFloat = 1e-5;
 
 // ---- Reference math (tests of sh/ and candidates/) ----------------------------------------------
 // What is exact in exact arithmetic and rounds once or twice in double (the identity rotation's

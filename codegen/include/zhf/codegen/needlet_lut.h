@@ -1,0 +1,42 @@
+// A needlet expansion evaluated through look-up tables of its kernels (frames/needlets.h): for
+// coefficients beta of a NeedletFrame,
+//   f(x) = sum_levels sum_k beta_k sqrt(lambda_k) K_level(x . xi_k),
+// with each K tabulated at `size` equally spaced t in [-1, 1] and read back by linear or quadratic
+// interpolation (frames::UniformTable is the CPU mirror, read for read). Printed as C++, GLSL or
+// HLSL: a kernel read and the sum over nodes, on one float array of nodes, scales and tables
+// (embedded in C++; a storage buffer in shaders). Everything placed in the source is a number or
+// the checked identifier prefix (the command line only inside an escaped comment).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "zhf/codegen/backend.h"
+#include "zhf/frames/needlets.h"
+
+namespace zhf::codegen {
+
+struct NeedletLutOptions {
+  int table_size = 1024;
+  frames::Interpolation interpolation = frames::Interpolation::kLinear;
+  std::string prefix = "zhf_needlets";  // names every function and constant; [A-Za-z_][A-Za-z0-9_]{0,47}
+  std::string command;                   // recorded in the banner
+};
+
+// False (and the reason) for a prefix that is not a plain identifier.
+bool valid_prefix(const std::string& prefix, std::string& why);
+
+// The file for one language: "<prefix>.h", ".glsl" or ".hlsl". Functions:
+//   float <prefix>_kernel(int level, float t)     K_level(t) from its table
+//   float <prefix>_eval(beta[size], x[3])         the expansion at the unit direction x
+// Throws std::invalid_argument for a bad prefix or table size.
+EmittedFile emit_needlet_lut(const frames::NeedletFrame& frame, Language language, const NeedletLutOptions& options);
+
+// The numbers every evaluator reads, in float: nodes (3 per node), sqrt(lambda) (1 per node), then
+// each level's kernel table. C++ embeds them; shaders read them from a storage buffer.
+std::vector<float> needlet_lut_data(const frames::NeedletFrame& frame, int table_size);
+
+// Operations per <prefix>_eval call, as printed.
+OpCount needlet_lut_ops(const frames::NeedletFrame& frame, frames::Interpolation interpolation);
+
+}  // namespace zhf::codegen
