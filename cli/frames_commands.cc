@@ -152,6 +152,7 @@ struct NeedletOptions {
   bool gauss = false;
   std::string size = "1024", interpolation = "linear", lang, langs = "cpp,glsl,hlsl", prefix = "zhf_needlets", compiler;
   std::string out, data;
+  std::string j = "1", cut = "10", margin = "4";
 };
 
 double dilation_option(const std::string& text) {
@@ -256,6 +257,58 @@ int run_needlet_verify(const NeedletOptions& o) {
     out->commit();
   }
   return pass ? kExitOk : no_device ? kExitNoDevice : kExitFailure;
+}
+
+// One level's needlet against the SH delta of the same top band: localisation, and the profiles.
+int run_needlet_profile(const NeedletOptions& o) {
+  const double dilation = dilation_option(o.dilation);
+  const int j = static_cast<int>(integer_option("--j", o.j, 0, 16));
+  const int top = frames::needlet_top_band(dilation, j);
+  if (top > frames::kMaxNeedletBand) throw UsageError("--j: level " + o.j + " reaches band " + std::to_string(top) + ", above 4096");
+  std::unique_ptr<io::PendingFile> out;
+  if (!o.out.empty()) out = std::make_unique<io::PendingFile>(o.out);
+  const auto needlet = [&](double t) { return frames::needlet_kernel(dilation, j, t); };
+  const auto delta = [&](double t) { return frames::sh_delta_kernel(top, t); };
+  std::printf("B = %g, level %d: bands %d..%d (SH delta: bands 0..%d)\n", dilation, j, static_cast<int>(std::floor(std::pow(dilation, j - 1))) + 1, top, top);
+  std::printf("%12s %22s %22s %16s %16s\n", "cap (deg)", "needlet outside", "SH delta outside", "needlet lobe", "SH delta lobe");
+  for (double waves : {1.0, 2.0, 4.0}) {
+    const double cap = waves * runtime::kPi / top;
+    const frames::Localisation a = frames::localisation(needlet, top, cap), b = frames::localisation(delta, top, cap);
+    std::printf("%12.2f %22.3e %22.3e %16.3e %16.3e\n", cap * 180 / runtime::kPi, a.outside_energy, b.outside_energy, a.sidelobe, b.sidelobe);
+  }
+  if (out) {
+    std::string csv = "# zhf needlets profile: theta in degrees, needlet / its peak, SH delta / its peak\n";
+    const double needlet_peak = needlet(1), delta_peak = delta(1);
+    for (int i = 0; i <= 720; ++i) {
+      const double theta = runtime::kPi * i / 720, t = std::cos(theta);
+      char line[96];
+      std::snprintf(line, sizeof line, "%.4f,%.9g,%.9g\n", theta * 180 / runtime::kPi, needlet(t) / needlet_peak, delta(t) / delta_peak);
+      csv += line;
+    }
+    out->write(csv);
+    out->commit();
+  }
+  return kExitOk;
+}
+
+// The talk's case: a signal cut to zero around the equator, in SH and in needlets.
+int run_needlet_mask(const NeedletOptions& o) {
+  const double dilation = dilation_option(o.dilation);
+  const int lmax = static_cast<int>(integer_option("--lmax", o.lmax, 1, frames::kMaxNeedletFrameBand));
+  const double cut = number_option("--cut", o.cut, 0.1, 80) * runtime::kPi / 180;
+  const double margin = number_option("--margin", o.margin, 0, 64);
+  const frames::NeedletFrame frame = needlet_frame(dilation, lmax, o.gauss);
+  const frames::MaskExperiment m = frames::mask_experiment(frame, cut, margin);
+  double worst_band = 0, least_band = 1e300;
+  for (double e : m.band_error) worst_band = std::max(worst_band, e), least_band = std::min(least_band, e);
+  std::printf("signal of bands 0..%d cut to 0 for |latitude| < %s deg; beyond: %s half-wavelengths of the top band past the cut\n", lmax,
+              o.cut.c_str(), o.margin.c_str());
+  std::printf("SH: every band disturbed, relative error %.3g .. %.3g; SH projection's ringing beyond the margin %.3g of the peak\n",
+              least_band, worst_band, m.sh_ringing);
+  std::printf("%6s %12s %10s %26s %24s\n", "level", "needlets", "beyond", "max error beyond / rms", "max error nearer / rms");
+  for (const frames::MaskLevel& l : m.levels)
+    std::printf("%6d %12d %10d %26.3e %24.3e\n", l.j, l.coefficients, l.outside, l.outside_error, l.inside_error);
+  return kExitOk;
 }
 
 int run_needlet_window(const NeedletOptions& o) {
@@ -401,6 +454,20 @@ void add_frames_commands(CLI::App& app, Action& action, const std::string& comma
   tc->add_flag("--gauss", t->gauss, "Gauss product cubatures at every level instead of the shipped designs");
   tc->add_option("--json", t->out, "Write the tables here (zhf-needlet-tables-1)");
   tc->callback([t, &action] { action = [t] { return run_needlet_tables(*t); }; });
+  auto pr = std::make_shared<NeedletOptions>();
+  CLI::App* pc = nc->add_subcommand("profile", "One level's needlet against the SH delta of its top band: energy and side lobes outside caps");
+  pc->add_option("--B", pr->dilation, "Dilation B, in [1.05, 64] (default 2)");
+  pc->add_option("--j", pr->j, "Level, 0..16 (default 1)");
+  pc->add_option("--csv", pr->out, "Write both profiles against theta here (degrees, each divided by its peak)");
+  pc->callback([pr, &action] { action = [pr] { return run_needlet_profile(*pr); }; });
+  auto mk = std::make_shared<NeedletOptions>();
+  CLI::App* mc = nc->add_subcommand("mask", "A signal cut around the equator: which SH and needlet coefficients the cut disturbs");
+  mc->add_option("--B", mk->dilation, "Dilation B, in [1.05, 64] (default 2)");
+  mc->add_option("--lmax", mk->lmax, "Band limit, 1..64")->required();
+  mc->add_option("--cut", mk->cut, "Half-width of the cut band in degrees of latitude, 0.1..80 (default 10)");
+  mc->add_option("--margin", mk->margin, "Beyond the cut by this many half-wavelengths of the top band (pi / lmax of a level, pi / L for SH), 0..64 (default 4)");
+  mc->add_flag("--gauss", mk->gauss, "Gauss product cubatures instead of the shipped designs");
+  mc->callback([mk, &action] { action = [mk] { return run_needlet_mask(*mk); }; });
   auto e = std::make_shared<NeedletOptions>();
   CLI::App* ec = nc->add_subcommand("emit", "Emit a needlet expansion's evaluator (kernel look-up tables) as C++, GLSL or HLSL");
   ec->add_option("--B", e->dilation, "Dilation B, in [1.05, 64] (default 2)");

@@ -1,6 +1,8 @@
 #include "zhf/frames/needlets.h"
 
 #include <algorithm>
+#include <functional>
+#include <random>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -329,6 +331,134 @@ std::vector<double> TabulatedNeedletRotation::rotate(const std::vector<double>& 
       for (std::size_t k = 0; k < turned.size(); ++k) sum += scaled[from.offset + k] * pair.table(dot(turned[k], to.cubature.points[i]), how_);
       out[to.offset + i] += std::sqrt(to.cubature.weights[i]) * sum;
     }
+  }
+  return out;
+}
+
+}  // namespace zhf::frames
+
+// ---- Localisation -------------------------------------------------------------------------------
+
+namespace zhf::frames {
+
+int needlet_top_band(double dilation, int j) {
+  check_dilation(dilation);
+  return static_cast<int>(std::ceil(std::pow(dilation, j + 1))) - 1;
+}
+
+double needlet_kernel(double dilation, int j, double t) {
+  const int top = needlet_top_band(dilation, j);
+  std::vector<double> lk;
+  band_kernels(top, t, lk);
+  double sum = 0;
+  for (int l = 1; l <= top; ++l) sum += needlet_window(l / std::pow(dilation, j), dilation) * lk[l];
+  return sum;
+}
+
+double sh_delta_kernel(int lmax, double t) {
+  std::vector<double> lk;
+  band_kernels(lmax, t, lk);
+  double sum = 0;
+  for (double v : lk) sum += v;
+  return sum;
+}
+
+Localisation localisation(const std::function<double(double)>& kernel, int degree, double cap) {
+  std::vector<double> x, w;
+  sh::gauss_legendre(degree + 1, x, w);
+  const double edge = std::cos(cap);
+  auto energy = [&](double a, double b) {
+    double sum = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      const double k = kernel((a + b) / 2 + (b - a) / 2 * x[i]);
+      sum += w[i] * k * k;
+    }
+    return sum * (b - a) / 2;
+  };
+  Localisation out;
+  const double outside = energy(-1, edge), inside = energy(edge, 1);
+  out.outside_energy = outside / (outside + inside);
+  const double peak = kernel(1);
+  for (int i = 0; i <= 20000; ++i) {
+    const double theta = cap + (runtime::kPi - cap) * i / 20000;
+    out.sidelobe = std::max(out.sidelobe, std::abs(kernel(std::cos(theta))) / std::abs(peak));
+  }
+  return out;
+}
+
+MaskExperiment mask_experiment(const NeedletFrame& frame, double cut, double margin) {
+  const int band_limit = frame.band_limit(), n = runtime::coefficient_count(band_limit + 1);
+  std::mt19937_64 rng(1);
+  std::normal_distribution<double> normal(0, 1);
+  std::vector<double> whole(n);
+  for (int l = 0; l <= band_limit; ++l)
+    for (int m = -l; m <= l; ++m) whole[runtime::index(l, m)] = normal(rng) / (l + 1);
+  // The cut signal's coefficients: f y is a polynomial in z on each side for every phi mode.
+  const double s = std::sin(cut);
+  std::vector<double> z, wz;
+  sh::gauss_legendre(band_limit + 1, z, wz);
+  const int phis = 2 * band_limit + 1;
+  std::vector<double> cut_signal(n, 0.0), y(n);
+  auto value = [&](const double* dir) {
+    runtime::eval_sh(band_limit + 1, dir, y.data());
+    double v = 0;
+    for (int i = 0; i < n; ++i) v += whole[i] * y[i];
+    return v;
+  };
+  for (int side : {-1, 1})
+    for (std::size_t i = 0; i < z.size(); ++i) {
+      const double zz = side * ((1 + s) / 2 + (1 - s) / 2 * z[i]), r = std::sqrt(std::max(0.0, 1 - zz * zz));
+      for (int k = 0; k < phis; ++k) {
+        const double phi = 2 * runtime::kPi * k / phis, dir[3] = {r * std::cos(phi), r * std::sin(phi), zz};
+        const double weight = wz[i] * (1 - s) / 2 * 2 * runtime::kPi / phis * value(dir);
+        for (int c = 0; c < n; ++c) cut_signal[c] += weight * y[c];
+      }
+    }
+  MaskExperiment out;
+  for (int l = 0; l <= band_limit; ++l) {
+    double diff = 0, norm = 0;
+    for (int m = -l; m <= l; ++m) {
+      const int i = runtime::index(l, m);
+      diff += (cut_signal[i] - whole[i]) * (cut_signal[i] - whole[i]);
+      norm += whole[i] * whole[i];
+    }
+    out.band_error.push_back(std::sqrt(diff / norm));
+  }
+  // Ringing of the SH projection beyond the margin, on a grid of latitudes and longitudes.
+  const double beyond = std::sin(std::min(cut + margin * runtime::kPi / band_limit, runtime::kPi / 2));
+  double peak = 0;
+  for (int i = 0; i <= 180; ++i)
+    for (int k = 0; k < 2 * phis; ++k) {
+      const double zz = -1 + 2.0 * i / 180, r = std::sqrt(std::max(0.0, 1 - zz * zz)), phi = runtime::kPi * k / phis;
+      const double dir[3] = {r * std::cos(phi), r * std::sin(phi), zz};
+      const double exact = value(dir);
+      peak = std::max(peak, std::abs(exact));
+      if (std::abs(zz) <= beyond) continue;
+      double projected = 0;
+      for (int c = 0; c < n; ++c) projected += cut_signal[c] * y[c];
+      out.sh_ringing = std::max(out.sh_ringing, std::abs(projected - exact));
+    }
+  out.sh_ringing /= peak;
+  const std::vector<double> beta_whole = frame.analyze(whole), beta_cut = frame.analyze(cut_signal);
+  for (const NeedletLevel& level : frame.levels()) {
+    if (level.j < 0) continue;
+    MaskLevel m;
+    m.j = level.j;
+    m.coefficients = static_cast<int>(level.cubature.points.size());
+    double rms = 0;
+    for (int k = 0; k < m.coefficients; ++k) rms += beta_whole[level.offset + k] * beta_whole[level.offset + k];
+    rms = std::sqrt(rms / m.coefficients);
+    const double level_beyond = std::sin(std::min(cut + margin * runtime::kPi / level.lmax, runtime::kPi / 2));
+    for (int k = 0; k < m.coefficients; ++k) {
+      const double error = std::abs(beta_cut[level.offset + k] - beta_whole[level.offset + k]) / rms;
+      if (std::abs(level.cubature.points[k][2]) > level_beyond) {
+        ++m.outside;
+        m.outside_error = std::max(m.outside_error, error);
+      } else {
+        m.inside_error = std::max(m.inside_error, error);
+      }
+    }
+    out.levels.push_back(m);
   }
   return out;
 }

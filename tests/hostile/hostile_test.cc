@@ -358,6 +358,13 @@ TEST(Hostile, NothingIsInjectedIntoEmittedSource) {
   for (const std::string name : {"source_newline.json", "source_backslash.json"})
     refused(name, box, {"emit", "--table", box.path(name), "--lang", "cpp", "--out", box.path("o4")}, 3,
             "lobes[0].source: control characters and backslashes are not allowed");
+  // Needlet evaluators: the prefix is refused unless it is an identifier; the command line is escaped.
+  refused("needlets emit --prefix with a newline", box,
+          {"needlets", "emit", "--lmax", "3", "--lang", "glsl", "--prefix", "a\n#error p", "--out", box.path("n.glsl")}, 2,
+          "--prefix: must be an identifier");
+  succeeded("needlets emit --out with a newline", box,
+            {"needlets", "emit", "--lmax", "3", "--size", "16", "--lang", "cpp", "--out", box.path("n\n#error x.h")});
+  EXPECT_TRUE(no_injected_line(read_text(box.path("n\n#error x.h"))));
 }
 
 TEST(Hostile, GenerateNeverOverwritesWhatItDidNotWrite) {

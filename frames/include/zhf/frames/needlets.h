@@ -148,3 +148,44 @@ class TabulatedNeedletRotation {
 };
 
 }  // namespace zhf::frames
+
+namespace zhf::frames {
+
+// ---- Localisation ---------------------------------------------------------------------------
+
+// The full needlet kernel of level j (its window uncut): sum_l b(l / B^j) (2l+1)/(4 pi) P_l(t) over
+// B^(j-1) < l < B^(j+1); and the truncated SH delta of bands 0..lmax, sum_l (2l+1)/(4 pi) P_l(t).
+// Top bands: needlet_top_band(B, j) = ceil(B^(j+1)) - 1. Cost: O(lmax) per t.
+int needlet_top_band(double dilation, int j);
+double needlet_kernel(double dilation, int j, double t);
+double sh_delta_kernel(int lmax, double t);
+
+// How much of a zonal kernel K (a polynomial of degree `degree` in t = cos theta) lies outside the
+// cap theta < cap: its energy fraction there, int_{theta > cap} K^2 / int K^2 (exact: Gauss-Legendre
+// on each side), and its largest |K| there relative to K(1) (sampled at 20001 angles).
+struct Localisation {
+  double outside_energy = 0;
+  double sidelobe = 0;
+};
+Localisation localisation(const std::function<double(double)>& kernel, int degree, double cap);
+
+// A random signal of bands 0..L (power ~ 1 / (l + 1)^2, seed fixed) cut to zero in the band
+// |latitude| < cut (radians), analysed in SH to L and in needlets: which coefficients the cut
+// disturbs. The SH coefficients of the cut signal are exact (Gauss-Legendre in z on each side of
+// the cut times equal steps in phi integrate its piecewise polynomials exactly).
+// Distances beyond the cut are counted in half-wavelengths of the top band: `margin` pi / lmax
+// for a level of top band lmax, margin pi / L for the SH projection.
+struct MaskLevel {
+  int j = 0;
+  int coefficients = 0, outside = 0;  // needlets, and those centred beyond the cut and the margin
+  double outside_error = 0;           // max |beta(cut) - beta(whole)| / rms beta(whole) there
+  double inside_error = 0;            // the same for the needlets centred nearer
+};
+struct MaskExperiment {
+  std::vector<double> band_error;  // per band l: |f_l(cut) - f_l(whole)| / |f_l(whole)|
+  double sh_ringing = 0;           // max |P_L(cut)(x) - f(x)| / max |f| at x beyond the cut and the margin
+  std::vector<MaskLevel> levels;
+};
+MaskExperiment mask_experiment(const NeedletFrame& frame, double cut, double margin);
+
+}  // namespace zhf::frames
