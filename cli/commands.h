@@ -35,6 +35,7 @@ void add_bench_command(CLI::App& app, Action& action);
 void add_rotate_command(CLI::App& app, Action& action);
 void add_splat_command(CLI::App& app, Action& action);
 void add_product_command(CLI::App& app, Action& action);
+void add_project_command(CLI::App& app, Action& action);
 void add_frames_commands(CLI::App& app, Action& action, const std::string& command_line);  // designs, frame, needlets
 
 }  // namespace zhf::cli

@@ -70,6 +70,7 @@ int main(int argc, char** argv) {
   add_splat_command(app, action);
   add_product_command(app, action);
   add_frames_commands(app, action, command);
+  add_project_command(app, action);
   if (argc > 1 && argv[1][0] != '-') {
     bool known = false;
     for (const CLI::App* sub : app.get_subcommands({})) known = known || sub->get_name() == argv[1];

@@ -28,7 +28,7 @@ echo "== stage 3: fuzzing"
 fuzz_build="${ZHF_BUILD}-fuzz"
 CC=clang CXX=clang++ cmake -S "$ZHF_ROOT" -B "$fuzz_build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "$debug_flags" -DZHF_FUZZ=ON >/dev/null
 cmake --build "$fuzz_build" -j "$ZHF_JOBS"
-for corpus in json lobe_table coefficients scene manifest rotation_text ply; do
+for corpus in json lobe_table coefficients scene manifest rotation_text ply hdr; do
   target="fuzz_$corpus"
   work=$(mktemp -d)
   cp "$ZHF_ROOT"/tests/fuzz_corpus/$corpus/* "$work/"

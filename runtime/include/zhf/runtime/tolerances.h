@@ -134,6 +134,9 @@ inline constexpr double kTightFrameRotation = 1e-13;
 // tables, the interpolation weight (u ~ table size, so its ulp grows with the table) and a sum of
 // a few hundred terms.
 inline constexpr double kNeedletLutFloat = 1e-5;
+// Projection of a function of bands <= 7 (coefficients ~1) on nodes exact for it (designs, Gauss
+// rules): sums of up to ~10^3 weighted samples of size <= 10.
+inline constexpr double kExactProjection = 1e-12;
 
 // ---- Reference math (tests of sh/ and candidates/) ----------------------------------------------
 // What is exact in exact arithmetic and rounds once or twice in double (the identity rotation's

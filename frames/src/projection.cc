@@ -1,0 +1,119 @@
+#include "zhf/frames/projection.h"
+
+#include <cmath>
+#include <random>
+#include <stdexcept>
+
+#include "zhf/runtime/sh_eval.h"
+
+namespace zhf::frames {
+namespace {
+
+constexpr int kBandLimitedBands = 8;  // bands 0..7
+constexpr double kCapRadius = 30 * runtime::kPi / 180;
+
+const std::vector<double>& band_limited_coefficients() {
+  static const std::vector<double> f = [] {
+    std::mt19937_64 rng(8);
+    std::normal_distribution<double> normal(0, 1);
+    std::vector<double> c(runtime::coefficient_count(kBandLimitedBands));
+    for (int l = 0; l < kBandLimitedBands; ++l)
+      for (int m = -l; m <= l; ++m) c[runtime::index(l, m)] = normal(rng) / (l + 1);
+    return c;
+  }();
+  return f;
+}
+
+double legendre(int l, double t) {
+  double p0 = 1, p1 = t;
+  if (l == 0) return 1;
+  for (int k = 2; k <= l; ++k) {
+    const double p = ((2 * k - 1) * t * p1 - (k - 1) * p0) / k;
+    p0 = p1;
+    p1 = p;
+  }
+  return p1;
+}
+
+}  // namespace
+
+std::vector<std::vector<double>> project_samples(const Cubature& nodes, const std::vector<double>& values, int channels, int order) {
+  if (order < 1 || order > kMaxProjectionOrder)
+    throw std::invalid_argument("projection order must be 1.." + std::to_string(kMaxProjectionOrder) + " (got " + std::to_string(order) + ")");
+  if (channels < 1 || values.size() != nodes.points.size() * channels)
+    throw std::invalid_argument("samples: " + std::to_string(values.size()) + " values for " + std::to_string(nodes.points.size()) +
+                                " nodes and " + std::to_string(channels) + " channels");
+  const int n = runtime::coefficient_count(order);
+  std::vector<std::vector<double>> out(channels, std::vector<double>(n, 0.0));
+  const runtime::TabulatedLegendreCoefficients legendre_coefficients(order);
+  std::vector<double> y(n);
+  for (std::size_t k = 0; k < nodes.points.size(); ++k) {
+    runtime::eval_sh(order, nodes.points[k].data(), y.data(), legendre_coefficients);
+    for (int c = 0; c < channels; ++c) {
+      const double weighted = nodes.weights[k] * values[k * channels + c];
+      if (weighted == 0) continue;
+      for (int i = 0; i < n; ++i) out[c][i] += weighted * y[i];
+    }
+  }
+  return out;
+}
+
+Cubature equirectangular_nodes(int width, int height) {
+  if (width < 1 || height < 1) throw std::invalid_argument("an image needs at least one pixel");
+  Cubature c;
+  c.degree = 0;
+  c.name = "grid " + std::to_string(width) + "x" + std::to_string(height);
+  c.points.reserve(static_cast<std::size_t>(width) * height);
+  for (int r = 0; r < height; ++r) {
+    const double top = runtime::kPi * r / height, bottom = runtime::kPi * (r + 1) / height, theta = (top + bottom) / 2;
+    const double solid = 2 * runtime::kPi / width * (std::cos(top) - std::cos(bottom));
+    for (int col = 0; col < width; ++col) {
+      const double phi = 2 * runtime::kPi * (col + 0.5) / width;
+      c.points.push_back({std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)});
+      c.weights.push_back(solid);
+    }
+  }
+  return c;
+}
+
+double test_function(TestFunction f, const Point& x) {
+  if (f == TestFunction::kCap) return x[2] > std::cos(kCapRadius) ? 1.0 : 0.0;
+  const std::vector<double>& c = band_limited_coefficients();
+  std::vector<double> y(c.size());
+  runtime::eval_sh(kBandLimitedBands, x.data(), y.data());
+  double sum = 0;
+  for (std::size_t i = 0; i < c.size(); ++i) sum += c[i] * y[i];
+  return sum;
+}
+
+std::vector<double> test_function_coefficients(TestFunction f, int order) {
+  std::vector<double> out(runtime::coefficient_count(order), 0.0);
+  if (f == TestFunction::kBandLimited) {
+    const std::vector<double>& c = band_limited_coefficients();
+    for (std::size_t i = 0; i < out.size() && i < c.size(); ++i) out[i] = c[i];
+    return out;
+  }
+  const double t = std::cos(kCapRadius);
+  for (int l = 0; l < order; ++l) {
+    const double integral = l == 0 ? 1 - t : (legendre(l - 1, t) - legendre(l + 1, t)) / (2 * l + 1);  // int_t^1 P_l
+    out[runtime::index(l, 0)] = 2 * runtime::kPi * std::sqrt((2 * l + 1) / (4 * runtime::kPi)) * integral;
+  }
+  return out;
+}
+
+ProjectionError projection_error(const Cubature& nodes, int order) {
+  ProjectionError e;
+  e.nodes = nodes.name;
+  e.samples = static_cast<int>(nodes.points.size());
+  for (TestFunction f : {TestFunction::kBandLimited, TestFunction::kCap}) {
+    std::vector<double> values;
+    for (const Point& p : nodes.points) values.push_back(test_function(f, p));
+    const std::vector<double> got = project_samples(nodes, values, 1, order)[0], exact = test_function_coefficients(f, order);
+    double worst = 0;
+    for (std::size_t i = 0; i < got.size(); ++i) worst = std::max(worst, std::abs(got[i] - exact[i]));
+    (f == TestFunction::kCap ? e.cap : e.band_limited) = worst;
+  }
+  return e;
+}
+
+}  // namespace zhf::frames

@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# Draws the plots of docs/frames.md:
+#   docs/needlet_kernels.svg  needlets against the truncated SH delta of the same top band, each
+#                             over its peak (zhf needlets profile);
+#   docs/projection.svg       projection error per sample count of designs, Gauss rules and
+#                             equal-angle grids (zhf project --compare).
+# Usage: bash scripts/plot_frames.sh [ZHF_BINARY]   (needs gnuplot)
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+zhf="${1:-$root/build/cli/zhf}"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cases=("2 1" "2 2" "2 3" "3 1" "2.4 1")
+for c in "${cases[@]}"; do
+  read -r b j <<<"$c"
+  "$zhf" needlets profile --B "$b" --j "$j" --csv "$work/B${b}_j${j}.csv" >/dev/null
+done
+cat >"$work/plot.gp" <<GP
+set terminal svg size 1200,640 font "sans,11" background "white"
+set output "$work/needlet_kernels.svg"
+set datafile separator ","
+set multiplot layout 2,3 title "Needlets (solid) against the SH delta of the same top band (dashed), each over its peak"
+set xlabel "angle from the centre (degrees)"
+set grid
+set yrange [-0.45:1.05]
+GP
+for c in "${cases[@]}"; do
+  read -r b j <<<"$c"
+  cat >>"$work/plot.gp" <<GP
+set title "B = $b, j = $j"
+set xrange [0:180]
+plot "$work/B${b}_j${j}.csv" using 1:2 with lines lw 2 lc rgb "#1f77b4" title "needlet", \
+     "" using 1:3 with lines lw 1.5 dt 2 lc rgb "#d62728" title "SH delta"
+GP
+done
+echo "unset multiplot" >>"$work/plot.gp"
+gnuplot "$work/plot.gp"
+
+"$zhf" project --compare --order 8 --csv "$work/projection.csv" >/dev/null
+for family in design gauss grid; do grep "^$family," "$work/projection.csv" >"$work/$family.csv" || true; done
+cat >"$work/projection.gp" <<GP
+set terminal svg size 1000,420 font "sans,11" background "white"
+set output "$work/projection.svg"
+set datafile separator ","
+set multiplot layout 1,2 title "Projection to order 8: max coefficient error against the number of samples"
+set logscale xy
+set format y "10^{%T}"
+set xlabel "samples"
+set grid
+set key bottom left
+set yrange [1e-16:10]
+set title "a function of bands 0..7"
+plot "$work/design.csv" using 2:3 with linespoints pt 7 title "t-designs", \
+     "$work/gauss.csv" using 2:3 with linespoints pt 5 title "Gauss x equal phi", \
+     "$work/grid.csv" using 2:3 with linespoints pt 9 title "equal-angle grid"
+set yrange [1e-4:1]
+set title "a 30-degree cap (not band-limited)"
+plot "$work/design.csv" using 2:4 with linespoints pt 7 title "t-designs", \
+     "$work/gauss.csv" using 2:4 with linespoints pt 5 title "Gauss x equal phi", \
+     "$work/grid.csv" using 2:4 with linespoints pt 9 title "equal-angle grid"
+unset multiplot
+GP
+gnuplot "$work/projection.gp"
+for plot in needlet_kernels projection; do
+  cp "$work/$plot.svg" "$root/docs/$plot.svg.tmp"
+  mv "$root/docs/$plot.svg.tmp" "$root/docs/$plot.svg"
+done
+echo "wrote docs/needlet_kernels.svg and docs/projection.svg"

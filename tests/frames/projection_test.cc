@@ -1,0 +1,91 @@
+// Projection into SH (frames/projection.h): exact on designs and Gauss rules for band-limited
+// functions, the cap's closed form against a 1D integration, equal-angle grids converging, and
+// `zhf project --image` on a Radiance file.
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "test_support.h"
+#include "zhf/frames/projection.h"
+#include "zhf/io/hdr.h"
+#include "zhf/runtime/sh_eval.h"
+#include "zhf/runtime/tolerances.h"
+
+namespace zhf::frames {
+namespace {
+
+using runtime::tolerance::kExactProjection;
+
+TEST(Projection, ExactCubaturesProjectBandLimitedFunctionsExactly) {
+  const std::string designs = std::string(ZHF_SOURCE_DIR) + "/generated/designs";
+  for (int order : {1, 4, 8, 12}) {
+    const int degree = 7 + order - 1;
+    for (const Cubature& nodes : {design_cubature(designs, degree), gauss_product_cubature(degree)}) {
+      const ProjectionError e = projection_error(nodes, order);
+      EXPECT_LT(e.band_limited, kExactProjection) << "order " << order << ", " << nodes.name;
+    }
+    // One degree short, the top band aliases.
+    EXPECT_GT(projection_error(gauss_product_cubature(degree - 2), order).band_limited, 1e-6) << "order " << order;
+  }
+}
+
+TEST(Projection, CapCoefficientsMatchAOneDimensionalIntegral) {
+  const std::vector<double> exact = test_function_coefficients(TestFunction::kCap, 16);
+  const double edge = std::cos(30 * runtime::kPi / 180);
+  for (int l = 0; l < 16; ++l) {
+    // 2 pi int_edge^1 y_l^0(t) dt by the midpoint rule on zhf's own Q_l^0.
+    constexpr int kSteps = 100000;
+    double sum = 0;
+    for (int i = 0; i < kSteps; ++i) sum += runtime::legendre_q<double>(l, 0, edge + (1 - edge) * (i + 0.5) / kSteps);
+    EXPECT_NEAR(exact[runtime::index(l, 0)], 2 * runtime::kPi * sum * (1 - edge) / kSteps, 1e-9) << "band " << l;
+    for (int m = 1; m <= l; ++m) EXPECT_EQ(exact[runtime::index(l, m)], 0.0) << "band " << l << ", m " << m;
+  }
+}
+
+TEST(Projection, EqualAngleGridsHaveExactSolidAnglesAndConverge) {
+  double previous = 1;
+  for (int height : {8, 32, 128}) {
+    const Cubature grid = equirectangular_nodes(2 * height, height);
+    double total = 0;
+    for (double w : grid.weights) total += w;
+    EXPECT_NEAR(total, 4 * runtime::kPi, 1e-12) << "height " << height;
+    const double error = projection_error(grid, 8).band_limited;
+    EXPECT_LT(error, previous / 4) << "height " << height;  // midpoint in theta: ~h^2
+    previous = error;
+  }
+  EXPECT_THROW(project_samples(equirectangular_nodes(4, 2), std::vector<double>(3), 1, 2), std::invalid_argument);
+}
+
+TEST(Projection, ARadianceImageBecomesRgbCoefficients) {
+  const std::filesystem::path dir = test::make_temp_dir();
+  io::HdrImage image;
+  image.width = 64;
+  image.height = 32;
+  for (int i = 0; i < image.width * image.height; ++i) image.rgb.insert(image.rgb.end(), {1.0f, 0.5f, 2.0f});  // exact in RGBE
+  const std::string path = (dir / "sky.hdr").string(), out = (dir / "sky.json").string();
+  test::write_text(path, io::encode_hdr(image));
+  const test::RunResult r = test::run_zhf("project --image '" + path + "' --order 3 --out '" + out + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = test::read_json(out);
+  ASSERT_EQ(j.size(), 1u);
+  ASSERT_EQ(j[0].size(), 3u);
+  const double scale[3] = {1.0, 0.5, 2.0};
+  for (int c = 0; c < 3; ++c) {
+    // A constant: only y_0^0, with weight 4 pi / sqrt(4 pi); odd bands and m != 0 vanish by symmetry.
+    EXPECT_NEAR(j[0][c][0].get<double>(), scale[c] * std::sqrt(4 * runtime::kPi), 1e-6) << "channel " << c;
+    for (int i = 1; i < 9; ++i) {
+      if (i == runtime::index(2, 0)) continue;  // the grid's midpoint rule in theta leaves y_2^0 a little
+      EXPECT_NEAR(j[0][c][i].get<double>(), 0.0, 1e-6) << "channel " << c << ", index " << i;
+    }
+  }
+  test::write_text(path, io::encode_hdr(image) + "x");
+  const test::RunResult bad = test::run_zhf("project --image '" + path + "' --order 3 --out '" + out + "'");
+  EXPECT_EQ(bad.exit_code, 3);
+  EXPECT_NE(bad.err.find("1 bytes after the last scanline"), std::string::npos) << bad.err;
+}
+
+}  // namespace
+}  // namespace zhf::frames
