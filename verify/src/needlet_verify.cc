@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "runner.h"
+#include "runners/shader_runner.h"
 #include "vulkan_device.h"
 #include "zhf/io/files.h"
 #include "zhf/io/private_dir.h"
@@ -157,19 +158,8 @@ std::string shader_wrapper(bool glsl, const std::string& kernels, const std::str
 
 std::vector<double> run_shader(bool glsl, const std::string& dir, const std::string& kernels, const Case& c, const std::string& prefix,
                                const std::vector<float>& data, VulkanDevice& device) {
-  const std::string source = dir + (glsl ? "/needlets.comp" : "/needlets.hlsl"), spirv = dir + "/needlets.spv";
-  io::write_file_atomically(source, shader_wrapper(glsl, kernels, prefix, c.beta.size()));
-  std::vector<std::string> compile = {"glslangValidator"};
-  if (glsl) compile.insert(compile.end(), {"-V", "-S", "comp"});
-  else compile.insert(compile.end(), {"-D", "-e", "main", "-S", "comp", "-V"});
-  compile.insert(compile.end(), {"-o", spirv, source});
-  if (!io::run_process(compile, dir + "/compile.log").ok())
-    throw RunFailure("glslangValidator failed: " + io::log_excerpt(dir + "/compile.log", 4));
-  if (!io::run_process({"spirv-val", spirv}, dir + "/validate.log").ok())
-    throw RunFailure("spirv-val failed: " + io::log_excerpt(dir + "/validate.log", 3));
-  const std::string bytes = io::read_text_file(spirv, std::size_t(1) << 30);
-  std::vector<std::uint32_t> words(bytes.size() / 4);
-  std::memcpy(words.data(), bytes.data(), words.size() * 4);
+  const std::vector<std::uint32_t> words =
+      compile_spirv(glsl ? glsl_dialect() : hlsl_dialect(), dir, shader_wrapper(glsl, kernels, prefix, c.beta.size()));
   std::vector<std::vector<std::uint8_t>> buffers = {floats(c.beta), floats(flat_directions(c)),
                                                      std::vector<std::uint8_t>(c.directions.size() * sizeof(float), 0),
                                                      std::vector<std::uint8_t>(data.size() * sizeof(float))};

@@ -3,6 +3,6 @@
 
 namespace zhf::verify {
 
-std::unique_ptr<Runner> make_glsl_runner() { return make_shader_runner({true, "verify.comp", {"-V", "-S", "comp"}}); }
+std::unique_ptr<Runner> make_glsl_runner() { return make_shader_runner(glsl_dialect()); }
 
 }  // namespace zhf::verify

@@ -1,11 +1,8 @@
-// HLSL: the wrapper compiled by glslangValidator's HLSL front end (entry main, compute stage);
-// push constants as [[vk::push_constant]] ConstantBuffer<T>.
+// HLSL: the wrapper compiled by glslangValidator's HLSL front end (shader_runner.cc).
 #include "shader_runner.h"
 
 namespace zhf::verify {
 
-std::unique_ptr<Runner> make_hlsl_runner() {
-  return make_shader_runner({false, "verify.hlsl", {"-D", "-e", "main", "-S", "comp", "-V"}});
-}
+std::unique_ptr<Runner> make_hlsl_runner() { return make_shader_runner(hlsl_dialect()); }
 
 }  // namespace zhf::verify

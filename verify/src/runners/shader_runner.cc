@@ -132,19 +132,8 @@ class ShaderRunner : public Runner {
 
   RunOutputs run(const RunRequest& r) const override {
     const Inputs& in = *r.inputs;
-    const std::string source = r.work_dir + "/" + d_.source_name, spirv = r.work_dir + "/shader.spv";
-    const std::string kernels = io::read_text_file(r.kernel_file, runtime::kMaxTableBytes);
-    io::write_file_atomically(source, wrapper(d_.glsl, r.order, kernels, r.modes));
-    std::vector<std::string> compile = {"glslangValidator"};
-    compile.insert(compile.end(), d_.compile_flags.begin(), d_.compile_flags.end());
-    compile.insert(compile.end(), {"-o", spirv, source});
-    if (!io::run_process(compile, r.work_dir + "/compile.log").ok())
-      throw RunFailure("glslangValidator failed: " + io::log_excerpt(r.work_dir + "/compile.log", 4));
-    if (!io::run_process({"spirv-val", spirv}, r.work_dir + "/validate.log").ok())
-      throw RunFailure("spirv-val failed: " + io::log_excerpt(r.work_dir + "/validate.log", 3));
-    const std::string bytes = io::read_text_file(spirv, std::size_t(1) << 30);
-    std::vector<std::uint32_t> words(bytes.size() / 4);
-    std::memcpy(words.data(), bytes.data(), words.size() * 4);
+    const std::vector<std::uint32_t> words =
+        compile_spirv(d_, r.work_dir, wrapper(d_.glsl, r.order, io::read_text_file(r.kernel_file, runtime::kMaxTableBytes), r.modes));
     const size_t block = size_t(kMaxChannels) * r.order * r.order * in.count;
     std::vector<std::vector<std::uint8_t>> buffers = {as_floats(in.rotation_stream()), as_floats(in.coeffs),
                                                        std::vector<std::uint8_t>(r.modes.size() * block * sizeof(float), 0)};
@@ -174,6 +163,27 @@ class ShaderRunner : public Runner {
 };
 
 }  // namespace
+
+ShaderDialect glsl_dialect() { return {true, "verify.comp", {"-V", "-S", "comp"}}; }
+// HLSL: glslangValidator's HLSL front end, entry main, compute stage; push constants as
+// [[vk::push_constant]] ConstantBuffer<T>.
+ShaderDialect hlsl_dialect() { return {false, "verify.hlsl", {"-D", "-e", "main", "-S", "comp", "-V"}}; }
+
+std::vector<std::uint32_t> compile_spirv(const ShaderDialect& dialect, const std::string& dir, const std::string& source) {
+  const std::string path = dir + "/" + dialect.source_name, spirv = dir + "/shader.spv";
+  io::write_file_atomically(path, source);
+  std::vector<std::string> compile = {"glslangValidator"};
+  compile.insert(compile.end(), dialect.compile_flags.begin(), dialect.compile_flags.end());
+  compile.insert(compile.end(), {"-o", spirv, path});
+  if (!io::run_process(compile, dir + "/compile.log").ok())
+    throw RunFailure("glslangValidator failed: " + io::log_excerpt(dir + "/compile.log", 4));
+  if (!io::run_process({"spirv-val", spirv}, dir + "/validate.log").ok())
+    throw RunFailure("spirv-val failed: " + io::log_excerpt(dir + "/validate.log", 3));
+  const std::string bytes = io::read_text_file(spirv, std::size_t(1) << 30);
+  std::vector<std::uint32_t> words(bytes.size() / 4);
+  std::memcpy(words.data(), bytes.data(), words.size() * 4);
+  return words;
+}
 
 std::unique_ptr<Runner> make_shader_runner(ShaderDialect dialect) { return std::make_unique<ShaderRunner>(std::move(dialect)); }
 

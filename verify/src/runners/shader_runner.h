@@ -4,6 +4,7 @@
 // device in float.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -17,6 +18,13 @@ struct ShaderDialect {
   std::string source_name;                  // "verify.comp", "verify.hlsl"
   std::vector<std::string> compile_flags;   // glslangValidator's, before -o
 };
+
+ShaderDialect glsl_dialect();
+ShaderDialect hlsl_dialect();
+
+// `source` written to dir/<source_name>, compiled by glslangValidator and checked by spirv-val
+// (logs beside it): the SPIR-V words, or RunFailure with the log's excerpt.
+std::vector<std::uint32_t> compile_spirv(const ShaderDialect& dialect, const std::string& dir, const std::string& source);
 
 std::unique_ptr<Runner> make_shader_runner(ShaderDialect dialect);
 
