@@ -263,8 +263,9 @@ int run_needlet_verify(const NeedletOptions& o) {
 int run_needlet_profile(const NeedletOptions& o) {
   const double dilation = dilation_option(o.dilation);
   const int j = static_cast<int>(integer_option("--j", o.j, 0, 16));
+  if (std::pow(dilation, j + 1) > frames::kMaxProfileBand + 1)
+    throw UsageError("--j: level " + o.j + " of B = " + o.dilation + " reaches past band " + std::to_string(frames::kMaxProfileBand));
   const int top = frames::needlet_top_band(dilation, j);
-  if (top > frames::kMaxNeedletBand) throw UsageError("--j: level " + o.j + " reaches band " + std::to_string(top) + ", above 4096");
   std::unique_ptr<io::PendingFile> out;
   if (!o.out.empty()) out = std::make_unique<io::PendingFile>(o.out);
   const auto needlet = [&](double t) { return frames::needlet_kernel(dilation, j, t); };
@@ -449,7 +450,7 @@ void add_frames_commands(CLI::App& app, Action& action, const std::string& comma
   auto t = std::make_shared<NeedletOptions>();
   CLI::App* tc = nc->add_subcommand("tables", "The needlet frame of bands 0..lmax: levels, kernel look-up error and tabulated rotation error per table size");
   tc->add_option("--B", t->dilation, "Dilation B, in [1.05, 64] (default 2)");
-  tc->add_option("--lmax", t->lmax, "Band limit, 1..64")->required();
+  tc->add_option("--lmax", t->lmax, "Band limit, 1..63")->required();
   tc->add_option("--sizes", t->sizes, "Table sizes, e.g. 64,256,1024 (3..1048576; default 64,256,1024,4096,16384)");
   tc->add_flag("--gauss", t->gauss, "Gauss product cubatures at every level instead of the shipped designs");
   tc->add_option("--json", t->out, "Write the tables here (zhf-needlet-tables-1)");
@@ -463,7 +464,7 @@ void add_frames_commands(CLI::App& app, Action& action, const std::string& comma
   auto mk = std::make_shared<NeedletOptions>();
   CLI::App* mc = nc->add_subcommand("mask", "A signal cut around the equator: which SH and needlet coefficients the cut disturbs");
   mc->add_option("--B", mk->dilation, "Dilation B, in [1.05, 64] (default 2)");
-  mc->add_option("--lmax", mk->lmax, "Band limit, 1..64")->required();
+  mc->add_option("--lmax", mk->lmax, "Band limit, 1..63")->required();
   mc->add_option("--cut", mk->cut, "Half-width of the cut band in degrees of latitude, 0.1..80 (default 10)");
   mc->add_option("--margin", mk->margin, "Beyond the cut by this many half-wavelengths of the top band (pi / lmax of a level, pi / L for SH), 0..64 (default 4)");
   mc->add_flag("--gauss", mk->gauss, "Gauss product cubatures instead of the shipped designs");
@@ -471,7 +472,7 @@ void add_frames_commands(CLI::App& app, Action& action, const std::string& comma
   auto e = std::make_shared<NeedletOptions>();
   CLI::App* ec = nc->add_subcommand("emit", "Emit a needlet expansion's evaluator (kernel look-up tables) as C++, GLSL or HLSL");
   ec->add_option("--B", e->dilation, "Dilation B, in [1.05, 64] (default 2)");
-  ec->add_option("--lmax", e->lmax, "Band limit, 1..64")->required();
+  ec->add_option("--lmax", e->lmax, "Band limit, 1..63")->required();
   ec->add_option("--size", e->size, "Entries per kernel table, 3..1048576 (default 1024)");
   ec->add_option("--interpolation", e->interpolation, "linear (default) or quadratic");
   ec->add_option("--lang", e->lang, "cpp, glsl or hlsl")->required();
@@ -483,7 +484,7 @@ void add_frames_commands(CLI::App& app, Action& action, const std::string& comma
   auto v = std::make_shared<NeedletOptions>();
   CLI::App* vc = nc->add_subcommand("verify", "Compile and run the emitted needlet evaluators against their CPU mirror and the exact expansion");
   vc->add_option("--B", v->dilation, "Dilation B, in [1.05, 64] (default 2)");
-  vc->add_option("--lmax", v->lmax, "Band limit, 1..64")->required();
+  vc->add_option("--lmax", v->lmax, "Band limit, 1..63")->required();
   vc->add_option("--size", v->size, "Entries per kernel table, 3..1048576 (default 1024)");
   vc->add_option("--interpolation", v->interpolation, "linear (default) or quadratic");
   vc->add_option("--langs", v->langs, "Languages, e.g. cpp,glsl (default cpp,glsl,hlsl)");

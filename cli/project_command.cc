@@ -113,7 +113,7 @@ void add_project_command(CLI::App& app, Action& action) {
   c->add_option("--image", o->image, "A Radiance .hdr equirectangular image (row 0 at +z, phi from +x towards +y): RGB coefficients");
   c->add_option("--function", o->function, "A test function with known coefficients: band-limited (bands 0..7) or cap (30 degrees)");
   c->add_option("--nodes", o->nodes, "With --function: design (default), gauss or grid");
-  c->add_option("--degree", o->degree, "With --function: the nodes' degree, 0..256 (default 7 + N - 1, exact for the band-limited function)");
+  c->add_option("--degree", o->degree, "With --function: the nodes' degree, 0..126 (default 7 + N - 1, exact for the band-limited function)");
   c->add_flag("--compare", o->compare, "Print the error per sample count of designs, Gauss rules and equal-angle grids on both test functions");
   c->add_option("--csv", o->csv, "With --compare: write the table here");
   c->add_option("--out", o->out, "Write the coefficients here (JSON, as zhf rotate reads them)");

@@ -343,7 +343,11 @@ namespace zhf::frames {
 
 int needlet_top_band(double dilation, int j) {
   check_dilation(dilation);
-  return static_cast<int>(std::ceil(std::pow(dilation, j + 1))) - 1;
+  const double top = std::ceil(std::pow(dilation, j + 1)) - 1;  // compared before the cast: B^(j+1) may pass any int
+  if (!(j >= 0 && top <= kMaxNeedletBand))
+    throw std::invalid_argument("level " + std::to_string(j) + " of B = " + std::to_string(dilation) + " reaches past band " +
+                                std::to_string(kMaxNeedletBand));
+  return static_cast<int>(top);
 }
 
 double needlet_kernel(double dilation, int j, double t) {
@@ -364,6 +368,8 @@ double sh_delta_kernel(int lmax, double t) {
 }
 
 Localisation localisation(const std::function<double(double)>& kernel, int degree, double cap) {
+  if (degree < 0 || degree > kMaxProfileBand)
+    throw std::invalid_argument("profile degree must be 0.." + std::to_string(kMaxProfileBand) + " (got " + std::to_string(degree) + ")");
   std::vector<double> x, w;
   sh::gauss_legendre(degree + 1, x, w);
   const double edge = std::cos(cap);

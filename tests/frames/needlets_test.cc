@@ -247,6 +247,9 @@ TEST(NeedletLocalisation, UncutKernelsAndCapEnergies) {
     EXPECT_NEAR(localisation(delta, lmax, runtime::kPi).outside_energy, 0.0, kNeedletFrame) << "lmax " << lmax;
     EXPECT_NEAR(delta(1), (lmax + 1) * (lmax + 1) / (4 * runtime::kPi), kNeedletFrame) << "lmax " << lmax;
   }
+  EXPECT_THROW(localisation([](double) { return 1.0; }, kMaxProfileBand + 1, 0.1), std::invalid_argument);
+  EXPECT_THROW(needlet_top_band(64, 16), std::invalid_argument);  // 64^17 passes any int
+  EXPECT_EQ(needlet_top_band(2, 3), 15);
 }
 
 // The cut disturbs every SH band, but needlets centred far from it (in their own wavelengths)

@@ -59,7 +59,7 @@ std::vector<WindowValue> needlet_windows(double dilation, int lmax);
 
 // ---- The needlet frame ------------------------------------------------------------------------
 
-inline constexpr int kMaxNeedletFrameBand = 64;  // L of a NeedletFrame
+inline constexpr int kMaxNeedletFrameBand = 63;  // L of a NeedletFrame: levels need degree 2L
 
 struct NeedletLevel {
   int j = 0;                    // -1: the scaling function
@@ -155,14 +155,17 @@ namespace zhf::frames {
 
 // The full needlet kernel of level j (its window uncut): sum_l b(l / B^j) (2l+1)/(4 pi) P_l(t) over
 // B^(j-1) < l < B^(j+1); and the truncated SH delta of bands 0..lmax, sum_l (2l+1)/(4 pi) P_l(t).
-// Top bands: needlet_top_band(B, j) = ceil(B^(j+1)) - 1. Cost: O(lmax) per t.
+// Top bands: needlet_top_band(B, j) = ceil(B^(j+1)) - 1; std::invalid_argument for a level below 0
+// or reaching past kMaxNeedletBand. Cost: O(lmax) per t.
 int needlet_top_band(double dilation, int j);
 double needlet_kernel(double dilation, int j, double t);
 double sh_delta_kernel(int lmax, double t);
 
 // How much of a zonal kernel K (a polynomial of degree `degree` in t = cos theta) lies outside the
 // cap theta < cap: its energy fraction there, int_{theta > cap} K^2 / int K^2 (exact: Gauss-Legendre
-// on each side), and its largest |K| there relative to K(1) (sampled at 20001 angles).
+// on each side), and its largest |K| there relative to K(1) (sampled at 20001 angles). Degrees up
+// to kMaxProfileBand (std::invalid_argument beyond).
+inline constexpr int kMaxProfileBand = 63;
 struct Localisation {
   double outside_energy = 0;
   double sidelobe = 0;
