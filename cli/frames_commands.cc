@@ -162,7 +162,7 @@ double dilation_option(const std::string& text) {
 // Each level on the smallest shipped design exact for it, or on Gauss product nodes.
 frames::NeedletFrame needlet_frame(double dilation, int lmax, bool gauss) {
   if (gauss) return frames::NeedletFrame(dilation, lmax);
-  const std::string designs = pipeline::project().generated() + "/designs";
+  const std::string designs = pipeline::project().designs();
   return frames::NeedletFrame(dilation, lmax, [&](int degree) { return frames::design_cubature(designs, degree); });
 }
 
@@ -268,7 +268,7 @@ int run_needlet_profile(const NeedletOptions& o) {
   const int top = frames::needlet_top_band(dilation, j);
   std::unique_ptr<io::PendingFile> out;
   if (!o.out.empty()) out = std::make_unique<io::PendingFile>(o.out);
-  const auto needlet = [&](double t) { return frames::needlet_kernel(dilation, j, t); };
+  const std::function<double(double)> needlet = frames::needlet_kernel(dilation, j);
   const auto delta = [&](double t) { return frames::sh_delta_kernel(top, t); };
   std::printf("B = %g, level %d: bands %d..%d (SH delta: bands 0..%d)\n", dilation, j, static_cast<int>(std::floor(std::pow(dilation, j - 1))) + 1, top, top);
   std::printf("%12s %22s %22s %16s %16s\n", "cap (deg)", "needlet outside", "SH delta outside", "needlet lobe", "SH delta lobe");

@@ -73,10 +73,10 @@ bool valid_prefix(const std::string& prefix, std::string& why) {
 }
 
 OpCount needlet_lut_ops(const frames::NeedletFrame& frame, frames::Interpolation interpolation) {
-  // Per node: the dot product (3, 2), the table read (linear 2 multiplies, 4 adds; quadratic 9, 7,
-  // counting the index arithmetic), the weighted accumulation (2, 1).
+  // Per node, float operations as printed: the dot product (3, 2), the table read (linear: 2
+  // multiplies, 4 adds; quadratic: 9 multiplies, 9 adds), the weighted accumulation (2, 1).
   const bool linear = interpolation == frames::Interpolation::kLinear;
-  OpCount per_node{3 + (linear ? 2 : 9) + 2, 2 + (linear ? 4 : 7) + 1};
+  OpCount per_node{3 + (linear ? 2 : 9) + 2, 2 + (linear ? 4 : 9) + 1};
   return {per_node.multiplies * frame.size(), per_node.adds * frame.size()};
 }
 

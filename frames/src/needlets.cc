@@ -1,9 +1,9 @@
 #include "zhf/frames/needlets.h"
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <random>
-#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -99,7 +99,6 @@ std::vector<WindowValue> needlet_windows(double dilation, int lmax) {
 
 namespace {
 
-
 // Every product of two functions of bands <= lmax integrated exactly: the cubature the level needs.
 void check_cubature(const Cubature& c, int degree) {
   if (c.degree < degree || c.points.empty() || c.points.size() != c.weights.size())
@@ -107,23 +106,16 @@ void check_cubature(const Cubature& c, int degree) {
                                 std::to_string(degree) + " needed");
 }
 
-// (2l+1)/(4 pi) P_l(t) for l = 0..lmax: the kernel of band l, sum_m y_l^m(x) y_l^m(xi) at t = x . xi.
-void band_kernels(int lmax, double t, std::vector<double>& out) {
-  out.resize(lmax + 1);
-  double p0 = 1, p1 = t;
-  for (int l = 0; l <= lmax; ++l) {
-    double p;
-    if (l == 0) {
-      p = 1;
-    } else if (l == 1) {
-      p = t;
-    } else {
-      p = ((2 * l - 1) * t * p1 - (l - 1) * p0) / l;
-      p0 = p1;
-      p1 = p;
-    }
-    out[l] = (2 * l + 1) / (4 * runtime::kPi) * p;
-  }
+// sum_{l = lo..hi} weight(l) L_l(t), with L_l(t) = (2l+1)/(4 pi) P_l(t) = sum_m y_l^m(x) y_l^m(xi)
+// the kernel of band l at t = x . xi, written sqrt((2l+1)/(4 pi)) Q_l^0(t) on the runtime's
+// Legendre recurrence.
+template <class Weight>
+double zonal_series(int lo, int hi, double t, Weight&& weight) {
+  double sum = 0;
+  runtime::legendre_column(0, hi, t, runtime::kInvSqrt4Pi, runtime::LegendreCoefficients<>{}, [&](int l, double q) {
+    if (l >= lo) sum += weight(l) * std::sqrt(2 * l + 1) * runtime::kInvSqrt4Pi * q;
+  });
+  return sum;
 }
 
 double dot(const Point& a, const Point& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
@@ -239,11 +231,7 @@ double NeedletFrame::evaluate(const std::vector<double>& beta, const Point& x) c
 
 double NeedletFrame::kernel(int a, double t) const {
   const NeedletLevel& level = levels_.at(a);
-  std::vector<double> lk;
-  band_kernels(level.lmax, t, lk);
-  double sum = 0;
-  for (int l = level.lmin; l <= level.lmax; ++l) sum += level.window[l - level.lmin] * lk[l];
-  return sum;
+  return zonal_series(level.lmin, level.lmax, t, [&](int l) { return level.window[l - level.lmin]; });
 }
 
 bool NeedletFrame::levels_overlap(int a, int b) const {
@@ -254,12 +242,8 @@ bool NeedletFrame::levels_overlap(int a, int b) const {
 double NeedletFrame::cross_kernel(int a, int b, double t) const {
   if (!levels_overlap(a, b)) return 0;
   const NeedletLevel &p = levels_[a], &q = levels_[b];
-  const int lo = std::max(p.lmin, q.lmin), hi = std::min(p.lmax, q.lmax);
-  std::vector<double> lk;
-  band_kernels(hi, t, lk);
-  double sum = 0;
-  for (int l = lo; l <= hi; ++l) sum += p.window[l - p.lmin] * q.window[l - q.lmin] * lk[l];
-  return sum;
+  return zonal_series(std::max(p.lmin, q.lmin), std::min(p.lmax, q.lmax), t,
+                      [&](int l) { return p.window[l - p.lmin] * q.window[l - q.lmin]; });
 }
 
 std::vector<double> NeedletFrame::rotate_exact(const std::vector<double>& beta, const runtime::Matrix3& r) const {
@@ -335,11 +319,7 @@ std::vector<double> TabulatedNeedletRotation::rotate(const std::vector<double>& 
   return out;
 }
 
-}  // namespace zhf::frames
-
 // ---- Localisation -------------------------------------------------------------------------------
-
-namespace zhf::frames {
 
 int needlet_top_band(double dilation, int j) {
   check_dilation(dilation);
@@ -350,21 +330,15 @@ int needlet_top_band(double dilation, int j) {
   return static_cast<int>(top);
 }
 
-double needlet_kernel(double dilation, int j, double t) {
+std::function<double(double)> needlet_kernel(double dilation, int j) {
   const int top = needlet_top_band(dilation, j);
-  std::vector<double> lk;
-  band_kernels(top, t, lk);
-  double sum = 0;
-  for (int l = 1; l <= top; ++l) sum += needlet_window(l / std::pow(dilation, j), dilation) * lk[l];
-  return sum;
+  std::vector<double> window(top + 1, 0.0);  // once: each value is a quadrature
+  for (int l = 1; l <= top; ++l) window[l] = needlet_window(l / std::pow(dilation, j), dilation);
+  return [window, top](double t) { return zonal_series(1, top, t, [&](int l) { return window[l]; }); };
 }
 
 double sh_delta_kernel(int lmax, double t) {
-  std::vector<double> lk;
-  band_kernels(lmax, t, lk);
-  double sum = 0;
-  for (double v : lk) sum += v;
-  return sum;
+  return zonal_series(0, lmax, t, [](int) { return 1.0; });
 }
 
 Localisation localisation(const std::function<double(double)>& kernel, int degree, double cap) {

@@ -24,16 +24,8 @@ const std::vector<double>& band_limited_coefficients() {
   return f;
 }
 
-double legendre(int l, double t) {
-  double p0 = 1, p1 = t;
-  if (l == 0) return 1;
-  for (int k = 2; k <= l; ++k) {
-    const double p = ((2 * k - 1) * t * p1 - (k - 1) * p0) / k;
-    p0 = p1;
-    p1 = p;
-  }
-  return p1;
-}
+// P_l(t) from the runtime's normalised Q_l^0 = sqrt((2l+1)/(4 pi)) P_l.
+double legendre(int l, double t) { return runtime::legendre_q(l, 0, t) / (std::sqrt(2 * l + 1) * runtime::kInvSqrt4Pi); }
 
 }  // namespace
 

@@ -69,15 +69,6 @@ Case make_case(const frames::NeedletFrame& frame, const codegen::NeedletLutOptio
   return c;
 }
 
-std::vector<std::uint8_t> floats(const std::vector<double>& values) {
-  std::vector<std::uint8_t> out(values.size() * sizeof(float));
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    const float f = static_cast<float>(values[i]);
-    std::memcpy(&out[i * sizeof f], &f, sizeof f);
-  }
-  return out;
-}
-
 std::vector<double> flat_directions(const Case& c) {
   std::vector<double> out;
   for (const frames::Point& p : c.directions) out.insert(out.end(), p.begin(), p.end());
@@ -103,7 +94,7 @@ std::vector<double> run_cpp(const std::string& dir, const std::string& header, c
   std::vector<double> stream = c.beta;
   const std::vector<double> x = flat_directions(c);
   stream.insert(stream.end(), x.begin(), x.end());
-  const std::vector<std::uint8_t> bytes = floats(stream);
+  const std::vector<std::uint8_t> bytes = as_floats(stream);
   io::write_file_atomically(dir + "/inputs.bin", std::string(bytes.begin(), bytes.end()));
   std::vector<std::string> compile = compiler;
   for (const std::string& arg : {std::string("-std=c++17"), std::string("-O1"), std::string("-ffp-contract=off"), "-I" + dir, dir + "/harness.cc",
@@ -160,7 +151,7 @@ std::vector<double> run_shader(bool glsl, const std::string& dir, const std::str
                                const std::vector<float>& data, VulkanDevice& device) {
   const std::vector<std::uint32_t> words =
       compile_spirv(glsl ? glsl_dialect() : hlsl_dialect(), dir, shader_wrapper(glsl, kernels, prefix, c.beta.size()));
-  std::vector<std::vector<std::uint8_t>> buffers = {floats(c.beta), floats(flat_directions(c)),
+  std::vector<std::vector<std::uint8_t>> buffers = {as_floats(c.beta), as_floats(flat_directions(c)),
                                                      std::vector<std::uint8_t>(c.directions.size() * sizeof(float), 0),
                                                      std::vector<std::uint8_t>(data.size() * sizeof(float))};
   std::memcpy(buffers[3].data(), data.data(), buffers[3].size());

@@ -115,15 +115,6 @@ std::string wrapper(bool glsl, int order, const std::string& kernels, const std:
   return s.str();
 }
 
-std::vector<std::uint8_t> as_floats(const std::vector<double>& values) {
-  std::vector<std::uint8_t> out(values.size() * sizeof(float));
-  for (size_t i = 0; i < values.size(); ++i) {
-    const float f = static_cast<float>(values[i]);
-    std::memcpy(&out[i * sizeof(float)], &f, sizeof f);
-  }
-  return out;
-}
-
 class ShaderRunner : public Runner {
  public:
   explicit ShaderRunner(ShaderDialect dialect) : d_(std::move(dialect)) {}
@@ -163,6 +154,15 @@ class ShaderRunner : public Runner {
 };
 
 }  // namespace
+
+std::vector<std::uint8_t> as_floats(const std::vector<double>& values) {
+  std::vector<std::uint8_t> out(values.size() * sizeof(float));
+  for (size_t i = 0; i < values.size(); ++i) {
+    const float f = static_cast<float>(values[i]);
+    std::memcpy(&out[i * sizeof(float)], &f, sizeof f);
+  }
+  return out;
+}
 
 ShaderDialect glsl_dialect() { return {true, "verify.comp", {"-V", "-S", "comp"}}; }
 // HLSL: glslangValidator's HLSL front end, entry main, compute stage; push constants as

@@ -19,6 +19,9 @@ struct ShaderDialect {
   std::vector<std::string> compile_flags;   // glslangValidator's, before -o
 };
 
+// Values as the float32 bytes of a storage buffer.
+std::vector<std::uint8_t> as_floats(const std::vector<double>& values);
+
 ShaderDialect glsl_dialect();
 ShaderDialect hlsl_dialect();
 

@@ -134,6 +134,7 @@ double table_error(const UniformTable& table, const std::function<double(double)
 // levels. Cost per rotation: O(sum over overlapping pairs of M_a M_b) look-ups.
 class TabulatedNeedletRotation {
  public:
+  // Keeps a reference to frame, which must outlive it.
   TabulatedNeedletRotation(const NeedletFrame& frame, int table_size, Interpolation how);
   std::vector<double> rotate(const std::vector<double>& beta, const runtime::Matrix3& r) const;
 
@@ -158,7 +159,7 @@ namespace zhf::frames {
 // Top bands: needlet_top_band(B, j) = ceil(B^(j+1)) - 1; std::invalid_argument for a level below 0
 // or reaching past kMaxNeedletBand. Cost: O(lmax) per t.
 int needlet_top_band(double dilation, int j);
-double needlet_kernel(double dilation, int j, double t);
+std::function<double(double)> needlet_kernel(double dilation, int j);  // its windows computed once
 double sh_delta_kernel(int lmax, double t);
 
 // How much of a zonal kernel K (a polynomial of degree `degree` in t = cos theta) lies outside the

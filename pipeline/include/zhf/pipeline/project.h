@@ -15,6 +15,7 @@ struct Project {
 
   std::string generated() const { return root + "/generated"; }
   std::string lobes() const { return root + "/generated/lobes"; }
+  std::string designs() const { return root + "/generated/designs"; }
   std::string bench_tables() const { return root + "/bench/tables"; }
   // generated/lobes/order_N.json (order 2: the lobe-free table).
   runtime::LobeTable table(int order) const;
