@@ -1,5 +1,5 @@
-// The batch entry points (rotate_shared, rotate_batch) against the Ivanic-Ruedenberg reference
-// and against themselves across thread counts; quaternions against Eigen's conversion.
+// The batch entry points (rotate_shared, rotate_batch, the bulk layouts of DenseRotation) against
+// the Ivanic-Ruedenberg reference and against themselves across thread counts; quaternions against Eigen's conversion.
 #include <cmath>
 #include <limits>
 #include <random>
@@ -68,6 +68,59 @@ TEST(Batch, SharedRotationMatchesTheReferenceAtEveryGeneratedOrder) {
   for (int order = 2; order <= runtime::kMaxGeneratedOrder; ++order) {
     check_shared<double>(order, kDouble);
     check_shared<float>(order, kFloatRotation);
+  }
+}
+
+// The bulk layouts of one rotation: 3DGS's interleaved splats and planar arrays, in place and
+// not, one and two threads, against the reference per channel. Counts not a multiple of the pack
+// width, so the planar tail runs too.
+template <class T>
+void check_layouts(int order, double tolerance) {
+  std::mt19937_64 rng(100 + order);
+  const sh::Matrix3 m = sh::random_rotation(rng);
+  T r[9];
+  for (int i = 0; i < 9; ++i) r[i] = T(m(i / 3, i % 3));
+  const sh::BandMatrices exact = sh::ivanic_ruedenberg(m, order);
+  const runtime::DenseRotation<T> dense = runtime::Rotator<T>::with(gen::fastest_kernels<T>(order)).dense(r);
+  const std::size_t n = std::size_t(order) * order, rest = n - 1, item = 3 * n;
+  for (std::size_t count : {std::size_t(1), std::size_t(13), runtime::kParallelBatchThreshold + 5}) {
+    const std::vector<T> channels = unit_vectors<T>(3 * count, order, rng);  // vector 3 v + c
+    auto channel = [&](std::size_t v, int c) { return &channels[(3 * v + c) * n]; };
+    std::vector<T> splats(count * item), planar(count * item);
+    for (std::size_t v = 0; v < count; ++v)
+      for (int c = 0; c < 3; ++c) {
+        splats[item * v + c] = channel(v, c)[0];
+        for (std::size_t i = 1; i < n; ++i) splats[item * v + 3 + c * rest + i - 1] = channel(v, c)[i];
+        for (std::size_t i = 0; i < n; ++i) planar[(c * n + i) * count + v] = channel(v, c)[i];
+      }
+    std::vector<T> splats_out(splats.size()), planar_out(planar.size()), splats_in_place = splats, planar_in_place = planar;
+    dense.apply_splats(count, splats.data(), splats_out.data(), 2);
+    dense.apply_splats(count, splats_in_place.data(), splats_in_place.data(), 1);
+    dense.apply_planar(count, 3, planar.data(), planar_out.data(), 2);
+    dense.apply_planar(count, 3, planar_in_place.data(), planar_in_place.data(), 1);
+    ASSERT_EQ(splats_out, splats_in_place) << "order " << order << ": in place or the thread count changed the splats";
+    ASSERT_EQ(planar_out, planar_in_place) << "order " << order << ": in place or the thread count changed the planes";
+    for (std::size_t v = 0; v < count; v += 1 + count / 16)
+      for (int c = 0; c < 3; ++c) {
+        Eigen::VectorXd f(n);
+        for (std::size_t i = 0; i < n; ++i) f[i] = double(channel(v, c)[i]);
+        const Eigen::VectorXd g = sh::apply_band_matrices(exact, f);
+        for (std::size_t i = 0; i < n; ++i) {
+          const double splat = i == 0 ? splats_out[item * v + c] : splats_out[item * v + 3 + c * rest + i - 1];
+          const double plane = planar_out[(c * n + i) * count + v];
+          ASSERT_NEAR(splat, g[i], tolerance) << "splats, order " << order << ", band " << runtime::band_of(int(i))
+                                              << ", index " << i << ", item " << v << ", channel " << c;
+          ASSERT_NEAR(plane, g[i], tolerance) << "planar, order " << order << ", band " << runtime::band_of(int(i))
+                                              << ", index " << i << ", item " << v << ", channel " << c;
+        }
+      }
+  }
+}
+
+TEST(Batch, BulkLayoutsMatchTheReferenceAtEveryGeneratedOrder) {
+  for (int order = 2; order <= runtime::kMaxGeneratedOrder; ++order) {
+    check_layouts<double>(order, kDouble);
+    check_layouts<float>(order, kFloatRotation);
   }
 }
 

@@ -54,8 +54,9 @@ Method through(std::function<void(const T*, const T*, T*)> rotate, int channels 
   return [rotate, channels](const sh::Matrix3& m, const Eigen::VectorXd& f, Eigen::VectorXd& g) {
     std::vector<T> r(9), in(channels * f.size()), out(channels * f.size());
     for (int i = 0; i < 9; ++i) r[i] = static_cast<T>(m(i / 3, i % 3));
+    // Channel c holds (c + 1) / channels f: the last is f, and a channel mixed up shows.
     for (int c = 0; c < channels; ++c)
-      for (int i = 0; i < f.size(); ++i) in[c * f.size() + i] = static_cast<T>(f[i]);
+      for (int i = 0; i < f.size(); ++i) in[c * f.size() + i] = static_cast<T>(f[i] * (c + 1) / channels);
     rotate(r.data(), in.data(), out.data());
     g.resize(f.size());
     for (int i = 0; i < f.size(); ++i) g[i] = out[(channels - 1) * f.size() + i];  // the last channel
@@ -129,6 +130,10 @@ TEST(EveryMethod, ExtremeRotationsStayWithinEachMethodsTolerance) {
       const auto td = runtime::Rotator<double>::from_table(table);
       check("runtime table float", order, rotations, through<float>([&](auto r, auto i, auto o) { tf.rotate(r, i, o); }), table_float_tolerance);
       check("runtime table double", order, rotations, through<double>([&](auto r, auto i, auto o) { td.rotate(r, i, o); }), kDouble);
+      check("runtime table rgb float", order, rotations, through<float>([&](auto r, auto i, auto o) { tf.rotate_rgb(r, i, o); }, 3),
+            table_float_tolerance);
+      check("runtime table rgb double", order, rotations, through<double>([&](auto r, auto i, auto o) { td.rotate_rgb(r, i, o); }, 3),
+            kDouble);
     }
     const sh::ZxzxzRotator<float> zf(order);
     const sh::ZxzxzRotator<double> zd(order);

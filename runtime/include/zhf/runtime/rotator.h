@@ -14,8 +14,8 @@
 //   Rotator<T>::with(gen::fastest_kernels<T>(order))
 //                                         any generated order at run time, on the fastest verified
 //                                         path for the instruction set compiled for (zhf_kernels.h);
-//   Rotator<T>::from_table(table)         any order up to 32 from a lobe table, at a few times the
-//                                         cost; its lobe stage runs in double.
+//   Rotator<T>::from_table(table)         any order up to 32 from a lobe table (table_rotation.h):
+//                                         SIMD across lobes, lobe stage in double, no allocation.
 #pragma once
 
 #include <algorithm>
@@ -30,9 +30,11 @@
 #include <utility>
 #include <vector>
 
+#include "zhf/runtime/dense_rotation.h"
 #include "zhf/runtime/lobe_table.h"
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/sh_eval.h"
+#include "zhf/runtime/table_rotation.h"
 
 namespace zhf::gen {
 // The functions of one generated order, specialised at the end of each zhf_orderN.h.
@@ -41,32 +43,6 @@ struct Kernels;
 }  // namespace zhf::gen
 
 namespace zhf::runtime {
-
-// Below this many vectors a batch runs on the calling thread.
-inline constexpr std::size_t kParallelBatchThreshold = 4096;
-
-// Runs work(begin, end) over [0, count) in contiguous chunks, one per worker (threads = 0: all
-// cores); below kParallelBatchThreshold items, or when no thread can be started, on the calling
-// thread alone.
-template <class Work>
-void parallel_chunks(std::size_t count, int threads, Work&& work) {
-  int workers = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  if (count < kParallelBatchThreshold) workers = 1;
-  std::vector<std::thread> pool;
-  const std::size_t chunk = (count + workers - 1) / workers;
-  std::size_t started = chunk;  // [0, chunk) is the calling thread's
-  try {
-    for (int t = 1; t < workers && started < count; ++t) {
-      pool.emplace_back(work, started, std::min(count, started + chunk));
-      started = std::min(count, started + chunk);
-    }
-  } catch (const std::system_error&) {
-    // No more threads (a process limit): the calling thread does the rest.
-  }
-  work(std::size_t(0), std::min(count, chunk));
-  work(started, count);
-  for (std::thread& t : pool) t.join();
-}
 
 // Whether count vectors under one rotation are cheaper through the band matrices, which cost
 // about N^2 single rotations to build, than one by one.
@@ -97,72 +73,9 @@ KernelSet<T> scalar_kernels() {
   return k;
 }
 
-// Build-once, apply-many band matrices of one rotation.
-template <class T>
-class DenseRotation {
- public:
-  DenseRotation(int order, std::vector<std::vector<T>> bands) : order_(order), bands_(std::move(bands)) {
-    // apply() runs column by column: out_l += column j of D_l times in_l[j], a loop over
-    // contiguous rows that vectorises, so it keeps the transposes.
-    for (int l = 0; l < order_; ++l) {
-      const int n = band_size(l);
-      for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) columns_.push_back(bands_[l][i * n + j]);
-    }
-  }
-  int order() const { return order_; }
-  // bands()[l] is (2l+1)^2 row-major: out_l = D_l in_l.
-  const std::vector<std::vector<T>>& bands() const { return bands_; }
-  // out = D in for one vector of N^2 (in and out must not overlap). Cost: sum (2l+1)^2
-  // multiply-adds, with fixed band sizes for the generated orders.
-  void apply(const T* in, T* out) const {
-    switch (order_) {
-      case 1: return apply_bands<1>(in, out);
-      case 2: return apply_bands<2>(in, out);
-      case 3: return apply_bands<3>(in, out);
-      case 4: return apply_bands<4>(in, out);
-      case 5: return apply_bands<5>(in, out);
-      case 6: return apply_bands<6>(in, out);
-      case 7: return apply_bands<7>(in, out);
-      case 8: return apply_bands<8>(in, out);
-      default: break;
-    }
-    const T* d = columns_.data();
-    for (int l = 0; l < order_; ++l) {
-      const int n = band_size(l), base = l * l;
-      for (int i = 0; i < n; ++i) out[base + i] = 0;
-      for (int j = 0; j < n; ++j, d += n)
-        for (int i = 0; i < n; ++i) out[base + i] += d[i] * in[base + j];
-    }
-  }
-
- private:
-  template <int N>
-  void apply_bands(const T* in, T* out) const {
-    apply_band<0, N>(columns_.data(), in, out);
-  }
-  template <int L, int N>
-  static void apply_band(const T* d, const T* in, T* out) {
-    if constexpr (L < N) {
-      constexpr int n = 2 * L + 1, base = L * L;
-      T sum[n] = {};
-      for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) sum[i] += d[j * n + i] * in[base + j];
-      for (int i = 0; i < n; ++i) out[base + i] = sum[i];
-      apply_band<L + 1, N>(d + n * n, in, out);
-    }
-  }
-
-  int order_;
-  std::vector<std::vector<T>> bands_;
-  std::vector<T> columns_;  // band by band, each D_l column-major
-};
-
 template <class T>
 class Rotator {
  public:
-  using W = std::common_type_t<T, double>;  // the table path's lobe stage
-
   // The generated kernels of order N.
   template <int N>
   static Rotator of() {
@@ -186,16 +99,7 @@ class Rotator {
     validate_lobe_table(table, "Rotator::from_table", TableCheck::kShape);
     Rotator r;
     r.order_ = table.order;
-    r.table_ = table;
-    r.legendre_ = TabulatedLegendreCoefficients(table.order);
-    for (const TableBand& band : table.bands) {
-      // A's structural zeros cost nothing here either (and pruned tables run faster).
-      const int size = band_size(band.l);
-      r.nonzeros_.emplace_back();
-      for (int m = 0; m < size; ++m)
-        for (int d = 0; d < size; ++d)
-          if (band.inverse(m, d) != 0) r.nonzeros_.back().push_back({m, d, T(band.inverse(m, d))});
-    }
+    r.table_ = TableRotation<T>(table);
     return r;
   }
 
@@ -210,7 +114,7 @@ class Rotator {
     if (kernels_.rotate) {
       kernels_.rotate(r, in, out);
     } else {
-      rotate_from_table(r, in, out, 1);
+      table_.rotate(r, in, out, 1);
     }
   }
 
@@ -220,7 +124,7 @@ class Rotator {
     if (kernels_.rotate_rgb) {
       kernels_.rotate_rgb(r, in, out);
     } else {
-      rotate_from_table(r, in, out, 3);
+      table_.rotate(r, in, out, 3);
     }
   }
 
@@ -274,54 +178,9 @@ class Rotator {
     assert(validate_rotation(r).ok && "zhf: not a proper rotation; see Rotator::validate");
   }
 
-  // The loop form of the generated kernel: z = A^T f, SH at Q w_d, dense Y_Q^T z, with Q the
-  // projection of R onto the rotations, the lobe stage in W. The SH values at the rotated
-  // lobes are computed once and shared by the channels.
-  void rotate_from_table(const T r[9], const T* in, T* out, int channels) const {
-    const int n = coefficients();
-    W q[9];
-    polar_step(r, q);
-    std::vector<std::array<W, 3>> rotated(table_.lobes.size());
-    for (std::size_t d = 0; d < table_.lobes.size(); ++d)
-      for (int i = 0; i < 3; ++i)
-        rotated[d][i] = q[3 * i] * table_.lobes[d].xyz[0] + q[3 * i + 1] * table_.lobes[d].xyz[1] +
-                        q[3 * i + 2] * table_.lobes[d].xyz[2];
-    std::vector<std::vector<W>> y_rotated(table_.bands.size());
-    for (std::size_t b = 0; b < table_.bands.size(); ++b) {
-      const int size = band_size(table_.bands[b].l);
-      y_rotated[b].resize(size * size);  // [d * size + m]
-      for (int d = 0; d < size; ++d)
-        eval_band<W>(table_.bands[b].l, rotated[table_.bands[b].lobes[d]].data(), &y_rotated[b][d * size], legendre_);
-    }
-    std::vector<T> z;
-    for (int c = 0; c < channels; ++c) {
-      const T* f = in + c * n;
-      T* g = out + c * n;
-      g[0] = f[0];
-      if (order_ > 1) rotate_band1(r, f + 1, g + 1);
-      for (std::size_t b = 0; b < table_.bands.size(); ++b) {
-        const TableBand& band = table_.bands[b];
-        const int size = band_size(band.l), base = band.l * band.l;
-        z.assign(size, T(0));
-        for (const Nonzero& a : nonzeros_[b]) z[a.d] += a.value * f[base + a.m];
-        for (int m = 0; m < size; ++m) {
-          W sum = 0;
-          for (int d = 0; d < size; ++d) sum += y_rotated[b][d * size + m] * W(z[d]);
-          g[base + m] = T(sum);
-        }
-      }
-    }
-  }
-
   int order_ = 0;
   KernelSet<T> kernels_;
-  struct Nonzero {
-    int m, d;
-    T value;  // A_l[m][d]
-  };
-  LobeTable table_;
-  TabulatedLegendreCoefficients legendre_{0};
-  std::vector<std::vector<Nonzero>> nonzeros_;  // per band, row-major order
+  TableRotation<T> table_;
 };
 
 }  // namespace zhf::runtime

@@ -148,7 +148,8 @@ inline constexpr double kDoubleVsClosedForm = 1e-13;
 inline constexpr double kSlowPathsAgreement = 1e-14;
 // The emitted sh_eval (the recurrence's coefficients folded into polynomials) against eval_sh.
 inline constexpr double kGeneratedVsRecurrence = 1e-14;
-// Float SH: coefficients rounded to float and ~3l recurrence steps.
+// Float SH against double SH at the same (float) direction: coefficients rounded to float and
+// ~3l recurrence steps.
 inline constexpr double kFloatVsClosedForm = 2e-6;
 // Orthonormality by an exact product quadrature at N = 16.
 inline constexpr double kOrthonormality = 1e-13;

@@ -1,0 +1,90 @@
+// Pack<T>: a fixed group of T values (8 floats or 4 doubles: one 256-bit AVX2 register) with the
+// arithmetic of a scalar, so scalar code templated on its number type (the generated kernels, the
+// Legendre recurrence) runs across lanes unchanged. The run-time table path evaluates 4 lobes per
+// step with it (double); the bulk dense layouts run 8 items per step (float).
+//
+// With GCC or Clang it is a vector-extension type: one AVX2 instruction per operation where the
+// build targets AVX2, two SSE2 instructions on baseline x86-64, the target's own vectors elsewhere.
+// Other compilers get a plain array loop of the same meaning. Each lane runs the scalar code's
+// operations in the same order (contraction into fused multiply-adds may differ), so a lane's
+// accuracy is the scalar path's.
+#pragma once
+
+#include <cstddef>
+#include <cstring>
+
+// Passing 32-byte vectors by value draws GCC's ABI notes (-Wpsabi) in builds without AVX; every
+// call here is inlined, so no ABI is crossed.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+
+namespace zhf::runtime {
+
+template <class T, int kBytes = 32>
+struct Pack {
+  static constexpr int kLanes = kBytes / int(sizeof(T));
+#if defined(__GNUC__)
+  typedef T Vector __attribute__((vector_size(kBytes)));
+  Vector v;
+  Pack() = default;  // uninitialised, as a scalar; Pack(0.0) for zeros
+  // c - 0 is c exactly (signed zeros too), so this folds to a plain broadcast.
+  Pack(double c) : v(T(c) - Vector{}) {}  // NOLINT: broadcast, as a scalar literal would be
+  explicit Pack(Vector x) : v(x) {}
+  static Pack broadcast(T value) { return Pack(value - Vector{}); }
+  T lane(int i) const { return v[i]; }
+  friend Pack operator+(Pack a, Pack b) { return Pack(a.v + b.v); }
+  friend Pack operator-(Pack a, Pack b) { return Pack(a.v - b.v); }
+  friend Pack operator*(Pack a, Pack b) { return Pack(a.v * b.v); }
+  friend Pack operator-(Pack a) { return Pack(-a.v); }
+#else
+  T v[kLanes];
+  Pack() = default;  // uninitialised, as a scalar; Pack(0.0) for zeros
+  Pack(double c) {  // NOLINT: broadcast
+    for (T& x : v) x = T(c);
+  }
+  T lane(int i) const { return v[i]; }
+  static Pack broadcast(T value) { return Pack(double(value)); }
+  template <class Op>
+  static Pack zip(Pack a, Pack b, Op op) {
+    Pack r;
+    for (int i = 0; i < kLanes; ++i) r.v[i] = op(a.v[i], b.v[i]);
+    return r;
+  }
+  friend Pack operator+(Pack a, Pack b) { return zip(a, b, [](T x, T y) { return x + y; }); }
+  friend Pack operator-(Pack a, Pack b) { return zip(a, b, [](T x, T y) { return x - y; }); }
+  friend Pack operator*(Pack a, Pack b) { return zip(a, b, [](T x, T y) { return x * y; }); }
+  friend Pack operator-(Pack a) { return zip(a, a, [](T x, T) { return -x; }); }
+#endif
+  Pack& operator+=(Pack b) { return *this = *this + b; }
+  Pack& operator-=(Pack b) { return *this = *this - b; }
+  Pack& operator*=(Pack b) { return *this = *this * b; }
+
+  // kLanes consecutive values (any alignment).
+  static Pack load(const T* p) {
+    Pack r;
+    std::memcpy(&r.v, p, sizeof r.v);
+    return r;
+  }
+  void store(T* p) const { std::memcpy(p, &v, sizeof v); }
+  // out[i] = the sum of packs[i]'s lanes (pairwise), for i < count: one pass the compiler can
+  // vectorise across i, where a sum per pack would be a chain of shuffles.
+  static void sums(const Pack* packs, int count, T* out) {
+    static_assert(sizeof(Pack) == kLanes * sizeof(T), "a pack is its lanes");
+    const T* lanes = reinterpret_cast<const T*>(packs);
+    for (int i = 0; i < count; ++i) {
+      T s[kLanes];
+      for (int k = 0; k < kLanes; ++k) s[k] = lanes[i * kLanes + k];
+      for (int width = kLanes / 2; width > 0; width /= 2)
+        for (int k = 0; k < width; ++k) s[k] += s[k + width];
+      out[i] = s[0];
+    }
+  }
+};
+
+}  // namespace zhf::runtime
+
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif

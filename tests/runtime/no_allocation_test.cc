@@ -1,0 +1,95 @@
+// No rotate call allocates once its rotator is built: every global allocation in this program is
+// counted, and each path is called after construction with the count watched.
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <new>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "test_support.h"
+#include "zhf/runtime/lanes.h"
+#include "zhf/runtime/lobe_table.h"
+#include "zhf/runtime/rotator.h"
+#include "zhf_kernels.h"
+
+namespace {
+std::atomic<long> allocations{0};
+}  // namespace
+
+void* operator new(std::size_t size) {
+  allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(size ? size : 1)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+namespace zhf {
+namespace {
+
+template <class T>
+struct Data {
+  std::vector<T> r, in, out;
+  Data(int order, std::size_t count) : r(9 * count), in(3 * order * order * count), out(in.size()) {
+    std::mt19937_64 rng(order);
+    std::normal_distribution<double> normal;
+    for (std::size_t v = 0; v < count; ++v) {  // rotations about z by random angles
+      const double a = normal(rng), c = std::cos(a), s = std::sin(a);
+      const T m[9] = {T(c), T(-s), 0, T(s), T(c), 0, 0, 0, 1};
+      std::copy(m, m + 9, &r[9 * v]);
+    }
+    for (T& x : in) x = T(normal(rng));
+  }
+};
+
+// Calls call() and reports the allocations it made.
+template <class Call>
+long allocations_of(Call&& call) {
+  const long before = allocations.load();
+  call();
+  return allocations.load() - before;
+}
+
+template <class T>
+void check_rotator(const runtime::Rotator<T>& rotator, const std::string& name) {
+  const int order = rotator.order();
+  const std::size_t count = 64;
+  Data<T> d(order, count);
+  EXPECT_EQ(allocations_of([&] { rotator.rotate(d.r.data(), d.in.data(), d.out.data()); }), 0) << name << " rotate, order " << order;
+  EXPECT_EQ(allocations_of([&] { rotator.rotate_rgb(d.r.data(), d.in.data(), d.out.data()); }), 0)
+      << name << " rotate_rgb, order " << order;
+  EXPECT_EQ(allocations_of([&] { rotator.rotate_batch(count, d.r.data(), d.in.data(), d.out.data(), 1); }), 0)
+      << name << " rotate_batch on one thread, order " << order;
+  const runtime::DenseRotation<T> dense = rotator.dense(d.r.data());
+  EXPECT_EQ(allocations_of([&] { dense.apply(d.in.data(), d.out.data()); }), 0) << name << " dense apply, order " << order;
+  EXPECT_EQ(allocations_of([&] { dense.apply_splats(count / 3, d.in.data(), d.out.data(), 1); }), 0)
+      << name << " apply_splats, order " << order;
+  EXPECT_EQ(allocations_of([&] { dense.apply_planar(count, 1, d.in.data(), d.out.data(), 1); }), 0)
+      << name << " apply_planar, order " << order;
+}
+
+TEST(NoAllocation, TheCounterSeesAllocations) {
+  EXPECT_GT(allocations_of([] { std::vector<int> v(10); }), 0);
+}
+
+TEST(NoAllocation, NoRotateCallAllocatesAfterConstruction) {
+  for (int order = runtime::kMinGeneratedOrder; order <= runtime::kMaxGeneratedOrder; ++order) {
+    check_rotator(runtime::Rotator<float>::with(gen::scalar_kernels<float>(order)), "scalar float");
+    check_rotator(runtime::Rotator<float>::with(gen::fastest_kernels<float>(order)), "fastest float");
+    check_rotator(runtime::Rotator<double>::with(gen::fastest_kernels<double>(order)), "fastest double");
+  }
+  for (int order : {3, 8, 12, 16, 32}) {
+    const runtime::LobeTable table =
+        runtime::read_lobe_table(test::source_path("generated/lobes/order_" + std::to_string(order) + ".json"));
+    check_rotator(runtime::Rotator<float>::from_table(table), "table float");
+    check_rotator(runtime::Rotator<double>::from_table(table), "table double");
+  }
+}
+
+}  // namespace
+}  // namespace zhf
