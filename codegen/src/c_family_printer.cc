@@ -136,7 +136,9 @@ std::string print_parameters(const Function& function, const LanguageConfig& c) 
     const Param& p = function.params[k];
     if (k) s += ", ";
     if (function.batch) {
-      s += (p.output ? "" : "const ") + c.scalar + "* " + p.name;
+      // Distinct arrays: without the promise the compiler cannot run the loop across SIMD lanes
+      // (it would need an overlap check for every pair of the 3 + 2 N^2 streams).
+      s += (p.output ? "" : "const ") + c.scalar + "* __restrict " + p.name;
       continue;
     }
     s += p.output ? c.output_array_qualifier : c.input_array_qualifier;

@@ -200,7 +200,7 @@ class Builder {
   // The standard rotation; several channels share the per-rotation work.
   Function rotation(int channels, bool batch) const {
     std::string doc = "rotated = coefficients of f(R^T w), R row-major mapping v to R v" + channel_doc(channels);
-    if (batch) doc += ", for count vectors each with its own R (structure of arrays)";
+    if (batch) doc += ", for count vectors each with its own R (structure of arrays; the arrays must not overlap)";
     Function f = make(batch ? KernelKind::kBatch : KernelKind::kRotate, batch ? "rotate_batch" : "rotate", channels, doc,
                       {{"R", 9, false, 1}, {"coeffs", count_, false, channels}, {"rotated", count_, true, channels}});
     f.batch = batch;

@@ -137,9 +137,9 @@ inline void rotate_rgb_order2(const T R[9], const T coeffs[3][4], T rotated[3][4
   rotated[2][3] = t29_b;
 }
 
-// rotate_batch_order2: rotated = coefficients of f(R^T w), R row-major mapping v to R v, for count vectors each with its own R (structure of arrays).
+// rotate_batch_order2: rotated = coefficients of f(R^T w), R row-major mapping v to R v, for count vectors each with its own R (structure of arrays; the arrays must not overlap).
 template <class T>
-inline void rotate_batch_order2(std::size_t count, const T* R, const T* coeffs, T* rotated) {
+inline void rotate_batch_order2(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) {
   for (std::size_t v = 0; v < count; ++v) {
     const T t3 = coeffs[1 * count + v] * R[4 * count + v];
     const T t6 = coeffs[2 * count + v] * R[5 * count + v];
@@ -259,7 +259,7 @@ struct Kernels<2> {
   template <class T>
   static void rotate_rgb(const T R[9], const T coeffs[3][4], T rotated[3][4]) { rotate_rgb_order2<T>(R, coeffs, rotated); }
   template <class T>
-  static void rotate_batch(std::size_t count, const T* R, const T* coeffs, T* rotated) { rotate_batch_order2<T>(count, R, coeffs, rotated); }
+  static void rotate_batch(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) { rotate_batch_order2<T>(count, R, coeffs, rotated); }
   template <class T>
   static void shade(const T R[9], const T light[4], const T transfer[4], T result[1]) { shade_order2<T>(R, light, transfer, result); }
   template <class T>

@@ -1904,9 +1904,9 @@ inline void rotate_rgb_order4(const T R[9], const T coeffs[3][16], T rotated[3][
   rotated[2][15] = t490_b;
 }
 
-// rotate_batch_order4: rotated = coefficients of f(R^T w), R row-major mapping v to R v, for count vectors each with its own R (structure of arrays).
+// rotate_batch_order4: rotated = coefficients of f(R^T w), R row-major mapping v to R v, for count vectors each with its own R (structure of arrays; the arrays must not overlap).
 template <class T>
-inline void rotate_batch_order4(std::size_t count, const T* R, const T* coeffs, T* rotated) {
+inline void rotate_batch_order4(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) {
   for (std::size_t v = 0; v < count; ++v) {
     const T t3 = coeffs[1 * count + v] * R[4 * count + v];
     const T t6 = coeffs[2 * count + v] * R[5 * count + v];
@@ -3821,13 +3821,13 @@ inline void square_order4(const T f[16], T h[16]) {
   const T t30 = T(-0.3231801841141506) * f[11];
   const T t31 = t28 + t30;
   const T t33 = T(0.2911289598225648) * f[1];
-  const T t35 = T(0.12247761890948386) * f[11];
+  const T t35 = T(0.12247761890948382) * f[11];
   const T t36 = t33 + t35;
   const T t38 = T(0.3505349831151463) * f[5];
   const T t39 = t36 + t38;
   const T t40 = t36 - t38;
   const T t42 = T(0.14610689288061784) * f[1];
-  const T t44 = T(0.424472495814791) * f[11];
+  const T t44 = T(0.42447249581479113) * f[11];
   const T t45 = t42 + t44;
   const T t47 = T(0.2960534362402845) * f[5];
   const T t48 = t45 + t47;
@@ -3835,7 +3835,7 @@ inline void square_order4(const T f[16], T h[16]) {
   const T t55 = T(0.19947114020071632) * f[0];
   const T t57 = T(-0.22301551451909638) * f[6];
   const T t58 = t55 + t57;
-  const T t60 = T(-0.029026005839704952) * f[6];
+  const T t60 = T(-0.029026005839704962) * f[6];
   const T t61 = t55 + t60;
   const T t63 = T(0.18603799631137974) * f[2];
   const T t65 = T(-0.22027383543981816) * f[12];
@@ -3853,13 +3853,13 @@ inline void square_order4(const T f[16], T h[16]) {
   const T t83 = T(-0.3231801841141506) * f[13];
   const T t84 = t82 + t83;
   const T t85 = T(0.2911289598225648) * f[3];
-  const T t86 = T(0.12247761890948386) * f[13];
+  const T t86 = T(0.12247761890948382) * f[13];
   const T t87 = t85 + t86;
   const T t88 = T(0.3505349831151463) * f[7];
   const T t89 = t87 + t88;
   const T t90 = t87 - t88;
   const T t91 = T(0.14610689288061784) * f[3];
-  const T t92 = T(0.424472495814791) * f[13];
+  const T t92 = T(0.42447249581479113) * f[13];
   const T t93 = t91 + t92;
   const T t94 = T(0.2960534362402845) * f[7];
   const T t95 = t93 + t94;
@@ -4167,7 +4167,7 @@ inline void square_order4(const T f[16], T h[16]) {
   const T t442 = T(1.0083293018484714) * t414;
   const T t444 = T(0.8483472301803889) * t427;
   const T t445 = t442 + t444;
-  const T t447 = T(0.41994196980089094) * t440;
+  const T t447 = T(0.4199419698008902) * t440;
   const T t448 = t445 + t447;
   const T t449 = t161 + t212;
   const T t450 = t449 - t232;
@@ -4194,12 +4194,12 @@ inline void square_order4(const T f[16], T h[16]) {
   const T t472 = T(0.8732387907810036) * t452;
   const T t474 = T(0.6190831576995309) * t461;
   const T t475 = t472 + t474;
-  const T t477 = T(0.15379772817269455) * t470;
+  const T t477 = T(0.1537977281726943) * t470;
   const T t478 = t475 + t477;
   const T t479 = t420 - t426;
   const T t480 = t433 - t439;
   const T t482 = T(0.791216306881579) * t479;
-  const T t484 = T(0.6591197229915283) * t480;
+  const T t484 = T(0.6591197229915272) * t480;
   const T t485 = t482 + t484;
   const T t486 = t116 + t182;
   const T t487 = t323 + t486;
@@ -4226,7 +4226,7 @@ inline void square_order4(const T f[16], T h[16]) {
   const T t508 = T(0.8732387907810036) * t489;
   const T t509 = T(0.6190831576995309) * t498;
   const T t510 = t508 + t509;
-  const T t511 = T(0.15379772817269455) * t507;
+  const T t511 = T(0.1537977281726943) * t507;
   const T t512 = t510 + t511;
   const T t513 = t151 + t198;
   const T t514 = t272 + t513;
@@ -4248,22 +4248,22 @@ inline void square_order4(const T f[16], T h[16]) {
   const T t531 = T(0.9763106483880204) * t515;
   const T t533 = T(0.5832418875009197) * t522;
   const T t534 = t531 + t533;
-  const T t536 = T(0.07271682938478136) * t529;
+  const T t536 = T(0.07271682938478123) * t529;
   const T t537 = t534 + t536;
   const T t538 = t456 - t460;
   const T t539 = t465 - t469;
   const T t541 = T(0.7454095407181011) * t538;
-  const T t543 = T(0.31163721994060445) * t539;
+  const T t543 = T(0.3116372199406039) * t539;
   const T t544 = t541 + t543;
   const T t546 = T(-1.1273464313190433) * t414;
-  const T t548 = T(-0.12344708930091665) * t427;
+  const T t548 = T(-0.12344708930091669) * t427;
   const T t549 = t546 + t548;
-  const T t551 = T(0.6871203049604385) * t440;
+  const T t551 = T(0.6871203049604374) * t440;
   const T t552 = t549 + t551;
   const T t553 = t493 - t497;
   const T t554 = t502 - t506;
   const T t555 = T(0.7454095407181011) * t553;
-  const T t556 = T(0.31163721994060445) * t554;
+  const T t556 = T(0.3116372199406039) * t554;
   const T t557 = t555 + t556;
   const T t558 = t126 - t246;
   const T t559 = t338 + t558;
@@ -4290,7 +4290,7 @@ inline void square_order4(const T f[16], T h[16]) {
   const T t580 = T(0.9763106483880204) * t561;
   const T t581 = T(0.5832418875009197) * t570;
   const T t582 = t580 + t581;
-  const T t583 = T(0.07271682938478136) * t579;
+  const T t583 = T(0.07271682938478123) * t579;
   const T t584 = t582 + t583;
   const T t585 = t137 + t212;
   const T t586 = t282 + t585;
@@ -4307,30 +4307,30 @@ inline void square_order4(const T f[16], T h[16]) {
   const T t598 = T(1.054536025549535) * t586;
   const T t600 = T(0.5308438774693826) * t591;
   const T t601 = t598 + t600;
-  const T t603 = T(0.03321531204591404) * t596;
+  const T t603 = T(0.033215312045913985) * t596;
   const T t604 = t601 + t603;
   const T t605 = t518 - t521;
   const T t606 = t525 - t528;
   const T t608 = T(0.8309189863452843) * t605;
-  const T t610 = T(0.17434052656965093) * t606;
+  const T t610 = T(0.17434052656965063) * t606;
   const T t611 = t608 + t610;
   const T t613 = T(-0.8168400929858216) * t452;
-  const T t615 = T(0.2604475731586978) * t461;
+  const T t615 = T(0.2604475731586977) * t461;
   const T t616 = t613 + t615;
-  const T t618 = T(0.44681605529350565) * t470;
+  const T t618 = T(0.44681605529350504) * t470;
   const T t619 = t616 + t618;
   const T t621 = T(-0.9368207249858066) * t479;
-  const T t623 = T(0.5566767035668084) * t480;
+  const T t623 = T(0.5566767035668074) * t480;
   const T t624 = t621 + t623;
   const T t625 = T(-0.8168400929858216) * t489;
-  const T t626 = T(0.2604475731586978) * t498;
+  const T t626 = T(0.2604475731586977) * t498;
   const T t627 = t625 + t626;
-  const T t628 = T(0.44681605529350565) * t507;
+  const T t628 = T(0.44681605529350504) * t507;
   const T t629 = t627 + t628;
   const T t630 = t565 - t569;
   const T t631 = t574 - t578;
   const T t632 = T(0.8309189863452843) * t630;
-  const T t633 = T(0.17434052656965093) * t631;
+  const T t633 = T(0.17434052656965063) * t631;
   const T t634 = t632 + t633;
   const T t635 = t353 - t182;
   const T t636 = t372 + t635;
@@ -4347,7 +4347,7 @@ inline void square_order4(const T f[16], T h[16]) {
   const T t647 = T(1.054536025549535) * t636;
   const T t648 = T(0.5308438774693826) * t641;
   const T t649 = t647 + t648;
-  const T t650 = T(0.03321531204591404) * t646;
+  const T t650 = T(0.033215312045913985) * t646;
   const T t651 = t649 + t650;
   h[0] = t448;
   h[1] = t478;
@@ -4387,7 +4387,7 @@ struct Kernels<4> {
   template <class T>
   static void rotate_rgb(const T R[9], const T coeffs[3][16], T rotated[3][16]) { rotate_rgb_order4<T>(R, coeffs, rotated); }
   template <class T>
-  static void rotate_batch(std::size_t count, const T* R, const T* coeffs, T* rotated) { rotate_batch_order4<T>(count, R, coeffs, rotated); }
+  static void rotate_batch(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) { rotate_batch_order4<T>(count, R, coeffs, rotated); }
   template <class T>
   static void shade(const T R[9], const T light[16], const T transfer[16], T result[1]) { shade_order4<T>(R, light, transfer, result); }
   template <class T>

@@ -10,6 +10,7 @@
 
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/rotator.h"
+#include "zhf/runtime/soa_batch.h"
 #include "zhf/runtime/tolerances.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
@@ -122,6 +123,54 @@ TEST(Batch, BulkLayoutsMatchTheReferenceAtEveryGeneratedOrder) {
     check_layouts<double>(order, kDouble);
     check_layouts<float>(order, kFloatRotation);
   }
+}
+
+// rotate_soa against the reference and lane for lane against the scalar kernel, on random
+// rotations and the adversarial ones (axes, half turns, near-identity), counts with a tail. Float
+// against the reference: the bound for any unit input of a float lobe stage.
+template <int N, class T>
+void check_soa(double tolerance) {
+  std::mt19937_64 rng(200 + N);
+  std::vector<sh::Matrix3> rotations = {sh::Matrix3::Identity(), sh::Matrix3(Eigen::AngleAxisd(runtime::kPi, Eigen::Vector3d::UnitX())),
+                                        sh::Matrix3(Eigen::AngleAxisd(runtime::kPi, Eigen::Vector3d(1, 1, 1).normalized())),
+                                        sh::Matrix3(Eigen::AngleAxisd(1e-7, Eigen::Vector3d::UnitZ())),
+                                        sh::Matrix3(Eigen::AngleAxisd(runtime::kPi / 2, Eigen::Vector3d::UnitY()))};
+  while (rotations.size() < 37) rotations.push_back(sh::random_rotation(rng));
+  const std::size_t count = rotations.size(), n = N * N;
+  const std::vector<T> vectors = unit_vectors<T>(count, N, rng);
+  std::vector<T> r(9 * count), in(n * count), out(n * count, T(7)), two(n * count);
+  for (std::size_t v = 0; v < count; ++v) {
+    for (int k = 0; k < 9; ++k) r[k * count + v] = T(rotations[v](k / 3, k % 3));
+    for (std::size_t i = 0; i < n; ++i) in[i * count + v] = vectors[v * n + i];
+  }
+  runtime::rotate_soa<N>(count, r.data(), in.data(), out.data(), 1);
+  runtime::rotate_soa<N>(count, r.data(), in.data(), two.data(), 2);
+  ASSERT_EQ(out, two) << "order " << N << ": the thread count changed the result";
+  for (std::size_t v = 0; v < count; ++v) {
+    T rv[9], single[N * N];
+    for (int k = 0; k < 9; ++k) rv[k] = r[k * count + v];
+    gen::Kernels<N>::template rotate<T>(rv, &vectors[v * n], single);
+    Eigen::VectorXd f(n);
+    for (std::size_t i = 0; i < n; ++i) f[i] = double(vectors[v * n + i]);
+    sh::Matrix3 exact_r;
+    for (int k = 0; k < 9; ++k) exact_r(k / 3, k % 3) = double(rv[k]);
+    const Eigen::VectorXd g = sh::apply_band_matrices(sh::ivanic_ruedenberg(exact_r, N), f);
+    for (std::size_t i = 0; i < n; ++i) {
+      ASSERT_NEAR(double(out[i * count + v]), g[i], tolerance)
+          << "order " << N << ", band " << runtime::band_of(int(i)) << ", index " << i << ", rotation " << v;
+      ASSERT_NEAR(double(out[i * count + v]), double(single[i]), tolerance)
+          << "lanes against the scalar kernel, order " << N << ", index " << i << ", rotation " << v;
+    }
+  }
+}
+
+TEST(Batch, AcrossRotationsMatchesTheReferenceAndTheScalarKernel) {
+  check_soa<2, float>(kFloatLobeStageWorstUnitInput);
+  check_soa<3, float>(kFloatLobeStageWorstUnitInput);
+  check_soa<4, float>(kFloatLobeStageWorstUnitInput);
+  check_soa<2, double>(kDouble);
+  check_soa<3, double>(kDouble);
+  check_soa<4, double>(kDouble);
 }
 
 TEST(Batch, PerVectorRotationsDoNotDependOnTheThreadCount) {

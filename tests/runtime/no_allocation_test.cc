@@ -15,6 +15,7 @@
 #include "zhf/runtime/lanes.h"
 #include "zhf/runtime/lobe_table.h"
 #include "zhf/runtime/rotator.h"
+#include "zhf/runtime/soa_batch.h"
 #include "zhf_kernels.h"
 
 namespace {
@@ -75,6 +76,12 @@ void check_rotator(const runtime::Rotator<T>& rotator, const std::string& name) 
 
 TEST(NoAllocation, TheCounterSeesAllocations) {
   EXPECT_GT(allocations_of([] { std::vector<int> v(10); }), 0);
+}
+
+TEST(NoAllocation, AcrossRotationsDoesNotAllocate) {
+  const std::size_t count = 21;
+  Data<float> d(4, count);
+  EXPECT_EQ(allocations_of([&] { runtime::rotate_soa<4>(count, d.r.data(), d.in.data(), d.out.data(), 1); }), 0);
 }
 
 TEST(NoAllocation, NoRotateCallAllocatesAfterConstruction) {
