@@ -24,6 +24,7 @@
 #include "zhf/runtime/lobe_table.h"
 #include "zhf/runtime/product.h"
 #include "zhf/runtime/rotator.h"
+#include "zhf/runtime/soa_batch.h"
 #include "zhf_kernels.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/zxzxz.h"
@@ -301,8 +302,8 @@ Row batch(const Scale& scale, const Pool& pool, const std::string& method, int t
 // The same over structure-of-arrays slices, one per thread: element i of vector v of a
 // slice of m vectors at [i * m + v].
 template <class F>
-Row batch_soa(const Scale& scale, const Pool& pool, int threads, size_t count, F&& kernel) {
-  Row row = make_row("zhf_batch_soa", "batch", "float", pool.order, "threads " + std::to_string(threads));
+Row batch_soa(const Scale& scale, const Pool& pool, const std::string& method, int threads, size_t count, F&& kernel) {
+  Row row = make_row(method, "batch", "float", pool.order, "threads " + std::to_string(threads));
   const size_t n = pool.n, chunk = (count + threads - 1) / threads;
   struct Slice {
     size_t m;
@@ -531,14 +532,25 @@ SuiteReport run_suite(const SuiteOptions& o) {
     const auto soa_kernel = gen::with_order(order, [](auto n) -> void (*)(std::size_t, const float*, const float*, float*) {
       return &gen::Kernels<decltype(n)::value>::template rotate_batch<float>;
     });
+    using SoaKernel = void (*)(std::size_t, const float*, const float*, float*);
+    const SoaKernel soa_packs = gen::with_order(order, [](auto n) -> SoaKernel {
+      constexpr int N = decltype(n)::value;
+      if constexpr (gen::Kernels<N>::kLobeStage == 0) {
+        return [](std::size_t c, const float* r, const float* in, float* out) { runtime::rotate_soa<N>(c, r, in, out, 1); };
+      } else {
+        return nullptr;
+      }
+    });
     const size_t n = pool.n;
     for (int threads : {1, 2}) {
       say(batch(scale, pool, "zhf", threads, [&](size_t b, size_t e, const float* r, const float* in, float* out) {
         f.rotate_batch(e - b, r + 9 * b, in + n * b, out + n * b, 1);
       }, count));
       // The generated structure-of-arrays kernel, each thread on its own SoA slice (laid out
-      // before timing, as a caller keeping SoA data would).
-      say(batch_soa(scale, pool, threads, count, soa_kernel));
+      // before timing, as a caller keeping SoA data would), and the same kernel across SIMD
+      // lanes through runtime::rotate_soa where its lobe stage is float.
+      say(batch_soa(scale, pool, "zhf_batch_soa", threads, count, soa_kernel));
+      if (soa_packs) say(batch_soa(scale, pool, "zhf_rotate_soa", threads, count, soa_packs));
       say(batch(scale, pool, "zxzxz", threads, [&](size_t b, size_t e, const float* r, const float* in, float* out) {
         for (size_t v = b; v < e; ++v) z.rotate(r + 9 * v, in + n * v, out + n * v);
       }, count));
@@ -547,16 +559,24 @@ SuiteReport run_suite(const SuiteOptions& o) {
       // Scenario 4: one rotation for every vector. Dense band matrices built once (through
       // the zhf kernel), then a small product per vector; zhf per vector for comparison.
       Row dense_row = make_row("dense_apply", "shared", "float", order, "build once");
+      Row planar_row = make_row("dense_planar", "shared", "float", order, "build once, planar");
       Row zhf_row = make_row("zhf", "shared", "float", order, "per vector");
       std::vector<float> in(n * count), out(n * count);
       for (size_t v = 0; v < count; ++v)
         std::copy(pool.coeffs<float>(0), pool.coeffs<float>(0) + n, &in[n * v]);
-      std::vector<double> dense_ns, zhf_ns;
+      // The planar layout: plane i holds coefficient i of every vector.
+      std::vector<float> planes(n * count), planes_out(n * count);
+      for (size_t v = 0; v < count; ++v)
+        for (size_t i = 0; i < n; ++i) planes[i * count + v] = in[n * v + i];
+      std::vector<double> dense_ns, planar_ns, zhf_ns;
       for (int rep = 0; rep < std::max(1, scale.repeats / 2); ++rep) {
         auto t0 = Clock::now();
         const runtime::DenseRotation<float> dense = f.dense(pool.rot<float>(0));
         for (size_t v = 0; v < count; ++v) dense.apply(&in[n * v], &out[n * v]);
         dense_ns.push_back(std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / count);
+        t0 = Clock::now();
+        f.dense(pool.rot<float>(0)).apply_planar(count, 1, planes.data(), planes_out.data(), 1);
+        planar_ns.push_back(std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / count);
         t0 = Clock::now();
         for (size_t v = 0; v < count; ++v) f.rotate(pool.rot<float>(0), &in[n * v], &out[n * v]);
         zhf_ns.push_back(std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / count);
@@ -565,9 +585,11 @@ SuiteReport run_suite(const SuiteOptions& o) {
       std::vector<float> one(n);
       dense.apply(pool.coeffs<float>(0), one.data());
       measure_error(pool, one, 1, 1, dense_row);
+      for (size_t i = 0; i < n; ++i) one[i] = planes_out[i * count];
+      measure_error(pool, one, 1, 1, planar_row);
       f.rotate(pool.rot<float>(0), pool.coeffs<float>(0), one.data());
       measure_error(pool, one, 1, 1, zhf_row);
-      for (auto [row, ns] : {std::pair<Row*, std::vector<double>*>{&dense_row, &dense_ns}, {&zhf_row, &zhf_ns}}) {
+      for (auto [row, ns] : {std::pair<Row*, std::vector<double>*>{&dense_row, &dense_ns}, {&planar_row, &planar_ns}, {&zhf_row, &zhf_ns}}) {
         row->ns_median = median(*ns);
         row->ns_min = *std::min_element(ns->begin(), ns->end());
         row->ns_max = *std::max_element(ns->begin(), ns->end());
@@ -713,12 +735,14 @@ std::string write_plots(const SuiteReport& report, const std::string& svg_path) 
   const fs::path scaling = svg.parent_path() / (svg.stem().string() + "_scaling.svg");
   const std::string csv_path = (svg.parent_path() / (svg.stem().string() + ".csv")).string();
   const std::string gp = (svg.parent_path() / (svg.stem().string() + ".gp")).string();
-  // One series per method (and precision/variant), single-vector scenario.
+  // One series per method (and precision/variant): one vector per call, and the bulk paths per
+  // rotated vector (batches on one thread; one rotation shared by many vectors).
   std::map<std::string, std::vector<const Row*>> series;
   for (const Row& r : report.rows) {
-    if (r.scenario != "single" || r.variant == "conversion only") continue;
-    std::string name = r.method + (r.precision == "double" && r.method == "zhf" ? " (double)" : "");
-    if (!r.variant.empty()) name += " [" + r.variant.substr(0, r.variant.find(" (")) + "]";
+    const bool bulk = (r.scenario == "batch" && r.variant == "threads 1") || r.scenario == "shared";
+    if ((r.scenario != "single" && !bulk) || r.variant == "conversion only") continue;
+    std::string name = (bulk ? r.scenario + ": " : "") + r.method + (r.precision == "double" && r.method == "zhf" ? " (double)" : "");
+    if (!r.variant.empty() && !bulk) name += " [" + r.variant.substr(0, r.variant.find(" (")) + "]";
     series[name].push_back(&r);
   }
   std::ostringstream csv;
@@ -731,7 +755,7 @@ std::string write_plots(const SuiteReport& report, const std::string& svg_path) 
          << "if (!exists('pareto_svg')) pareto_svg = " << gnuplot_string(svg.string()) << "\n"
          << "if (!exists('scaling_svg')) scaling_svg = " << gnuplot_string(scaling.string()) << "\n"
          << "set terminal svg size 1000,700 dynamic background rgb 'white'\nset output pareto_svg\n"
-         << "set title 'zhf bench: max error vs time per rotated vector (one vector, new rotation each call; labels: order N)' noenhanced\n"
+         << "set title 'zhf bench: max error vs time per rotated vector (one vector per call; batch: and shared: the bulk paths; labels: order N)' noenhanced\n"
          << "set logscale xy\nset xlabel 'ns per rotated vector (median)'\nset ylabel 'max abs error vs double reference'\n"
          << "set key outside right noenhanced\nset datafile separator ','\nplot ";
   time << "set terminal svg size 1000,700 dynamic background rgb 'white'\nset output scaling_svg\n"

@@ -55,7 +55,7 @@ class DenseRotation {
   // bands()[l] is (2l+1)^2 row-major: out_l = D_l in_l.
   const std::vector<std::vector<T>>& bands() const { return bands_; }
   // out = D in for one vector of N^2 (in and out must not overlap). Cost: sum (2l+1)^2
-  // multiply-adds, with fixed band sizes for the generated orders.
+  // multiply-adds, with fixed band sizes for the generated orders and packs of rows above.
   void apply(const T* in, T* out) const {
     switch (order_) {
       case 1: return apply_bands<1>(in, out);
@@ -68,13 +68,8 @@ class DenseRotation {
       case 8: return apply_bands<8>(in, out);
       default: break;
     }
-    const T* d = columns_.data();
-    for (int l = 0; l < order_; ++l) {
-      const int n = band_size(l), base = l * l;
-      for (int i = 0; i < n; ++i) out[base + i] = 0;
-      for (int j = 0; j < n; ++j, d += n)
-        for (int i = 0; i < n; ++i) out[base + i] += d[i] * in[base + j];
-    }
+    out[0] = in[0];
+    apply_rest(in + 1, out + 1);
   }
 
   // 3D Gaussian Splatting's layout, count items of 3 N^2 values: the three band-0 values (R, G,
@@ -121,10 +116,15 @@ class DenseRotation {
   void apply_rest(const T* x, T* y) const {
     P acc[(kMaxTableOrder * kMaxTableOrder + P::kLanes - 1) / P::kLanes];
     for (int p = 0; p < rest_packs_; ++p) {
-      P sum(0.0);
-      for (int t = rest_pack_begin_[p]; t < rest_pack_begin_[p + 1]; ++t)
-        sum += rest_terms_[t].column * P::broadcast(x[rest_terms_[t].input]);
-      acc[p] = sum;
+      // Four partial sums: one would be a chain of dependent multiply-adds.
+      P sum[4] = {P(0.0), P(0.0), P(0.0), P(0.0)};
+      const RestTerm* term = &rest_terms_[rest_pack_begin_[p]];
+      const int terms = rest_pack_begin_[p + 1] - rest_pack_begin_[p];
+      int t = 0;
+      for (; t + 4 <= terms; t += 4)
+        for (int k = 0; k < 4; ++k) sum[k] += term[t + k].column * P::broadcast(x[term[t + k].input]);
+      for (; t < terms; ++t) sum[t % 4] += term[t].column * P::broadcast(x[term[t].input]);
+      acc[p] = (sum[0] + sum[1]) + (sum[2] + sum[3]);
     }
     const int rest = coefficients() - 1, whole = rest / P::kLanes;
     for (int p = 0; p < whole; ++p) acc[p].store(y + p * P::kLanes);
@@ -188,5 +188,23 @@ class DenseRotation {
   std::vector<int> rest_pack_begin_;  // pack p's terms: [begin[p], begin[p + 1])
   std::vector<RestTerm> rest_terms_;
 };
+
+// The band matrices of the rotation rotate(in, out) performs at this order (in, out: N^2 values),
+// by rotating each basis vector once.
+template <class T, class Rotate>
+DenseRotation<T> dense_rotation(int order, Rotate&& rotate) {
+  const int n = order * order;
+  std::vector<std::vector<T>> bands(order);
+  for (int l = 0; l < order; ++l) bands[l].assign(band_size(l) * band_size(l), T(0));
+  std::vector<T> unit(n, T(0)), column(n);
+  for (int j = 0; j < n; ++j) {
+    unit[j] = 1;
+    rotate(unit.data(), column.data());
+    unit[j] = 0;
+    const int l = band_of(j), size = band_size(l), col = j - l * l;
+    for (int i = 0; i < size; ++i) bands[l][i * size + col] = column[l * l + i];
+  }
+  return DenseRotation<T>(order, std::move(bands));
+}
 
 }  // namespace zhf::runtime

@@ -14,8 +14,10 @@
 //   Rotator<T>::with(gen::fastest_kernels<T>(order))
 //                                         any generated order at run time, on the fastest verified
 //                                         path for the instruction set compiled for (zhf_kernels.h);
-//   Rotator<T>::from_table(table)         any order up to 32 from a lobe table (table_rotation.h):
-//                                         SIMD across lobes, lobe stage in double, no allocation.
+//   Rotator<T>::from_table(table)         any order up to 32 from a lobe table: below
+//                                         kZxzxzFromOrder the lobes (table_rotation.h), from it zxzxz
+//                                         with band matrices made once through the table
+//                                         (zxzxz_rotation.h), the faster by measurement.
 #pragma once
 
 #include <algorithm>
@@ -35,6 +37,7 @@
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/runtime/table_rotation.h"
+#include "zhf/runtime/zxzxz_rotation.h"
 
 namespace zhf::gen {
 // The functions of one generated order, specialised at the end of each zhf_orderN.h.
@@ -43,6 +46,11 @@ struct Kernels;
 }  // namespace zhf::gen
 
 namespace zhf::runtime {
+
+// From this order on, Rotator::from_table runs zxzxz. Measured: with AVX2 the lobe path is faster
+// up to order 7 and even at 8, zxzxz ahead from 9 (1.8x at 12, 2.8x at 32); on baseline x86-64
+// zxzxz is ahead from 8 (3.6x) (docs/performance.md).
+inline constexpr int kZxzxzFromOrder = 8;
 
 // Whether count vectors under one rotation are cheaper through the band matrices, which cost
 // about N^2 single rotations to build, than one by one.
@@ -99,14 +107,23 @@ class Rotator {
     validate_lobe_table(table, "Rotator::from_table", TableCheck::kShape);
     Rotator r;
     r.order_ = table.order;
-    r.table_ = TableRotation<T>(table);
+    if (table.order >= kZxzxzFromOrder) {
+      // X+ = D(Rx(+90 deg)) through the table path in double, once.
+      const TableRotation<double> exact(table);
+      const double x_plus[9] = {1, 0, 0, 0, 0, -1, 0, 1, 0};
+      r.zxzxz_ = ZxzxzRotation<T>(dense_rotation<double>(table.order, [&](const double* in, double* out) {
+        exact.rotate(x_plus, in, out, 1);
+      }));
+    } else {
+      r.table_ = TableRotation<T>(table);
+    }
     return r;
   }
 
   int order() const { return order_; }
   int coefficients() const { return order_ * order_; }
-  // "scalar", "lanes" or "table": which implementation rotate() runs.
-  std::string path() const { return kernels_.rotate ? kernels_.path : "table"; }
+  // "scalar", "lanes", "table" or "zxzxz": which implementation rotate() runs.
+  std::string path() const { return kernels_.rotate ? kernels_.path : zxzxz_.order() ? "zxzxz" : "table"; }
 
   // R must be a proper rotation (checked with assert in debug builds; see validate()).
   void rotate(const T r[9], const T* in, T* out) const {
@@ -114,7 +131,7 @@ class Rotator {
     if (kernels_.rotate) {
       kernels_.rotate(r, in, out);
     } else {
-      table_.rotate(r, in, out, 1);
+      run_table(r, in, out, 1);
     }
   }
 
@@ -124,7 +141,7 @@ class Rotator {
     if (kernels_.rotate_rgb) {
       kernels_.rotate_rgb(r, in, out);
     } else {
-      table_.rotate(r, in, out, 3);
+      run_table(r, in, out, 3);
     }
   }
 
@@ -152,18 +169,7 @@ class Rotator {
 
   // The band matrices of R, by rotating each basis vector once.
   DenseRotation<T> dense(const T r[9]) const {
-    const int n = coefficients();
-    std::vector<std::vector<T>> bands(order_);
-    for (int l = 0; l < order_; ++l) bands[l].assign(band_size(l) * band_size(l), T(0));
-    std::vector<T> unit(n, T(0)), column(n);
-    for (int j = 0; j < n; ++j) {
-      unit[j] = 1;
-      rotate(r, unit.data(), column.data());
-      unit[j] = 0;
-      const int l = band_of(j), size = band_size(l), col = j - l * l;
-      for (int i = 0; i < size; ++i) bands[l][i * size + col] = column[l * l + i];
-    }
-    return DenseRotation<T>(order_, std::move(bands));
+    return dense_rotation<T>(order_, [&](const T* in, T* out) { rotate(r, in, out); });
   }
 
   static RotationCheck validate(const T r[9], double max_defect = tolerance::kRotationDefect) {
@@ -173,6 +179,14 @@ class Rotator {
  private:
   Rotator() = default;
 
+  void run_table(const T r[9], const T* in, T* out, int channels) const {
+    if (zxzxz_.order()) {
+      zxzxz_.rotate(r, in, out, channels);
+    } else {
+      table_.rotate(r, in, out, channels);
+    }
+  }
+
   void debug_check(const T r[9]) const {
     (void)r;
     assert(validate_rotation(r).ok && "zhf: not a proper rotation; see Rotator::validate");
@@ -181,6 +195,7 @@ class Rotator {
   int order_ = 0;
   KernelSet<T> kernels_;
   TableRotation<T> table_;
+  ZxzxzRotation<T> zxzxz_;
 };
 
 }  // namespace zhf::runtime

@@ -1,4 +1,6 @@
-// The zxzxz rotation, the usual fast general method the ZHF paper compares against: with zyz
+// The zxzxz rotation as a reference and for counting operations (the runtime's ZxzxzRotation is
+// the fast one; the angles and turns are shared): the usual fast general method the ZHF paper
+// compares against: with zyz
 // Euler angles R = Rz(a) Ry(b) Rz(g) and Ry(b) = Rx(-90) Rz(b) Rx(+90),
 //   D(R) f = Z(a) X- Z(b) X+ Z(g) f,
 // where Z(t) turns each (cos m phi, sin m phi) pair by m t and X+- = D(Rx(+-90 deg)) are fixed
@@ -14,26 +16,13 @@
 #include <vector>
 
 #include "zhf/runtime/limits.h"
+#include "zhf/runtime/zxzxz_rotation.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
 
 namespace zhf::sh {
 
-// zyz Euler angles of a rotation, stable at and near gimbal lock (b = 0 or pi). a comes from
-// R's last column (error ~eps / sin b, which moves the rotation by only ~eps because b's turn
-// is that small); g then comes from a + g (upper 2x2 block, well conditioned for cos b >= 0)
-// or a - g (for cos b < 0), so the z-turn that dominates near lock is exact to rounding.
-template <class T>
-void euler_zyz(const T r[9], T& a, T& b, T& g) {
-  using std::atan2;
-  using std::hypot;
-  a = atan2(r[5], r[2]);
-  b = atan2(hypot(r[2], r[5]), r[8]);
-  if (r[8] >= T(0))
-    g = atan2(r[3] - r[1], r[0] + r[4]) - a;     // a + g, from (1 + cos b) (sin, cos)
-  else
-    g = a - atan2(-(r[3] + r[1]), r[4] - r[0]);  // a - g, from (1 - cos b) (sin, cos)
-}
+using runtime::euler_zyz;
 
 template <class T>
 class ZxzxzRotator {
@@ -111,29 +100,8 @@ class ZxzxzRotator {
       row = e.row;
     }
   }
-  // cos(m t), sin(m t) for m = 0..order-1 by the angle-addition recurrence.
-  void multiples(T t, Multiples& c, Multiples& s) const {
-    using std::cos;
-    using std::sin;
-    c[0] = T(1);
-    s[0] = T(0);
-    if (order_ < 2) return;
-    c[1] = cos(t);
-    s[1] = sin(t);
-    for (int m = 2; m < order_; ++m) {
-      c[m] = c[m - 1] * c[1] - s[m - 1] * s[1];
-      s[m] = s[m - 1] * c[1] + c[m - 1] * s[1];
-    }
-  }
-  // Rotation about z by t: g(phi) = f(phi - t) sends the (m, -m) weights (a, b) to
-  // (a cos mt - b sin mt, a sin mt + b cos mt).
-  static void turn(int l, const Multiples& c, const Multiples& s, Band& f) {
-    for (int m = 1; m <= l; ++m) {
-      const T x = f[l + m], y = f[l - m];
-      f[l + m] = x * c[m] - y * s[m];
-      f[l - m] = x * s[m] + y * c[m];
-    }
-  }
+  void multiples(T t, Multiples& c, Multiples& s) const { runtime::angle_multiples(t, order_, c.data(), s.data()); }
+  static void turn(int l, const Multiples& c, const Multiples& s, Band& f) { runtime::turn_band(l, c.data(), s.data(), f.data()); }
 
   int order_;
   std::vector<std::vector<Entry>> plus_, minus_;  // X+ = D(Rx(+90)), X- = D(Rx(-90)), per band
