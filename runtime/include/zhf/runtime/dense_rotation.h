@@ -131,7 +131,8 @@ class DenseRotation {
     if (whole < rest_packs_) {
       T lanes[P::kLanes];
       acc[whole].store(lanes);
-      std::memcpy(y + whole * P::kLanes, lanes, sizeof(T) * (rest - whole * P::kLanes));
+      // A few scalar stores: a memcpy of run-time length is a library call.
+      for (int k = 0; k < rest - whole * P::kLanes; ++k) y[whole * P::kLanes + k] = lanes[k];
     }
   }
 
