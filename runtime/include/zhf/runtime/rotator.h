@@ -20,17 +20,10 @@
 //                                         (zxzxz_rotation.h), the faster by measurement.
 #pragma once
 
-#include <algorithm>
-#include <array>
 #include <cassert>
 #include <cstddef>
 #include <stdexcept>
 #include <string>
-#include <system_error>
-#include <thread>
-#include <type_traits>
-#include <utility>
-#include <vector>
 
 #include "zhf/runtime/dense_rotation.h"
 #include "zhf/runtime/lobe_table.h"

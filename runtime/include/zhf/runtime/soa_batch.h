@@ -16,11 +16,7 @@
 
 #include "zhf/runtime/pack.h"
 #include "zhf/runtime/parallel.h"
-
-namespace zhf::gen {
-template <int N>
-struct Kernels;
-}  // namespace zhf::gen
+#include "zhf/runtime/rotator.h"  // gen::Kernels
 
 namespace zhf::runtime {
 
