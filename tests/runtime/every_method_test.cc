@@ -132,6 +132,11 @@ TEST(EveryMethod, ExtremeRotationsStayWithinEachMethodsTolerance) {
       check("runtime table double", order, rotations, through<double>([&](auto r, auto i, auto o) { td.rotate(r, i, o); }), kDouble);
       check("runtime table rgb float", order, rotations, through<float>([&](auto r, auto i, auto o) { tf.rotate_rgb(r, i, o); }, 3),
             table_float_tolerance);
+      // The lobe path itself at every order, whichever path from_table picks for this build.
+      const runtime::TableRotation<float> lf(table);
+      const runtime::TableRotation<double> ld(table);
+      check("lobe path float", order, rotations, through<float>([&](auto r, auto i, auto o) { lf.rotate(r, i, o, 1); }), table_float_tolerance);
+      check("lobe path rgb double", order, rotations, through<double>([&](auto r, auto i, auto o) { ld.rotate(r, i, o, 3); }, 3), kDouble);
       check("runtime table rgb double", order, rotations, through<double>([&](auto r, auto i, auto o) { td.rotate_rgb(r, i, o); }, 3),
             kDouble);
     }

@@ -40,10 +40,15 @@ struct Kernels;
 
 namespace zhf::runtime {
 
-// From this order on, Rotator::from_table runs zxzxz. Measured: with AVX2 the lobe path is faster
-// up to order 7 and even at 8, zxzxz ahead from 9 (1.8x at 12, 2.8x at 32); on baseline x86-64
-// zxzxz is ahead from 8 (3.6x) (docs/performance.md).
+// From this order on, Rotator::from_table runs zxzxz, by measurement (docs/performance.md): built
+// for AVX2 the lobe path is faster up to order 7 (2x at 3) and even at 8, zxzxz ahead from 9
+// (1.8x at 12, 2.8x at 32); elsewhere (a 4-double pack is two or more instructions) zxzxz is
+// ahead at every order (1.8x at 3, 3.8x at 7).
+#if defined(__AVX2__)
 inline constexpr int kZxzxzFromOrder = 8;
+#else
+inline constexpr int kZxzxzFromOrder = kMinTableOrder;
+#endif
 
 // Whether count vectors under one rotation are cheaper through the band matrices, which cost
 // about N^2 single rotations to build, than one by one.
