@@ -147,7 +147,7 @@ class DenseRotation {
       if constexpr (std::is_same_v<V, T>) return in[i * count];
       else return V::load(in + i * count);
     };
-    auto store = [&](int i, V value) {
+    auto store = [&](int i, const V& value) {
       if constexpr (std::is_same_v<V, T>) out[i * count] = value;
       else value.store(out + i * count);
     };

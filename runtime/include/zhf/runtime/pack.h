@@ -13,13 +13,6 @@
 #include <cstddef>
 #include <cstring>
 
-// Passing 32-byte vectors by value draws GCC's ABI notes (-Wpsabi) in builds without AVX; every
-// call here is inlined, so no ABI is crossed.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wpsabi"
-#endif
-
 namespace zhf::runtime {
 
 template <class T, int kBytes = 32>
@@ -31,13 +24,13 @@ struct Pack {
   Pack() = default;  // uninitialised, as a scalar; Pack(0.0) for zeros
   // c - 0 is c exactly (signed zeros too), so this folds to a plain broadcast.
   Pack(double c) : v(T(c) - Vector{}) {}  // NOLINT: broadcast, as a scalar literal would be
-  explicit Pack(Vector x) : v(x) {}
+  explicit Pack(const Vector& x) : v(x) {}
   static Pack broadcast(T value) { return Pack(value - Vector{}); }
   T lane(int i) const { return v[i]; }
-  friend Pack operator+(Pack a, Pack b) { return Pack(a.v + b.v); }
-  friend Pack operator-(Pack a, Pack b) { return Pack(a.v - b.v); }
-  friend Pack operator*(Pack a, Pack b) { return Pack(a.v * b.v); }
-  friend Pack operator-(Pack a) { return Pack(-a.v); }
+  friend Pack operator+(const Pack& a, const Pack& b) { return Pack(a.v + b.v); }
+  friend Pack operator-(const Pack& a, const Pack& b) { return Pack(a.v - b.v); }
+  friend Pack operator*(const Pack& a, const Pack& b) { return Pack(a.v * b.v); }
+  friend Pack operator-(const Pack& a) { return Pack(-a.v); }
 #else
   T v[kLanes];
   Pack() = default;  // uninitialised, as a scalar; Pack(0.0) for zeros
@@ -57,9 +50,9 @@ struct Pack {
   friend Pack operator*(Pack a, Pack b) { return zip(a, b, [](T x, T y) { return x * y; }); }
   friend Pack operator-(Pack a) { return zip(a, a, [](T x, T) { return -x; }); }
 #endif
-  Pack& operator+=(Pack b) { return *this = *this + b; }
-  Pack& operator-=(Pack b) { return *this = *this - b; }
-  Pack& operator*=(Pack b) { return *this = *this * b; }
+  Pack& operator+=(const Pack& b) { return *this = *this + b; }
+  Pack& operator-=(const Pack& b) { return *this = *this - b; }
+  Pack& operator*=(const Pack& b) { return *this = *this * b; }
 
   // kLanes consecutive values (any alignment).
   static Pack load(const T* p) {
@@ -84,7 +77,3 @@ struct Pack {
 };
 
 }  // namespace zhf::runtime
-
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif

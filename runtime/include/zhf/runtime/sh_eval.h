@@ -8,9 +8,8 @@
 // where Q_l^m = K_l^m d^m P_l / dz^m is the normalised associated Legendre function with its
 // sin^m factor removed:
 //   Q_0^0 = 1/sqrt(4 pi),   Q_m^m = diagonal(m) Q_{m-1}^{m-1},   Q_{m+1}^m = subdiagonal(m) z Q_m^m,
-//   Q_l^m = (a(l, m) z) Q_{l-1}^m - (a(l, m) b(l, m)) Q_{l-2}^m,
-// the second form so that a step's chain is one multiply-add (the run-time table path runs many
-// of these chains and is bound by their latency).
+//   Q_l^m = a(l, m) (z Q_{l-1}^m - b(l, m) Q_{l-2}^m).
+// Its rounding is part of zhf's outputs (searched tables, designs): change the form and those change.
 // Q is a polynomial in z (no trig, no division at the poles), and the normalised recurrences never
 // form factorials, so they stay finite below order kMaxShOrder in float and double alike.
 // Accuracy: a few ulps per step; measured 1.6e-13 relative at order 64 in double.
@@ -47,14 +46,13 @@ struct LegendreCoefficients {
     const R lm1 = R(l) - R(1);
     return std::sqrt((lm1 * lm1 - R(m) * m) / (R(4) * lm1 * lm1 - R(1)));
   }
-  static R ab(int l, int m) { return a(l, m) * b(l, m); }
 };
 
 // The same, tabulated once for orders below `order` (the run-time paths evaluate many directions).
 class TabulatedLegendreCoefficients {
  public:
   explicit TabulatedLegendreCoefficients(int order)
-      : order_(order), diagonal_(order), subdiagonal_(order), a_(order * order), ab_(order * order) {
+      : order_(order), diagonal_(order), subdiagonal_(order), a_(order * order), b_(order * order) {
     using K = LegendreCoefficients<>;
     for (int m = 0; m < order; ++m) {
       if (m > 0) diagonal_[m] = K::diagonal(m);
@@ -63,30 +61,30 @@ class TabulatedLegendreCoefficients {
     for (int l = 2; l < order; ++l)
       for (int m = 0; m + 2 <= l; ++m) {
         a_[l * order + m] = K::a(l, m);
-        ab_[l * order + m] = K::ab(l, m);
+        b_[l * order + m] = K::b(l, m);
       }
   }
   int order() const { return order_; }
   double diagonal(int m) const { return diagonal_[m]; }
   double subdiagonal(int m) const { return subdiagonal_[m]; }
   double a(int l, int m) const { return a_[l * order_ + m]; }
-  double ab(int l, int m) const { return ab_[l * order_ + m]; }
+  double b(int l, int m) const { return b_[l * order_ + m]; }
 
  private:
   int order_;
-  std::vector<double> diagonal_, subdiagonal_, a_, ab_;
+  std::vector<double> diagonal_, subdiagonal_, a_, b_;
 };
 
 // Calls visit(l, Q_l^m(z)) for l = m..top, starting from q_mm = Q_m^m: the recurrence in l.
 template <class T, class Coefficients, class Visit>
-void legendre_column(int m, int top, T z, T q_mm, const Coefficients& k, Visit&& visit) {
+void legendre_column(int m, int top, const T& z, const T& q_mm, const Coefficients& k, Visit&& visit) {
   visit(m, q_mm);
   if (m + 1 > top) return;
   T q_prev = q_mm;
   T q = T(k.subdiagonal(m)) * z * q_mm;
   visit(m + 1, q);
   for (int l = m + 2; l <= top; ++l) {
-    const T next = T(k.a(l, m)) * z * q - T(k.ab(l, m)) * q_prev;
+    const T next = T(k.a(l, m)) * (z * q - T(k.b(l, m)) * q_prev);
     q_prev = q;
     q = next;
     visit(l, q);
@@ -95,7 +93,7 @@ void legendre_column(int m, int top, T z, T q_mm, const Coefficients& k, Visit&&
 
 // Calls visit(l, m, Q_l^m(z), C_m, S_m) for 0 <= m <= l < order, at the unit direction (x, y, z).
 template <class T, class Coefficients, class Visit>
-void for_each_legendre(int order, T x, T y, T z, const Coefficients& k, Visit&& visit) {
+void for_each_legendre(int order, const T& x, const T& y, const T& z, const Coefficients& k, Visit&& visit) {
   T c = 1, s = 0;
   T q_mm = T(kInvSqrt4Pi);
   for (int m = 0; m < order; ++m) {
@@ -105,7 +103,7 @@ void for_each_legendre(int order, T x, T y, T z, const Coefficients& k, Visit&& 
       c = c_next;
       q_mm *= T(k.diagonal(m));
     }
-    legendre_column(m, order - 1, z, q_mm, k, [&](int l, T q) { visit(l, m, q, c, s); });
+    legendre_column(m, order - 1, z, q_mm, k, [&](int l, const T& q) { visit(l, m, q, c, s); });
   }
 }
 

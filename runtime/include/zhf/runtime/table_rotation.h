@@ -123,7 +123,7 @@ class TableRotation {
           weight[c][b.l] = (sum[0] + sum[1]) + (sum[2] + sum[3]);
         }
       }
-      for_each_legendre<P>(order_, x, y, z, legendre_, [&](int l, int m, P q_lm, P cos_m, P sin_m) {
+      for_each_legendre<P>(order_, x, y, z, legendre_, [&](int l, int m, const P& q_lm, const P& cos_m, const P& sin_m) {
         if (m == 0) {
           for (int c = 0; c < C; ++c) acc[c][index(l, 0)] += q_lm * weight[c][l];
         } else {
