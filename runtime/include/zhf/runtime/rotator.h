@@ -41,11 +41,11 @@ struct Kernels;
 namespace zhf::runtime {
 
 // From this order on, Rotator::from_table runs zxzxz, by measurement (docs/performance.md): built
-// for AVX2 the lobe path is faster up to order 7 (2x at 3) and even at 8, zxzxz ahead from 9
-// (1.8x at 12, 2.8x at 32); elsewhere (a 4-double pack is two or more instructions) zxzxz is
-// ahead at every order (1.8x at 3, 3.8x at 7).
+// for AVX2 the lobe path is faster up to order 6 (2.2x at 3), zxzxz from 7 (1.06x at 7, 1.8x at
+// 12, 3.3x at 32); elsewhere (a 4-double pack is two or more instructions) zxzxz is ahead at
+// every order (2.0x at 3, 3.7x at 8).
 #if defined(__AVX2__)
-inline constexpr int kZxzxzFromOrder = 8;
+inline constexpr int kZxzxzFromOrder = 7;
 #else
 inline constexpr int kZxzxzFromOrder = kMinTableOrder;
 #endif
