@@ -1,5 +1,6 @@
-// The batch entry points (rotate_shared, rotate_batch, the bulk layouts of DenseRotation) against
-// the Ivanic-Ruedenberg reference and against themselves across thread counts; quaternions against Eigen's conversion.
+// The batch entry points (rotate_shared, rotate_batch, rotate_soa, the bulk layouts of
+// DenseRotation) against the Ivanic-Ruedenberg reference and against themselves across thread
+// counts; quaternions against Eigen's conversion.
 #include <cmath>
 #include <limits>
 #include <random>
@@ -72,13 +73,13 @@ TEST(Batch, SharedRotationMatchesTheReferenceAtEveryGeneratedOrder) {
   }
 }
 
-// The bulk layouts of one rotation: 3DGS's interleaved splats and planar arrays, in place and
-// not, one and two threads, against the reference per channel. Counts not a multiple of the pack
+// The bulk layouts of one rotation (random, identity, a half turn, a tiny turn): 3DGS's
+// interleaved splats and planar arrays, in place and not, one and two threads, against the
+// reference per channel. Counts not a multiple of the pack
 // width, so the planar tail runs too.
 template <class T>
-void check_layouts(int order, double tolerance) {
+void check_layouts(int order, const sh::Matrix3& m, double tolerance) {
   std::mt19937_64 rng(100 + order);
-  const sh::Matrix3 m = sh::random_rotation(rng);
   T r[9];
   for (int i = 0; i < 9; ++i) r[i] = T(m(i / 3, i % 3));
   const sh::BandMatrices exact = sh::ivanic_ruedenberg(m, order);
@@ -119,10 +120,15 @@ void check_layouts(int order, double tolerance) {
 }
 
 TEST(Batch, BulkLayoutsMatchTheReferenceAtEveryGeneratedOrder) {
-  for (int order = 2; order <= runtime::kMaxGeneratedOrder; ++order) {
-    check_layouts<double>(order, kDouble);
-    check_layouts<float>(order, kFloatRotation);
-  }
+  std::mt19937_64 rng(7);
+  const std::vector<sh::Matrix3> rotations = {sh::random_rotation(rng), sh::Matrix3::Identity(),
+                                              sh::Matrix3(Eigen::AngleAxisd(runtime::kPi, Eigen::Vector3d(1, 1, 1).normalized())),
+                                              sh::Matrix3(Eigen::AngleAxisd(1e-7, Eigen::Vector3d::UnitZ()))};
+  for (int order = 2; order <= runtime::kMaxGeneratedOrder; ++order)
+    for (const sh::Matrix3& m : rotations) {
+      check_layouts<double>(order, m, kDouble);
+      check_layouts<float>(order, m, kFloatRotation);
+    }
 }
 
 // rotate_soa against the reference and lane for lane against the scalar kernel, on random

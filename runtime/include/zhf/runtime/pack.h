@@ -1,7 +1,7 @@
 // Pack<T>: a fixed group of T values (8 floats or 4 doubles: one 256-bit AVX2 register) with the
 // arithmetic of a scalar, so scalar code templated on its number type (the generated kernels, the
-// Legendre recurrence) runs across lanes unchanged. The run-time table path evaluates 4 lobes per
-// step with it (double); the bulk dense layouts run 8 items per step (float).
+// Legendre recurrence) runs across lanes unchanged: the lobe path evaluates 4 lobes per step
+// (double), rotate_soa runs 8 rotations per step, DenseRotation applies packs of rows or items.
 //
 // With GCC or Clang it is a vector-extension type: one AVX2 instruction per operation where the
 // build targets AVX2, two SSE2 instructions on baseline x86-64, the target's own vectors elsewhere.

@@ -107,7 +107,10 @@ class ZxzxzRotation {
       const int size = band_size(l);
       bands.emplace_back(size * size);
       for (int i = 0; i < size; ++i)
-        for (int j = 0; j < size; ++j) bands[l][i * size + j] = T(transposed ? x.bands()[l][j * size + i] : x.bands()[l][i * size + j]);
+        for (int j = 0; j < size; ++j) {
+          const double* band = x.bands()[l].data();
+          bands[l][i * size + j] = T(transposed ? band[j * size + i] : band[i * size + j]);
+        }
     }
     return DenseRotation<T>(x.order(), std::move(bands));
   }
