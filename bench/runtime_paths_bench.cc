@@ -14,7 +14,6 @@
 #include <string>
 #include <vector>
 
-#include "zhf/runtime/dense_rotation.h"
 #include "zhf/runtime/lobe_table.h"
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/table_rotation.h"
@@ -36,9 +35,7 @@ int main(int argc, char** argv) {
     }
     const TableRotation<float> lobes(table);
     const TableRotation<double> exact(table);
-    const double x_plus[9] = {1, 0, 0, 0, 0, -1, 0, 1, 0};
-    const ZxzxzRotation<float> zxzxz(
-        dense_rotation<double>(order, [&](const double* in, double* out) { exact.rotate(x_plus, in, out, 1); }));
+    const ZxzxzRotation<float> zxzxz = ZxzxzRotation<float>::from_table(table);
     const int n = order * order;
     std::mt19937_64 rng(order);
     std::normal_distribution<double> normal;

@@ -132,7 +132,7 @@ TEST(Batch, BulkLayoutsMatchTheReferenceAtEveryGeneratedOrder) {
 }
 
 // rotate_soa against the reference and lane for lane against the scalar kernel, on random
-// rotations and the adversarial ones (axes, half turns, near-identity), counts with a tail. Float
+// rotations and the adversarial ones (axes, half turns, near-identity), a count with a tail. Float
 // against the reference: the bound for any unit input of a float lobe stage.
 template <int N, class T>
 void check_soa(double tolerance) {
@@ -141,7 +141,8 @@ void check_soa(double tolerance) {
                                         sh::Matrix3(Eigen::AngleAxisd(runtime::kPi, Eigen::Vector3d(1, 1, 1).normalized())),
                                         sh::Matrix3(Eigen::AngleAxisd(1e-7, Eigen::Vector3d::UnitZ())),
                                         sh::Matrix3(Eigen::AngleAxisd(runtime::kPi / 2, Eigen::Vector3d::UnitY()))};
-  while (rotations.size() < 37) rotations.push_back(sh::random_rotation(rng));
+  // Past the threshold, so the two-thread run splits the batch; 5 past a multiple of 8 lanes.
+  while (rotations.size() < runtime::kParallelBatchThreshold + 5) rotations.push_back(sh::random_rotation(rng));
   const std::size_t count = rotations.size(), n = N * N;
   const std::vector<T> vectors = unit_vectors<T>(count, N, rng);
   std::vector<T> r(9 * count), in(n * count), out(n * count, T(7)), two(n * count);

@@ -106,12 +106,7 @@ class Rotator {
     Rotator r;
     r.order_ = table.order;
     if (table.order >= kZxzxzFromOrder) {
-      // X+ = D(Rx(+90 deg)) through the table path in double, once.
-      const TableRotation<double> exact(table);
-      const double x_plus[9] = {1, 0, 0, 0, 0, -1, 0, 1, 0};
-      r.zxzxz_ = ZxzxzRotation<T>(dense_rotation<double>(table.order, [&](const double* in, double* out) {
-        exact.rotate(x_plus, in, out, 1);
-      }));
+      r.zxzxz_ = ZxzxzRotation<T>::from_table(table);
     } else {
       r.table_ = TableRotation<T>(table);
     }

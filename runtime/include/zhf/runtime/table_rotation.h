@@ -30,7 +30,6 @@ class TableRotation {
  public:
   using P = Pack<double>;
   static constexpr int kLanes = P::kLanes;
-  static constexpr int kMaxChannels = 3;
 
   TableRotation() : legendre_(0) {}
 

@@ -6,8 +6,8 @@
 // where Z(t) turns each (cos m phi, sin m phi) pair by m t and X+ = D(Rx(+90 deg)), X- = X+^T are
 // fixed per band, held as DenseRotations (packs of rows, block-diagonal over bands).
 //
-// Convention as Rotator. Accuracy: the X+ given (from the table path in double: ~1e-13 at order
-// 32) and T's rounding over two band products and three turns (float: below 1e-6 on unit inputs
+// Convention as Rotator. Accuracy: the X+ given (from_table: through the lobe path in double,
+// ~1e-13 at order 32) and T's rounding over two band products and three turns (float: below 1e-6 on unit inputs
 // at order 32, tested); the angles are extracted in double and stable at gimbal lock.
 // Cost: 2 sum_l (2l+1) x (packs of rows band l touches) pack multiply-adds, 3 N^2 for the turns,
 // three atan2 and one sin/cos pair; no allocation per call.
@@ -18,6 +18,8 @@
 
 #include "zhf/runtime/dense_rotation.h"
 #include "zhf/runtime/limits.h"
+#include "zhf/runtime/lobe_table.h"
+#include "zhf/runtime/table_rotation.h"
 
 namespace zhf::runtime {
 
@@ -71,6 +73,13 @@ class ZxzxzRotation {
   // x_plus: D(Rx(+90 deg)) for the order wanted.
   explicit ZxzxzRotation(const DenseRotation<double>& x_plus)
       : order_(x_plus.order()), plus_(convert(x_plus, false)), minus_(convert(x_plus, true)) {}
+  // X+ through a lobe table's lobe path in double (the table's shape checked by the caller).
+  static ZxzxzRotation from_table(const LobeTable& table) {
+    const TableRotation<double> exact(table);
+    const double x_plus[9] = {1, 0, 0, 0, 0, -1, 0, 1, 0};
+    return ZxzxzRotation(
+        dense_rotation<double>(table.order, [&](const double* in, double* out) { exact.rotate(x_plus, in, out, 1); }));
+  }
 
   int order() const { return order_; }
 
@@ -88,15 +97,13 @@ class ZxzxzRotation {
     const int n = order_ * order_;
     T u[kMaxTableOrder * kMaxTableOrder];
     for (int ch = 0; ch < channels; ++ch) {
-      const T* f = in + ch * n;
       T* o = out + ch * n;
-      for (int i = 0; i < n; ++i) u[i] = f[i];
-      turn_all(cg, sg, u);
-      plus_.apply(u, o);
-      turn_all(cb, sb, o);
-      minus_.apply(o, u);
-      turn_all(ca, sa, u);
-      for (int i = 0; i < n; ++i) o[i] = u[i];
+      for (int i = 0; i < n; ++i) o[i] = in[ch * n + i];
+      turn_all(cg, sg, o);
+      plus_.apply(o, u);
+      turn_all(cb, sb, u);
+      minus_.apply(u, o);
+      turn_all(ca, sa, o);
     }
   }
 

@@ -22,8 +22,6 @@
 
 namespace zhf::sh {
 
-using runtime::euler_zyz;
-
 template <class T>
 class ZxzxzRotator {
  public:
@@ -48,11 +46,11 @@ class ZxzxzRotator {
   // computed once.
   void rotate_channels(const T r[9], const T* in, T* out, int channels) const {
     T a, b, g;
-    euler_zyz(r, a, b, g);
+    runtime::euler_zyz(r, a, b, g);
     Multiples ca, sa, cb, sb, cg, sg;
-    multiples(a, ca, sa);
-    multiples(b, cb, sb);
-    multiples(g, cg, sg);
+    runtime::angle_multiples(a, order_, ca.data(), sa.data());
+    runtime::angle_multiples(b, order_, cb.data(), sb.data());
+    runtime::angle_multiples(g, order_, cg.data(), sg.data());
     Band u, v;
     const int n = order_ * order_;
     for (int c = 0; c < channels; ++c) {
@@ -61,11 +59,11 @@ class ZxzxzRotator {
       o[0] = f[0];
       for (int l = 1; l < order_; ++l) {
         std::copy(f + l * l, f + (l + 1) * (l + 1), u.begin());
-        turn(l, cg, sg, u);
+        runtime::turn_band(l, cg.data(), sg.data(), u.data());
         apply(plus_[l], u, v);
-        turn(l, cb, sb, v);
+        runtime::turn_band(l, cb.data(), sb.data(), v.data());
         apply(minus_[l], v, u);
-        turn(l, ca, sa, u);
+        runtime::turn_band(l, ca.data(), sa.data(), u.data());
         for (int i = 0; i < 2 * l + 1; ++i) o[l * l + i] = u[i];
       }
     }
@@ -100,9 +98,6 @@ class ZxzxzRotator {
       row = e.row;
     }
   }
-  void multiples(T t, Multiples& c, Multiples& s) const { runtime::angle_multiples(t, order_, c.data(), s.data()); }
-  static void turn(int l, const Multiples& c, const Multiples& s, Band& f) { runtime::turn_band(l, c.data(), s.data(), f.data()); }
-
   int order_;
   std::vector<std::vector<Entry>> plus_, minus_;  // X+ = D(Rx(+90)), X- = D(Rx(-90)), per band
 };
