@@ -22,6 +22,7 @@
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/rotator.h"
 #include "zhf/runtime/soa_batch.h"
+#include "zhf/sh/random.h"
 #include "zhf_kernels.h"
 
 namespace {
@@ -50,7 +51,7 @@ void run_order(std::size_t items, int runs, int threads) {
   constexpr std::size_t n = N * N, item = 3 * n;
   std::vector<float> in(items * item), out(items * item), planes(items * item);
   std::mt19937_64 rng(N);
-  std::normal_distribution<float> normal;
+  zhf::sh::Normal<float> normal;
   for (float& x : in) x = normal(rng);
   for (std::size_t v = 0; v < items; ++v)
     for (std::size_t c = 0; c < 3; ++c)
@@ -76,7 +77,7 @@ void run_soa(std::size_t count, int runs) {
   constexpr std::size_t n = N * N;
   std::vector<float> r(9 * count), in(n * count), out(n * count);
   std::mt19937_64 rng(N);
-  std::normal_distribution<double> normal;
+  zhf::sh::Normal<> normal;
   for (std::size_t v = 0; v < count; ++v) {
     double axis[3] = {normal(rng), normal(rng), normal(rng)};
     const double length = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "zhf/runtime/rotator.h"
+#include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
 #include "zhf_kernels.h"
@@ -17,7 +18,7 @@ template <class T>
 void chain(int order, long steps) {
   const auto rotator = zhf::runtime::Rotator<T>::with(zhf::gen::scalar_kernels<T>(order));
   std::mt19937_64 rng(11);
-  std::normal_distribution<double> normal;
+  zhf::sh::Normal<> normal;
   const int n = order * order;
   Eigen::VectorXd f(n);
   for (int i = 0; i < n; ++i) f[i] = normal(rng);

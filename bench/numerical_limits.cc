@@ -7,8 +7,11 @@
 #include <random>
 #include <string>
 
+#include "zhf/runtime/limits.h"
 #include "zhf/runtime/rotator.h"
 #include "zhf_kernels.h"
+#include "zhf/runtime/table_io.h"
+#include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 
 namespace {
@@ -16,7 +19,7 @@ namespace {
 template <class T>
 double max_error(const zhf::runtime::Rotator<T>& rotator, int order, int trials) {
   std::mt19937_64 rng(order);
-  std::normal_distribution<double> normal;
+  zhf::sh::Normal<> normal;
   const int n = order * order;
   double worst = 0;
   std::vector<T> r(9), in(n), out(n);
@@ -42,7 +45,7 @@ int main(int argc, char** argv) {
   std::printf("| order | path | worst condition | float max error | double max error |\n| --- | --- | --- | --- | --- |\n");
   int highest_float = 0, highest_double = 0;
   for (int order = 2; order <= zhf::runtime::kMaxTableOrder; ++order) {
-    const std::string path = lobes + "order_" + std::to_string(order) + ".json";
+    const std::string path = zhf::runtime::table_path(lobes, order);
     if (order > 2 && !std::filesystem::exists(path)) continue;
     const double condition = order == 2 ? 1.0 : zhf::runtime::read_lobe_table(path, order).worst_condition();
     const bool generated = order <= zhf::runtime::kMaxGeneratedOrder;
@@ -56,9 +59,9 @@ int main(int argc, char** argv) {
     std::printf("| %d | %s | %.2f | %.2e | %.2e |\n", order, generated ? "generated" : "runtime table", condition, e_float,
                 e_double);
     std::fflush(stdout);
-    if (e_float < 1e-5) highest_float = order;
-    if (e_double < 1e-12) highest_double = order;
+    if (e_float < zhf::runtime::tolerance::kRuntimeOrdersFloat) highest_float = order;
+    if (e_double < zhf::runtime::tolerance::kDouble) highest_double = order;
   }
-  std::printf("\nhighest order with float error < 1e-5: %d; with double error < 1e-12: %d (of the orders above)\n",
-              highest_float, highest_double);
+  std::printf("\nhighest order with float error < %g: %d; with double error < %g: %d (of the orders above)\n",
+              zhf::runtime::tolerance::kRuntimeOrdersFloat, highest_float, zhf::runtime::tolerance::kDouble, highest_double);
 }

@@ -12,6 +12,8 @@
 
 #include "zhf/runtime/rotator.h"
 #include "zhf_kernels.h"
+#include "zhf/runtime/table_io.h"
+#include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 
 namespace {
@@ -23,7 +25,7 @@ struct Inputs {
   std::vector<zhf::sh::Matrix3> rd;
   Inputs(int order) {
     std::mt19937_64 rng(7);
-    std::normal_distribution<float> normal;
+    zhf::sh::Normal<float> normal;
     for (int k = 0; k < kPool; ++k) {
       const zhf::sh::Matrix3 m = zhf::sh::random_rotation(rng);
       rd.push_back(m);
@@ -65,7 +67,7 @@ void zhf_json(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   const Inputs in(n);
   const auto rotator = zhf::runtime::Rotator<float>::from_table(
-      zhf::runtime::read_lobe_table(std::string(ZHF_SOURCE_DIR) + "/generated/lobes/order_" + std::to_string(n) + ".json", n));
+      zhf::runtime::read_lobe_table(zhf::runtime::table_path(ZHF_SOURCE_DIR "/generated/lobes", n), n));
   std::vector<float> out(n * n);
   int k = 0;
   for (auto _ : state) {

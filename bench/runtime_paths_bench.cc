@@ -14,10 +14,11 @@
 #include <string>
 #include <vector>
 
-#include "zhf/runtime/lobe_table.h"
+#include "zhf/runtime/table_io.h"
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/table_rotation.h"
 #include "zhf/runtime/zxzxz_rotation.h"
+#include "zhf/sh/random.h"
 
 int main(int argc, char** argv) {
   using namespace zhf::runtime;
@@ -28,7 +29,7 @@ int main(int argc, char** argv) {
   for (int order : {3, 4, 5, 6, 7, 8, 9, 10, 12, 16, 32}) {
     LobeTable table;
     try {
-      table = read_lobe_table(tables + "/order_" + std::to_string(order) + ".json");
+      table = read_lobe_table(table_path(tables, order));
     } catch (const std::exception& e) {
       std::fprintf(stderr, "zhf_runtime_paths_bench: %s\n", e.what());
       return 2;
@@ -38,7 +39,7 @@ int main(int argc, char** argv) {
     const ZxzxzRotation<float> zxzxz = ZxzxzRotation<float>::from_table(table);
     const int n = order * order;
     std::mt19937_64 rng(order);
-    std::normal_distribution<double> normal;
+    zhf::sh::Normal<> normal;
     std::vector<float> r(9 * count), in(n * count), out(n * count);
     std::vector<double> rd(9 * count), ind(n * count), expected(n * count);
     for (int v = 0; v < count; ++v) {

@@ -12,8 +12,10 @@
 #include <random>
 #include <vector>
 
+#include "zhf/runtime/limits.h"
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/rotator.h"
+#include "zhf/sh/random.h"
 #include "zhf_kernels.h"
 
 int main(int argc, char** argv) {
@@ -29,7 +31,7 @@ int main(int argc, char** argv) {
   const std::size_t count = vectors * channels, n = std::size_t(order) * order;
   std::vector<float> in(count * n), reused(count * n);
   std::mt19937_64 rng(1);
-  std::normal_distribution<float> normal;
+  zhf::sh::Normal<float> normal;
   for (float& x : in) x = normal(rng);
   const double axis[3] = {0.48, 0.6, 0.64};
   const zhf::runtime::Matrix3 r = zhf::runtime::rotation_about_unit_axis(axis, 1.1);

@@ -18,7 +18,7 @@ namespace {
 
 struct AnalyzeOptions {
   std::string coeffs;
-  std::string tolerance = "1e-3";
+  std::string tolerance = runtime::format_number(runtime::tolerance::kDefaultZonalFit);
   int channels = 0;
   std::string json;
   std::string scene_out;
@@ -32,7 +32,7 @@ int run_analyze(const AnalyzeOptions& options) {
     double tolerance;
     const std::string& json;
     const std::string& scene_out;
-  } o{options.coeffs, number_option("--tolerance", options.tolerance, 1e-15, 1.0), options.json, options.scene_out};
+  } o{options.coeffs, number_option("--tolerance", options.tolerance, runtime::kMinZonalTolerance, 1.0), options.json, options.scene_out};
   for (const std::string& out : {o.json, o.scene_out})
     if (!out.empty()) io::PendingFile check(out);  // refuse an unwritable output before the work
   const io::CoefficientFile file = io::read_coefficients(o.coeffs, options.channels);
@@ -140,10 +140,10 @@ void add_analyze_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<AnalyzeOptions>();
   CLI::App* c = app.add_subcommand("analyze", "Per-band energy, the order the data needs, known-zero bands, zonal axis");
   c->add_option("--coeffs", o->coeffs, "SH coefficient vectors: JSON array or text, one vector per line")->required();
-  c->add_option("--tolerance", o->tolerance, "Relative L2 error allowed, 1e-15..1 (default 1e-3); also the zonal residual bound");
+  c->add_option("--tolerance", o->tolerance, "Relative L2 error allowed, " + runtime::format_number(runtime::kMinZonalTolerance) + "..1 (default " + runtime::format_number(runtime::tolerance::kDefaultZonalFit) + "); also the zonal residual bound");
   c->add_option("--channels", o->channels, "Channels per vector (text: numbers per line split evenly; JSON: checked)")
-      ->check(CLI::Range(1, 4));
-  c->add_option("--json", o->json, "Write the analysis as JSON here");
+      ->check(CLI::Range(1, runtime::kMaxChannels));
+  keep_old_spelling(c, c->add_option("--out", o->json, "Write the analysis as JSON here"), "--json", o->json);
   c->add_option("--scene-out", o->scene_out, "Write a scene spec (zhf-scene-1) for this data here");
   c->callback([o, &action] { action = [o] { return run_analyze(*o); }; });
 }

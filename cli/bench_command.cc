@@ -3,17 +3,19 @@
 
 #include "commands.h"
 #include "options.h"
-#include "zhf/bench/suite.h"
+#include "progress.h"
+#include "zhf/bench/plots.h"
 #include "zhf/io/files.h"
 #include "zhf/io/signals.h"
 #include "zhf/pipeline/project.h"
+#include "zhf/runtime/limits.h"
 
 namespace zhf::cli {
 namespace {
 
 struct BenchOptions {
   bool quick = false;
-  bool quiet = false;
+  bool quiet = false, verbose = false;
   std::string orders;
   std::string json;
   std::string plot;
@@ -22,7 +24,7 @@ struct BenchOptions {
 int run_bench(const BenchOptions& o) {
   bench::SuiteOptions options;
   options.quick = o.quick;
-  if (!o.orders.empty()) options.orders = orders_option("--orders", o.orders, 2, 16);
+  if (!o.orders.empty()) options.orders = orders_option("--orders", o.orders, 2, runtime::kMaxBenchOrder);
   options.source_dir = pipeline::project().root;
   // Refuse an unwritable output before minutes of measuring, not after.
   if (!o.json.empty()) io::PendingFile check(o.json);
@@ -30,11 +32,10 @@ int run_bench(const BenchOptions& o) {
     io::PendingFile check(o.plot);
     bench::check_plot_targets(o.plot);
   }
-  if (!o.quiet) {
-    options.progress = [](const std::string& line) { std::fprintf(stderr, "  %s\n", line.c_str()); };
-    std::fprintf(stderr, "zhf bench%s: measuring (one line per method, order and scenario)\n", o.quick ? " --quick" : "");
-  }
+  Progress progress("bench", o.quiet, o.verbose);
+  options.progress = [&progress](const std::string& line) { progress.say("measuring " + line); };
   const bench::SuiteReport report = bench::run_suite(options);
+  progress.done();
   std::printf("CPU: %s\ncompiler: %s\nflags: %s\ndate: %s\n\n%s", report.cpu.c_str(), report.compiler.c_str(),
               report.flags.c_str(), report.date.c_str(), report.table().c_str());
   std::printf("\nscaling (single vector, ns ~ N^k over orders >= 3):");
@@ -60,12 +61,14 @@ void add_bench_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* c = app.add_subcommand("bench", "Time and error of every rotation method, per order and scenario");
   c->add_flag("--quick", o->quick, "Small counts and few repeats (CI: checks every method runs and is accurate)");
-  c->add_flag("--quiet", o->quiet, "No progress on stderr");
-  c->add_option("--orders", o->orders, "Orders, e.g. 3,5,8 or 2..8, each 2..16 (default 2..8 plus 10, 12, 16)");
-  c->add_option("--json", o->json, "Write every measurement as JSON here");
+  c->add_flag("--quiet", o->quiet, "No progress line");
+  c->add_flag("--verbose", o->verbose, "Progress lines on stderr (one a second at most) also when it is not a terminal");
+  c->add_option("--orders", o->orders, "Orders, e.g. 3,5,8 or 2..8, each 2.." + std::to_string(runtime::kMaxBenchOrder) +
+                                          " (default 2..8 plus 10, 12, 16)");
+  keep_old_spelling(c, c->add_option("--out", o->json, "Write every measurement as JSON here"), "--json", o->json);
   c->add_option("--plot", o->plot,
-                "Write the Pareto plot here (SVG), and beside it FILE_scaling.svg, FILE.csv and FILE.gp (replaced only when "
-                "zhf bench wrote them)");
+                "Write the Pareto fronts here (SVG), and beside it FILE_families.svg, FILE_scaling.svg, FILE.csv and FILE.gp "
+                "(replaced only when zhf bench wrote them; needs gnuplot)");
   c->callback([o, &action] { action = [o] { return run_bench(*o); }; });
 }
 

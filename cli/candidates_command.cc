@@ -11,9 +11,6 @@
 namespace zhf::cli {
 namespace {
 
-// --json up to this order: its 174242 directions take about 400 MiB to write (order 20 has 584162
-// and 1.4 GiB, order 32 6.4 million and 15 GiB).
-constexpr int kMaxJsonOrder = 16;
 
 struct CandidatesOptions {
   std::string order;
@@ -23,8 +20,8 @@ struct CandidatesOptions {
 int run_candidates(const CandidatesOptions& options) {
   const int order =
       static_cast<int>(integer_option("--order", options.order, runtime::kMinSearchOrder, runtime::kMaxSearchOrder));
-  if (!options.json_path.empty() && order > kMaxJsonOrder)
-    throw UsageError("--json: a candidates file goes up to order " + std::to_string(kMaxJsonOrder) + " (order " +
+  if (!options.json_path.empty() && order > runtime::kMaxCandidatesJsonOrder)
+    throw UsageError("--out: a candidates file goes up to order " + std::to_string(runtime::kMaxCandidatesJsonOrder) + " (order " +
                      std::to_string(order) + "'s would be too large to write)");
   const candidates::CandidateSet set = candidates::enumerate_candidates(order);
   std::printf("order %d: %zu theta values, %zu phi values, %zu candidate directions\n", set.order, set.thetas.size(),
@@ -43,8 +40,12 @@ int run_candidates(const CandidatesOptions& options) {
 void add_candidates_command(CLI::App& app, Action& action) {
   auto options = std::make_shared<CandidatesOptions>();
   CLI::App* command = app.add_subcommand("candidates", "Enumerate the candidate lobe directions of an order");
-  command->add_option("--order", options->order, "Order N (bands 0..N-1), 3..32")->required();
-  command->add_option("--json", options->json_path, "Write the candidates as JSON to this file (orders up to 16)");
+  command->add_option("--order", options->order, "Order N (bands 0..N-1), " + std::to_string(runtime::kMinSearchOrder) + ".." +
+                                                      std::to_string(runtime::kMaxSearchOrder))->required();
+  keep_old_spelling(command,
+                    command->add_option("--out", options->json_path, "Write the candidates as JSON to this file (orders up to " +
+                                                                       std::to_string(runtime::kMaxCandidatesJsonOrder) + ")"),
+                    "--json", options->json_path);
   command->callback([options, &action] { action = [options] { return run_candidates(*options); }; });
 }
 

@@ -36,6 +36,8 @@ void add_rotate_command(CLI::App& app, Action& action);
 void add_splat_command(CLI::App& app, Action& action);
 void add_product_command(CLI::App& app, Action& action);
 void add_project_command(CLI::App& app, Action& action);
-void add_frames_commands(CLI::App& app, Action& action, const std::string& command_line);  // designs, frame, needlets
+void add_designs_command(CLI::App& app, Action& action);
+void add_frame_command(CLI::App& app, Action& action);
+void add_needlets_command(CLI::App& app, Action& action, const std::string& command_line);
 
 }  // namespace zhf::cli

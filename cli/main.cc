@@ -4,6 +4,7 @@
 #include <string>
 
 #include "commands.h"
+#include "options.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/signals.h"
 
@@ -50,6 +51,22 @@ int fail(int code, const std::string& message) {
   return code;
 }
 
+// "zhf rotate --help" for an error inside a command, "zhf needlets tables --help" inside a
+// subcommand, "zhf --help" otherwise.
+std::string help_command(CLI::App& app, int argc, char** argv) {
+  std::string command = "zhf";
+  CLI::App* level = &app;
+  for (int i = 1; i < argc && argv[i][0] != '-'; ++i) {
+    CLI::App* sub = nullptr;
+    for (CLI::App* s : level->get_subcommands({}))
+      if (s->get_name() == argv[i]) sub = s;
+    if (!sub) break;
+    command += " " + sub->get_name();
+    level = sub;
+  }
+  return command + " --help";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -69,7 +86,9 @@ int main(int argc, char** argv) {
   add_rotate_command(app, action);
   add_splat_command(app, action);
   add_product_command(app, action);
-  add_frames_commands(app, action, command);
+  add_designs_command(app, action);
+  add_frame_command(app, action);
+  add_needlets_command(app, action, command);
   add_project_command(app, action);
   if (argc > 1 && argv[1][0] != '-') {
     bool known = false;
@@ -85,9 +104,10 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    return fail(kExitUsage, std::string(e.what()) + " (see zhf --help)");
+    return fail(kExitUsage, std::string(e.what()) + " (see " + help_command(app, argc, argv) + ")");
   }
   try {
+    check_old_spellings();
     return action();
   } catch (const zhf::io::Interrupted&) {
     std::cerr << "zhf: interrupted; previous outputs are as they were\n";

@@ -5,6 +5,7 @@
 
 #include "commands.h"
 #include "options.h"
+#include "progress.h"
 #include "zhf/io/files.h"
 #include "zhf/io/lobe_table_writer.h"
 #include "zhf/io/signals.h"
@@ -22,7 +23,7 @@ struct OptimizeOptions {
   bool no_sharing = false;
   bool exhaustive = false;
   bool seed_from_continuous = false;
-  bool quiet = false;
+  bool quiet = false, verbose = false;
   std::string objective = "sparsity";
   std::string out;
 };
@@ -72,11 +73,10 @@ int run_optimize(const OptimizeOptions& o, const std::string& command) {
     throw UsageError("--starts: only --objective amplification has random starts");
   // Refuse an unwritable output before the search, not after it.
   if (!o.out.empty()) io::PendingFile check(o.out);
-  const bool tty = isatty(STDERR_FILENO);
-  if (!o.quiet)
-    r.progress = [tty](const std::string& line) { std::fprintf(stderr, tty ? "\r%s   " : "%s\n", line.c_str()); };
+  Progress progress("optimize", o.quiet, o.verbose);
+  r.progress = [&progress](const std::string& line) { progress.say(line); };
   const pipeline::SearchOutcome outcome = pipeline::search(r);
-  if (!o.quiet && tty) std::fprintf(stderr, "\n");
+  progress.done();
   if (!outcome.found) {
     std::printf("%s; nothing written\n", outcome.summary.c_str());
     return outcome.interrupted ? io::interrupted_exit_code() : kExitFailure;
@@ -124,7 +124,8 @@ void add_optimize_command(CLI::App& app, Action& action, const std::string& comm
       ->check(CLI::IsMember({"sparsity", "amplification"}));
   CLI::Option* starts = c->add_option("--starts", o->starts,
                                       "amplification: random start points (default 8); more finds lower error, in proportion more time");
-  c->add_flag("--quiet", o->quiet, "No progress on stderr");
+  c->add_flag("--quiet", o->quiet, "No progress line");
+  c->add_flag("--verbose", o->verbose, "Progress lines on stderr (one a second at most) also when it is not a terminal");
   c->add_option("--out", o->out, "Write the lobe table (zhf-lobes-1 JSON) here");
   c->callback([o, starts, &action, command_line] {
     o->starts_given = starts->count() > 0;

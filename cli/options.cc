@@ -64,4 +64,15 @@ std::vector<int> orders_option(const std::string& option, const std::string& tex
   return orders;
 }
 
+std::vector<OldSpelling>& old_spellings() {
+  static std::vector<OldSpelling> all;
+  return all;
+}
+
+void check_old_spellings() {
+  for (const OldSpelling& s : old_spellings())
+    if (s.old->count() > 0 && s.current->count() > 0)
+      throw UsageError(s.name + ": the old spelling of " + s.current_name + "; give one of them");
+}
+
 }  // namespace zhf::cli

@@ -5,11 +5,13 @@
 #include <vector>
 
 #include "commands.h"
+#include "options.h"
 #include "zhf/io/coefficients.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/io/signals.h"
 #include "zhf/runtime/gaunt.h"
+#include "zhf/runtime/limits.h"
 #include "zhf/runtime/product.h"
 
 namespace zhf::cli {
@@ -38,8 +40,11 @@ int run_product(const ProductOptions& o) {
     if (side->order > max_order)
       throw io::InputError((side == &f ? o.lhs : o.rhs) + ": order " + std::to_string(side->order) + " is above " +
                            std::to_string(max_order) + ", the largest product order");
-  if (f.channels != g.channels)
-    throw io::InputError(o.rhs + ": " + std::to_string(g.channels) + " channels, where " + o.lhs + " has " + std::to_string(f.channels));
+  // A one-channel side (a visibility, a grey transfer) multiplies every channel of the other.
+  if (f.channels != g.channels && f.channels != 1 && g.channels != 1)
+    throw io::InputError(o.rhs + ": " + std::to_string(g.channels) + " channels, where " + o.lhs + " has " +
+                         std::to_string(f.channels) + " (one side may have a single channel, used for every channel of the other)");
+  const int channels_out = std::max(f.channels, g.channels);
   const size_t f_vectors = f.signals.size() / f.channels, g_vectors = g.signals.size() / g.channels;
   if (f_vectors != g_vectors && f_vectors != 1 && g_vectors != 1)
     throw io::InputError(o.rhs + ": " + std::to_string(g_vectors) + " vectors, where " + o.lhs + " has " + std::to_string(f_vectors) +
@@ -53,20 +58,20 @@ int run_product(const ProductOptions& o) {
   nlohmann::ordered_json vectors = nlohmann::ordered_json::array();
   for (size_t v = 0; v < std::max(f_vectors, g_vectors); ++v) {
     nlohmann::ordered_json channels = nlohmann::ordered_json::array();
-    for (int c = 0; c < f.channels; ++c) {
-      const std::vector<double> a = padded(f.signals[(f_vectors == 1 ? 0 : v) * f.channels + c], work);
-      const std::vector<double> b = padded(g.signals[(g_vectors == 1 ? 0 : v) * g.channels + c], work);
+    for (int c = 0; c < channels_out; ++c) {
+      const std::vector<double> a = padded(f.signals[(f_vectors == 1 ? 0 : v) * f.channels + (f.channels == 1 ? 0 : c)], work);
+      const std::vector<double> b = padded(g.signals[(g_vectors == 1 ? 0 : v) * g.channels + (g.channels == 1 ? 0 : c)], work);
       product.product(a.data(), b.data(), h.data());
       channels.push_back(std::vector<double>(h.begin(), h.begin() + n));
     }
-    vectors.push_back(f.channels == 1 ? channels[0] : channels);
+    vectors.push_back(channels_out == 1 ? channels[0] : channels);
     io::throw_if_interrupted();
   }
   out_file.write(io::json_text(vectors));
   io::throw_if_interrupted();
   out_file.commit();
-  std::printf("multiplied %zu vector pairs (orders %d and %d, projected to %d, %d channel%s) into %s\n", vectors.size(), f.order,
-              g.order, order, f.channels, f.channels == 1 ? "" : "s", o.out.c_str());
+  std::printf("multiplied %s (orders %d and %d, projected to %d, %s) into %s\n", counted(vectors.size(), "vector pair").c_str(),
+              f.order, g.order, order, counted(channels_out, "channel").c_str(), o.out.c_str());
   return kExitOk;
 }
 
@@ -77,7 +82,7 @@ void add_product_command(CLI::App& app, Action& action) {
   CLI::App* c = app.add_subcommand("product", "Multiply SH functions and project the product back to an order (double precision)");
   c->add_option("--lhs", o->lhs, "Coefficient vectors of f (JSON array or text; as zhf analyze reads them)")->required();
   c->add_option("--rhs", o->rhs, "Coefficient vectors of g: as many as f, or one for every f")->required();
-  c->add_option("--channels", o->channels, "Channels per vector (products are taken channel by channel)")->check(CLI::Range(1, 4));
+  c->add_option("--channels", o->channels, "Channels per vector (products are taken channel by channel)")->check(CLI::Range(1, runtime::kMaxChannels));
   c->add_option("--order", o->order, "Order of the result h = P_N(f g) (default: the larger input order)")
       ->check(CLI::Range(1, runtime::kMaxGauntOrder));
   c->add_option("--out", o->out, "Write the products here (JSON)")->required();

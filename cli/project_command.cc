@@ -14,6 +14,7 @@
 #include "zhf/io/hdr.h"
 #include "zhf/io/signals.h"
 #include "zhf/pipeline/project.h"
+#include "zhf/runtime/limits.h"
 
 namespace zhf::cli {
 namespace {
@@ -69,7 +70,7 @@ int run_compare(const ProjectOptions& o, int order) {
 }
 
 int run_project(const ProjectOptions& o) {
-  const int order = static_cast<int>(integer_option("--order", o.order, 1, frames::kMaxProjectionOrder));
+  const int order = static_cast<int>(integer_option("--order", o.order, 1, runtime::kMaxProjectionOrder));
   if (o.compare) {
     if (!o.image.empty() || !o.function.empty() || !o.out.empty()) throw UsageError("--compare: takes no --image, --function or --out");
     return run_compare(o, order);
@@ -88,7 +89,7 @@ int run_project(const ProjectOptions& o) {
     if (o.function == "band-limited") f = frames::TestFunction::kBandLimited;
     else if (o.function == "cap") f = frames::TestFunction::kCap;
     else throw UsageError("--function: '" + io::excerpt(o.function) + "' is not band-limited or cap");
-    const int degree = o.degree.empty() ? 7 + order - 1 : static_cast<int>(integer_option("--degree", o.degree, 0, frames::kMaxCubatureDegree));
+    const int degree = o.degree.empty() ? 7 + order - 1 : static_cast<int>(integer_option("--degree", o.degree, 0, runtime::kMaxCubatureDegree));
     const frames::Cubature nodes = nodes_of(o.nodes, degree);
     std::vector<double> values;
     for (const frames::Point& p : nodes.points) values.push_back(frames::test_function(f, p));

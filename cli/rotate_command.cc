@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "options.h"
 #include "transform_options.h"
 #include "zhf/io/coefficients.h"
 #include "zhf/io/errors.h"
@@ -16,6 +17,7 @@
 #include "zhf/runtime/orthogonal.h"
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/rotator.h"
+#include "zhf/runtime/table_io.h"
 #include "zhf_kernels.h"
 
 namespace zhf::cli {
@@ -44,7 +46,7 @@ int run_rotate(const RotateOptions& o) {
     rotator = std::make_unique<runtime::Rotator<double>>(runtime::Rotator<double>::with(gen::fastest_kernels<double>(order)));
   } else if (order > runtime::kMaxGeneratedOrder) {
     const std::string tables = o.tables.empty() ? pipeline::project().lobes() : o.tables;
-    const std::string table = tables + "/order_" + std::to_string(order) + ".json";
+    const std::string table = runtime::table_path(tables, order);
     if (order > runtime::kMaxTableOrder || !std::filesystem::exists(table))
       throw io::InputError(o.coeffs + ": order " + std::to_string(order) + " has no lobe table (" + table + ")");
     rotator = std::make_unique<runtime::Rotator<double>>(runtime::Rotator<double>::from_table(runtime::read_lobe_table(table, order)));
@@ -69,7 +71,7 @@ int run_rotate(const RotateOptions& o) {
   out_file.write(io::json_text(vectors));
   io::throw_if_interrupted();
   out_file.commit();
-  std::printf("rotated %zu vectors (order %d, %d channel%s) into %s\n", file.signals.size() / file.channels, order, file.channels,
+  std::printf("rotated %s (order %d, %d channel%s) into %s\n", counted(file.signals.size() / file.channels, "vector").c_str(), order, file.channels,
               file.channels == 1 ? "" : "s", o.out.c_str());
   return kExitOk;
 }
@@ -80,7 +82,7 @@ void add_rotate_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<RotateOptions>();
   CLI::App* c = app.add_subcommand("rotate", "Rotate SH coefficient vectors from a file (double precision)");
   c->add_option("--coeffs", o->coeffs, "Coefficient vectors (JSON array or text; as zhf analyze reads them)")->required();
-  c->add_option("--channels", o->channels, "Channels per vector")->check(CLI::Range(1, 4));
+  c->add_option("--channels", o->channels, "Channels per vector")->check(CLI::Range(1, runtime::kMaxChannels));
   add_transform_options(c, o->transform);
   c->add_option("--convention", o->convention,
                 "The coefficients' convention, the rotation in the same system's axes: " + runtime::convention_names() +

@@ -38,8 +38,8 @@ int run_splat(const SplatOptions& o) {
   if (!convention)
     throw UsageError("--convention: '" + runtime::excerpt(o.convention) + "' is not one of " + runtime::convention_names());
   splat::Transform t;
-  if (!o.identity) t.r = transform_matrix(o.transform);
-  t.scale = number_option("--scale", o.scale, 1e-30, 1e30);
+  if (!o.identity) t.r = transform_matrix(o.transform, o.quiet);
+  t.scale = number_option("--scale", o.scale, runtime::kMinSplatScale, runtime::kMaxSplatScale);
   t.translation = translation(o.translate);
   t.convention = convention;
   const int threads = static_cast<int>(integer_option("--threads", o.threads, 0, runtime::kMaxThreads));

@@ -13,9 +13,6 @@
 namespace zhf::cli {
 namespace {
 
-// A rotation off orthonormal by more than a few double roundings: worth saying that the nearest
-// rotation was used instead.
-constexpr double kDoubleRoundingDefect = 1e-14;
 
 // The one rotation form given: its option, its text and how to read it.
 struct GivenForm {
@@ -47,7 +44,7 @@ GivenForm given_form(const TransformOptions& o) {
 // orthogonal transform's to double precision.
 }  // namespace
 
-std::array<double, 9> transform_matrix(const TransformOptions& o) {
+std::array<double, 9> transform_matrix(const TransformOptions& o, bool quiet) {
   const GivenForm given = given_form(o);
   io::ParsedRotation parsed;
   try {
@@ -55,7 +52,7 @@ std::array<double, 9> transform_matrix(const TransformOptions& o) {
   } catch (const io::InputError& e) {
     throw UsageError(e.what());  // an option's text: a bad command line
   }
-  if (std::abs(parsed.quaternion_length - 1) > runtime::tolerance::kRotationDefect)
+  if (!quiet && std::abs(parsed.quaternion_length - 1) > runtime::tolerance::kRotationDefect)
     std::fprintf(stderr, "zhf: %s: normalised (its length was %.6g)\n", given.option.c_str(), parsed.quaternion_length);
   const std::array<double, 9>& r = parsed.matrix;
   const runtime::RotationCheck check = runtime::validate_rotation(r.data(), runtime::tolerance::kRotationDefect,
@@ -67,8 +64,9 @@ std::array<double, 9> transform_matrix(const TransformOptions& o) {
   const double defect = std::max(check.orthonormality, std::abs(std::abs(check.determinant) - 1));
   if (!check.ok) {
     std::fprintf(stderr, "zhf: %s: repaired to the nearest orthogonal matrix (%s)\n", given.option.c_str(), check.message.c_str());
-  } else if (defect > kDoubleRoundingDefect) {
-    std::fprintf(stderr, "zhf: %s: off orthonormal by %.2g; used the nearest orthogonal matrix\n", given.option.c_str(), defect);
+  } else if (!quiet && defect > runtime::tolerance::kDoubleRoundingDefect) {
+    std::fprintf(stderr, "zhf: %s: off orthonormal by %s; used the nearest orthogonal matrix\n", given.option.c_str(),
+                 runtime::format_number(defect, 2).c_str());
   }
   return nearest;
 }
@@ -86,7 +84,8 @@ void add_transform_options(CLI::App* c, TransformOptions& o) {
   c->add_flag("--intrinsic", o.intrinsic, "--euler turns about the axes as turned: R = R1(a) R2(b) R3(c)");
   c->add_flag("--extrinsic", o.extrinsic, "--euler turns about the fixed axes: R = R3(c) R2(b) R1(a)");
   c->add_flag("--repair", o.repair,
-              "Accept a matrix off orthonormal by more than 1e-5 too; every matrix is replaced by the nearest orthogonal one");
+              "Accept a matrix off orthonormal by more than " + runtime::format_number(runtime::tolerance::kRotationDefect) +
+                  " too; every matrix is replaced by the nearest orthogonal one");
 }
 
 }  // namespace zhf::cli

@@ -19,7 +19,8 @@ struct TransformOptions {
 
 void add_transform_options(CLI::App* command, TransformOptions& o);
 
-// Throws UsageError naming the option.
-std::array<double, 9> transform_matrix(const TransformOptions& o);
+// Throws UsageError naming the option. Notes on stderr (a quaternion normalised, the nearest
+// rotation used) unless quiet.
+std::array<double, 9> transform_matrix(const TransformOptions& o, bool quiet = false);
 
 }  // namespace zhf::cli

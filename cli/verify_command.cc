@@ -4,6 +4,7 @@
 
 #include "commands.h"
 #include "options.h"
+#include "progress.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/io/signals.h"
@@ -18,8 +19,10 @@ struct VerifyCommandOptions {
   std::string generated;
   std::string orders;     // empty: every order in the manifest
   std::string languages;  // empty: every language
-  std::string json;
+  std::string out;
   std::string work_dir;
+  std::string compiler;
+  bool quiet = false, verbose = false;
   std::string rotations = "1000";
 };
 
@@ -50,18 +53,22 @@ int run_verify_command(const VerifyCommandOptions& o) {
   options.generated_dir = o.generated.empty() ? project.generated() : o.generated;
   if (!o.orders.empty()) options.orders = orders_option("--orders", o.orders, runtime::kMinGeneratedOrder, runtime::kMaxEmitOrder);
   options.languages = parse_languages(o.languages);
-  options.rotations = static_cast<int>(integer_option("--rotations", o.rotations, 1, 1000000));
+  options.rotations = static_cast<int>(integer_option("--rotations", o.rotations, 1, runtime::kMaxVerifyRotations));
   options.work_dir = o.work_dir;
   options.runtime_include = project.runtime_include;
+  options.compiler = o.compiler;
+  Progress progress("verify", o.quiet, o.verbose);
+  options.progress = [&](int done, int total, const std::string& what) { progress.update(done, total, what); };
   // Refuse an unwritable report before the work, not after it.
-  if (!o.json.empty()) io::PendingFile check(o.json);
+  if (!o.out.empty()) io::PendingFile check(o.out);
   const verify::VerifyReport report = verify::run_verify(options);
+  progress.done();
   if (!report.device.empty()) std::printf("Vulkan device: %s\n", report.device.c_str());
   std::printf("%s", report.table().c_str());
-  if (!o.json.empty()) {
+  if (!o.out.empty()) {
     io::throw_if_interrupted();
-    io::write_file_atomically(o.json, io::json_text(report.to_json()));
-    std::printf("wrote %s\n", o.json.c_str());
+    io::write_file_atomically(o.out, io::json_text(report.to_json()));
+    std::printf("wrote %s\n", o.out.c_str());
   }
   if (report.vulkan_missing) {
     std::fprintf(stderr, "zhf: no Vulkan device; GLSL/HLSL kernels were not verified (install mesa-vulkan-drivers for lavapipe, or pass --langs cpp)\n");
@@ -79,9 +86,12 @@ void add_verify_command(CLI::App& app, Action& action) {
   c->add_option("--generated", o->generated, "The generated tree to check (default generated, else the source tree's)");
   c->add_option("--orders", o->orders, "Orders, e.g. 2..8 or 3,5 (default: every order in the manifest)");
   c->add_option("--langs", o->languages, "Languages, comma separated (default: every language, " + language_names() + ")");
-  c->add_option("--json", o->json, "Write the report as JSON here");
+  keep_old_spelling(c, c->add_option("--out", o->out, "Write the report as JSON here"), "--json", o->out);
+  c->add_option("--compiler", o->compiler, "C++ compiler and leading arguments (default $CXX, else c++)");
+  c->add_flag("--quiet", o->quiet, "No progress line");
+  c->add_flag("--verbose", o->verbose, "A progress line per step also when stderr is not a terminal");
   c->add_option("--work-dir", o->work_dir, "Keep the harnesses, shaders and logs here (default: a private temp dir, removed)");
-  c->add_option("--rotations", o->rotations, "Random rotations besides the fixed extreme set, 1..1000000 (default 1000)");
+  c->add_option("--rotations", o->rotations, "Random rotations besides the fixed extreme set, 1.." + std::to_string(runtime::kMaxVerifyRotations) + " (default 1000)");
   c->callback([o, &action] { action = [o] { return run_verify_command(*o); }; });
 }
 

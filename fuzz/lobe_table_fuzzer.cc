@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "zhf/runtime/lobe_table.h"
+#include "zhf/runtime/table_io.h"
 #include "zhf/runtime/rotator.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

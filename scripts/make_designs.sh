@@ -7,5 +7,5 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 zhf="${1:-$root/build/cli/zhf}"
 mkdir -p "$root/generated/designs"
 for t in $(seq 1 21) 25 31; do
-  "$zhf" designs --t "$t" --json "$root/generated/designs/t_$t.json"
+  "$zhf" designs --t "$t" --out "$root/generated/designs/t_$t.json"
 done

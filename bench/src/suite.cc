@@ -21,11 +21,15 @@
 #include "zhf/io/files.h"
 #include "zhf/io/process.h"
 #include "zhf/io/signals.h"
-#include "zhf/runtime/lobe_table.h"
+#include "zhf/runtime/limits.h"
+#include "zhf/runtime/parallel.h"
+#include "zhf/runtime/table_io.h"
 #include "zhf/runtime/product.h"
 #include "zhf/runtime/rotator.h"
 #include "zhf/runtime/soa_batch.h"
 #include "zhf_kernels.h"
+#include "zhf/runtime/tolerances.h"
+#include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/zxzxz.h"
 
@@ -57,7 +61,7 @@ struct Pool {
 
   Pool(int order_, int count) : order(order_), n(order_ * order_), size(count) {
     std::mt19937_64 rng(1000 + order);
-    std::normal_distribution<double> normal;
+    sh::Normal<> normal;
     for (int k = 0; k < count; ++k) {
       r.push_back(sh::random_rotation(rng));
       for (int i = 0; i < 9; ++i) rd.push_back(r.back()(i / 3, i % 3));
@@ -281,12 +285,10 @@ Row batch(const Scale& scale, const Pool& pool, const std::string& method, int t
   std::vector<double> ns;
   for (int rep = 0; rep < std::max(1, scale.repeats / 2); ++rep) {
     const auto t0 = Clock::now();
-    std::vector<std::thread> pool_threads;
     const size_t chunk = (count + threads - 1) / threads;
-    for (int t = 1; t < threads; ++t)
-      pool_threads.emplace_back([&, t] { rotate_range(std::min(count, t * chunk), std::min(count, (t + 1) * chunk), r.data(), in.data(), out.data()); });
-    rotate_range(0, std::min(count, chunk), r.data(), in.data(), out.data());
-    for (std::thread& t : pool_threads) t.join();
+    runtime::parallel_for(threads, threads, [&](int t) {
+      rotate_range(std::min(count, t * chunk), std::min(count, (t + 1) * chunk), r.data(), in.data(), out.data());
+    });
     ns.push_back(std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / count);
   }
   row.ns_median = median(ns);
@@ -324,11 +326,9 @@ Row batch_soa(const Scale& scale, const Pool& pool, const std::string& method, i
   std::vector<double> ns;
   for (int rep = 0; rep < std::max(1, scale.repeats / 2); ++rep) {
     const auto t0 = Clock::now();
-    std::vector<std::thread> workers;
-    for (int t = 1; t < threads; ++t)
-      workers.emplace_back([&, t] { kernel(slices[t].m, slices[t].r.data(), slices[t].in.data(), slices[t].out.data()); });
-    kernel(slices[0].m, slices[0].r.data(), slices[0].in.data(), slices[0].out.data());
-    for (std::thread& w : workers) w.join();
+    runtime::parallel_for(threads, threads, [&](int t) {
+      kernel(slices[t].m, slices[t].r.data(), slices[t].in.data(), slices[t].out.data());
+    });
     ns.push_back(std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / count);
   }
   row.ns_median = median(ns);
@@ -396,8 +396,8 @@ SuiteReport run_suite(const SuiteOptions& o) {
     const Pool pool(order, scale.pool);
     const std::string on = "_order" + std::to_string(order);
     const bool generated = order >= 2 && order <= runtime::kMaxGeneratedOrder;
-    const fs::path table_path = root / "generated" / "lobes" / ("order_" + std::to_string(order) + ".json");
-    const bool have_table = order >= 3 && fs::exists(table_path) && order <= 16;
+    const fs::path table_path = runtime::table_path((root / "generated" / "lobes").string(), order);
+    const bool have_table = order >= 3 && fs::exists(table_path) && order <= runtime::kMaxBenchOrder;
 
     // Scenario 1: one vector, a new rotation per call.
     if (generated) {
@@ -427,7 +427,7 @@ SuiteReport run_suite(const SuiteOptions& o) {
       say(single<float>(scale, pool, "zhf_runtime", "rgb", 3, [&](auto r, auto in, auto out) { t.rotate_rgb(r, in, out); }));
       if (generated) {
         // Knob: pruned tables, through the runtime path (which skips A's zeros).
-        for (double threshold : {1e-3, 1e-2}) {
+        for (double threshold : {runtime::tolerance::kBenchPruneSmall, runtime::tolerance::kBenchPruneLarge}) {
           const runtime::LobeTable p = pruned(table, threshold);
           const auto pr = runtime::Rotator<float>::from_table(p);
           char variant[96];
@@ -454,7 +454,7 @@ SuiteReport run_suite(const SuiteOptions& o) {
       say(row);
       say(single<float>(scale, pool, "zxzxz", "rgb", 3, [&](auto r, auto in, auto out) { z.rotate_channels(r, in, out, 3); }));
     }
-    if (order <= 16) {
+    if (order <= runtime::kMaxBenchOrder) {
       // Lobes at a design's points: a tight frame, no inverse, condition 1 at every order.
       const frames::Cubature nodes = frames::design_cubature((root / "generated" / "designs").string(), 2 * (order - 1));
       const frames::TightFrameRotator<float> tight(order, nodes);
@@ -671,136 +671,6 @@ std::string SuiteReport::table() const {
   }
   for (const std::string& n : notes) out << "note: " << n << "\n";
   return out.str();
-}
-
-namespace {
-
-// Least-squares slope of log(ns) on log(N) over the rows with N >= 3.
-double fit_exponent(const std::vector<const Row*>& rows) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  int k = 0;
-  for (const Row* r : rows) {
-    if (r->order < 3 || r->ns_median <= 0) continue;
-    const double x = std::log(double(r->order)), y = std::log(r->ns_median);
-    sx += x, sy += y, sxx += x * x, sxy += x * y, ++k;
-  }
-  if (k < 2) return NAN;
-  return (k * sxy - sx * sy) / (k * sxx - sx * sx);
-}
-
-}  // namespace
-
-double scaling_exponent(const SuiteReport& report, const std::string& method, const std::string& scenario,
-                        const std::string& variant) {
-  std::vector<const Row*> rows;
-  for (const Row& r : report.rows)
-    if (r.method == method && r.scenario == scenario && r.variant == variant && (method != "zhf" || r.precision == "float"))
-      rows.push_back(&r);
-  return fit_exponent(rows);
-}
-
-namespace {
-
-constexpr const char* kPlotBanner = "# Generated by zhf bench";
-
-// A gnuplot string literal: single quotes, a quote inside doubled. Paths with control characters
-// are refused before this (a newline would end the command).
-std::string gnuplot_string(const std::string& text) {
-  std::string out = "'";
-  for (char c : text) out += c == '\'' ? std::string("''") : std::string(1, c);
-  return out + "'";
-}
-
-// The files --plot derives from its path are replaced only when zhf bench wrote them.
-void check_derived(const fs::path& path, const std::string& mark) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) return;
-  if (!fs::is_regular_file(path, ec) || io::read_text_file(path.string(), std::size_t(1) << 26).find(mark) == std::string::npos)
-    throw io::OutputError(path.string() + ": exists and was not written by zhf bench; refusing to replace it");
-}
-
-}  // namespace
-
-void check_plot_targets(const std::string& svg_path) {
-  if (!runtime::is_printable_text(svg_path)) throw io::OutputError("--plot: the path has control characters or backslashes");
-  const fs::path svg(svg_path);
-  check_derived(svg.parent_path() / (svg.stem().string() + "_scaling.svg"), "zhf bench: time vs order");
-  check_derived(svg.parent_path() / (svg.stem().string() + ".csv"), kPlotBanner);
-  check_derived(svg.parent_path() / (svg.stem().string() + ".gp"), kPlotBanner);
-}
-
-std::string write_plots(const SuiteReport& report, const std::string& svg_path) {
-  check_plot_targets(svg_path);
-  const fs::path svg(svg_path);
-  const fs::path scaling = svg.parent_path() / (svg.stem().string() + "_scaling.svg");
-  const std::string csv_path = (svg.parent_path() / (svg.stem().string() + ".csv")).string();
-  const std::string gp = (svg.parent_path() / (svg.stem().string() + ".gp")).string();
-  // One series per method (and precision/variant): one vector per call, and the bulk paths per
-  // rotated vector (batches on one thread; one rotation shared by many vectors).
-  std::map<std::string, std::vector<const Row*>> series;
-  for (const Row& r : report.rows) {
-    const bool bulk = (r.scenario == "batch" && r.variant == "threads 1") || r.scenario == "shared";
-    if ((r.scenario != "single" && !bulk) || r.variant == "conversion only") continue;
-    std::string name = (bulk ? r.scenario + ": " : "") + r.method + (r.precision == "double" && r.method == "zhf" ? " (double)" : "");
-    if (!r.variant.empty() && !bulk) name += " [" + r.variant.substr(0, r.variant.find(" (")) + "]";
-    series[name].push_back(&r);
-  }
-  std::ostringstream csv;
-  csv << kPlotBanner << ": series, order, ns_median, max_error\n";
-  std::ostringstream pareto, time;
-  // The script writes the final SVGs from the final CSV when a user runs it; zhf's own run passes
-  // its temporary files (-e) and moves everything into place only when gnuplot succeeds.
-  pareto << kPlotBanner << "; run: gnuplot " << gp << "\n"
-         << "if (!exists('data')) data = " << gnuplot_string(csv_path) << "\n"
-         << "if (!exists('pareto_svg')) pareto_svg = " << gnuplot_string(svg.string()) << "\n"
-         << "if (!exists('scaling_svg')) scaling_svg = " << gnuplot_string(scaling.string()) << "\n"
-         << "set terminal svg size 1000,700 dynamic background rgb 'white'\nset output pareto_svg\n"
-         << "set title 'zhf bench: max error vs time per rotated vector (one vector per call; batch: and shared: the bulk paths; labels: order N)' noenhanced\n"
-         << "set logscale xy\nset xlabel 'ns per rotated vector (median)'\nset ylabel 'max abs error vs double reference'\n"
-         << "set key outside right noenhanced\nset datafile separator ','\nplot ";
-  time << "set terminal svg size 1000,700 dynamic background rgb 'white'\nset output scaling_svg\n"
-       << "set title 'zhf bench: time vs order (log-log; fitted exponent in the key)'\n"
-       << "set logscale xy\nset xlabel 'order N'\nset ylabel 'ns per rotated vector (median)'\nset xtics (2,3,4,5,6,8,10,12,16)\n"
-       << "set key outside right noenhanced\nset datafile separator ','\nplot ";
-  int index = 0, scaling_series = 0;
-  for (const auto& [name, rows] : series) {
-    // An exact zero would vanish from a log axis: plotted at 1e-17, below every measured error.
-    for (const Row* r : rows) csv << name << "," << r->order << "," << r->ns_median << "," << std::max(r->max_error, 1e-17) << "\n";
-    csv << "\n\n";
-    const std::string sel = "data index " + std::to_string(index);
-    pareto << (index ? ", \\\n  " : "") << sel << " using 3:4 with linespoints title '" << name << "', " << sel
-           << " using 3:4:2 with labels offset 0.8,0.4 notitle";
-    // The scaling plot shows the methods, not the knobs (pruned tables, other lobe sets).
-    if (rows.front()->variant.empty() || rows.front()->method == "healpix") {
-      char title[160];
-      std::snprintf(title, sizeof title, "%s (N^%.2f)", name.c_str(), fit_exponent(rows));
-      time << (scaling_series++ ? ", \\\n  " : "") << sel << " using 2:3 with linespoints title '" << title << "'";
-    }
-    ++index;
-  }
-  pareto << "\n";
-  time << "\n";
-  io::PendingFile csv_file(csv_path), gp_file(gp);
-  csv_file.write(csv.str());
-  gp_file.write(pareto.str() + time.str());
-  if (!io::program_available("gnuplot")) {
-    io::throw_if_interrupted();
-    csv_file.commit();
-    gp_file.commit();
-    return "gnuplot is not installed: wrote " + csv_path + " and " + gp + " (run: gnuplot " + gp + ")";
-  }
-  io::PendingFile pareto_svg(svg.string()), scaling_svg(scaling.string());
-  const std::string variables = "data=" + gnuplot_string(csv_file.path()) + "; pareto_svg=" + gnuplot_string(pareto_svg.path()) +
-                                "; scaling_svg=" + gnuplot_string(scaling_svg.path());
-  io::PendingFile log(svg.string() + ".gnuplot-log");
-  const io::ProcessResult run = io::run_process({"gnuplot", "-e", variables, gp_file.path()}, log.path());
-  if (!run.ok()) throw io::OutputError("gnuplot failed on " + gp + ": " + io::log_excerpt(log.path(), 2));
-  io::throw_if_interrupted();
-  csv_file.commit();
-  gp_file.commit();
-  pareto_svg.commit();
-  scaling_svg.commit();
-  return "wrote " + svg.string() + " and " + scaling.string() + " (data " + csv_path + ", script " + gp + ")";
 }
 
 }  // namespace zhf::bench

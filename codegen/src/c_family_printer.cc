@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "zhf/runtime/table_io.h"
 #include "zhf/runtime/tolerances.h"
 
 namespace zhf::codegen {
@@ -242,7 +243,7 @@ std::vector<std::string> lobe_derivation(const Module& module, const EmitOptions
   }
   lines.push_back("Lobe directions w_d (unit vectors) for order " + std::to_string(module.order) + ", from " +
                   options.table_path + ";");
-  if (!module.table.command().empty()) lines.push_back("made by: " + module.table.command());
+  if (const std::string command = runtime::provenance_command(module.table); !command.empty()) lines.push_back("made by: " + command);
   lines.push_back(std::string("lobe sharing: ") + (module.table.lobe_sharing ? "band l uses lobes 0..2l" : "each band has its own lobes") +
                   "; " + std::to_string(module.table.zeros) + " of " + std::to_string(module.table.entries) +
                   " entries of A_l = Y_l^-1 are structural zeros.");
@@ -263,7 +264,7 @@ std::vector<std::string> lobe_derivation(const Module& module, const EmitOptions
     case runtime::LobeStage::kDouble:
       lines.push_back("Lobe stage double: R is projected onto the rotations (one Newton step to its polar factor),");
       lines.push_back("and the rotated lobes, their SH and the sums over lobes are double, because in float");
-      lines.push_back(float_model + " exceeds the 1e-6 target (zhf emit --lobe-stage).");
+      lines.push_back(float_model + " exceeds the " + runtime::format_number(runtime::tolerance::kFloatRotation) + " target (zhf emit --lobe-stage).");
       break;
   }
   for (size_t d = 0; d < module.lobes.size(); ++d)

@@ -1,4 +1,5 @@
 #include "zhf/codegen/expr.h"
+#include "zhf/runtime/tolerances.h"
 
 #include <algorithm>
 #include <cmath>
@@ -106,7 +107,7 @@ int Graph::linear(const std::vector<std::pair<double, int>>& terms) {
     if (c == 0 || is_const(x, 0)) continue;
     const double m = std::abs(c);
     size_t g = 0;
-    while (g < magnitudes.size() && std::abs(magnitudes[g] - m) > 1e-12 * m) ++g;
+    while (g < magnitudes.size() && std::abs(magnitudes[g] - m) > runtime::tolerance::kSameMagnitude * m) ++g;
     if (g == magnitudes.size()) {
       magnitudes.push_back(m);
       groups.emplace_back();

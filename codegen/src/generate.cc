@@ -16,6 +16,7 @@
 #include "zhf/io/files.h"
 #include "zhf/io/lobe_table_writer.h"
 #include "zhf/runtime/limits.h"
+#include "zhf/runtime/table_io.h"
 
 namespace zhf::codegen {
 namespace fs = std::filesystem;
@@ -197,8 +198,8 @@ GenerateResult generate(const GenerateOptions& options) {
     }
     const runtime::LobeTable table =
         order == 2 ? runtime::lobe_free_table()
-                   : runtime::read_lobe_table((fs::path(options.tables_dir) / ("order_" + std::to_string(order) + ".json")).string(), order);
-    const std::string table_name = "lobes/order_" + std::to_string(order) + ".json";
+                   : runtime::read_lobe_table(runtime::table_path(options.tables_dir, order), order);
+    const std::string table_name = runtime::table_path("lobes", order);
     tree.add(table_name, io::lobe_table_text(table, table_name), table_entry(order));
     OrderSummary summary;
     summary.order = order;
@@ -226,7 +227,7 @@ GenerateResult generate(const GenerateOptions& options) {
         if (language == Language::kCpp && f.kind == KernelKind::kRotate && f.channels == 1) summary.rotate_ops = f.ops;
     }
     // The lanes tables go with the full tree only (a scene lists exactly what it wants).
-    const fs::path lanes_path = fs::path(options.tables_dir) / ("lanes_order_" + std::to_string(order) + ".json");
+    const fs::path lanes_path = runtime::table_path(options.tables_dir, order, runtime::TableKind::kLanes);
     std::error_code ec;
     if (full_tree && wants_cpp && fs::exists(lanes_path, ec)) {
       const runtime::LobeTable lanes = runtime::read_lobe_table(lanes_path.string(), order);

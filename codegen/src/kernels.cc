@@ -97,7 +97,7 @@ void scale_lobe(const double w[3], double u[3]) {
   }
   // All nonzero components equal in magnitude: scale them to exactly +-1; otherwise make
   // the largest one +-1 (one column of R then needs no multiply).
-  const bool equal = largest - smallest <= 1e-14 * largest;
+  const bool equal = largest - smallest <= runtime::tolerance::kExactEntry * largest;
   for (int k = 0; k < 3; ++k) {
     if (w[k] == 0) {
       u[k] = 0;

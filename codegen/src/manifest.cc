@@ -30,9 +30,6 @@ const char* precision_name(FilePrecision precision) {
   return "?";
 }
 
-// Functions a file may hold, and files a tree may hold: generous bounds, checked before use.
-constexpr std::size_t kMaxFunctions = 256;
-constexpr std::size_t kMaxFiles = 4096;
 
 }  // namespace
 
@@ -97,7 +94,7 @@ Manifest parse_manifest(const runtime::json::Value& root, const std::string& sou
   manifest.generator = top.member("generator").string();
   manifest.command = top.member("command").string();
   if (const auto scene = top.find("scene")) manifest.scene = io::to_ordered_json(scene->value());
-  for (const Field& f : top.member("files").items(0, kMaxFiles)) {
+  for (const Field& f : top.member("files").items(0, runtime::kMaxManifestFiles)) {
     ManifestFile file;
     const Field path = f.member("path");
     file.path = path.string();
@@ -125,7 +122,7 @@ Manifest parse_manifest(const runtime::json::Value& root, const std::string& sou
     runtime::parse_lobe_stage(f.member("lobe_stage").one_of({"float", "double-rotation", "double"}), file.lobe_stage);
     for (const Field& band : f.member("zero_bands").items(0, runtime::kMaxEmitOrder))
       file.zero_bands.push_back(band.integer(0, std::max(0, file.order - 1)));
-    for (const Field& fn : f.member("functions").items(0, kMaxFunctions)) {
+    for (const Field& fn : f.member("functions").items(0, runtime::kMaxManifestFunctions)) {
       fn.allow_only({"name", "kind", "channels", "multiplies", "adds"});
       EmittedFunction function;
       function.name = fn.member("name").string();
@@ -133,7 +130,7 @@ Manifest parse_manifest(const runtime::json::Value& root, const std::string& sou
       const Field kind_field = fn.member("kind");
       if (!parse_kernel_kind(kind_field.string(), function.kind))
         kind_field.fail("'" + runtime::excerpt(kind_field.string()) + "' is not a kind of function zhf emits");
-      function.channels = fn.member("channels").integer(1, 4);
+      function.channels = fn.member("channels").integer(1, runtime::kMaxChannels);
       function.ops.multiplies = fn.member("multiplies").integer(0, 1 << 30);
       function.ops.adds = fn.member("adds").integer(0, 1 << 30);
       file.functions.push_back(function);
@@ -158,7 +155,7 @@ std::map<std::string, std::string> read_manifest_hashes(const std::string& path)
     for (const ManifestFile& f : parse_manifest(root, path).files) hashes[f.path] = f.fnv1a64;
     return hashes;
   }
-  for (const Field& f : top.member("files").items(0, kMaxFiles)) hashes[f.member("path").string()] = f.member("fnv1a64").string();
+  for (const Field& f : top.member("files").items(0, runtime::kMaxManifestFiles)) hashes[f.member("path").string()] = f.member("fnv1a64").string();
   return hashes;
 }
 

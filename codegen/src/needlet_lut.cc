@@ -1,4 +1,5 @@
 #include "zhf/codegen/needlet_lut.h"
+#include "zhf/runtime/limits.h"
 
 #include <cmath>
 #include <sstream>
@@ -97,8 +98,8 @@ std::vector<float> needlet_lut_data(const frames::NeedletFrame& frame, int table
 EmittedFile emit_needlet_lut(const frames::NeedletFrame& frame, Language language, const NeedletLutOptions& o) {
   std::string why;
   if (!valid_prefix(o.prefix, why)) throw std::invalid_argument("prefix: " + why);
-  if (o.table_size < frames::kMinTableSize || o.table_size > frames::kMaxTableSize)
-    throw std::invalid_argument("table size must be " + std::to_string(frames::kMinTableSize) + ".." + std::to_string(frames::kMaxTableSize));
+  if (o.table_size < runtime::kMinNeedletTableSize || o.table_size > runtime::kMaxNeedletTableSize)
+    throw std::invalid_argument("table size must be " + std::to_string(runtime::kMinNeedletTableSize) + ".." + std::to_string(runtime::kMaxNeedletTableSize));
   const NeedletSpelling s = spelling(language);
   const std::string& p = o.prefix;
   const int size = o.table_size, levels = static_cast<int>(frame.levels().size());

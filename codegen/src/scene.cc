@@ -95,7 +95,7 @@ Scene parse_scene(const runtime::json::Value& root, const std::string& source) {
   }
   if (const auto stage = top.find("lobe_stage")) parse_lobe_stage_choice(stage->one_of({"auto", "float", "double-rotation", "double"}), scene.lobe_stage);
   std::map<int, std::string> first_of_order;
-  const std::vector<Field> signals = top.member("signals").items(1, kMaxSceneSignals);
+  const std::vector<Field> signals = top.member("signals").items(1, runtime::kMaxSceneSignals);
   for (size_t i = 0; i < signals.size(); ++i) {
     const Field& s = signals[i];
     s.allow_only({"name", "order", "channels", "variants", "zero_bands"});
@@ -108,7 +108,7 @@ Scene parse_scene(const runtime::json::Value& root, const std::string& source) {
     }
     signal.order = s.member("order").integer(runtime::kMinGeneratedOrder, runtime::kMaxEmitOrder);
     if (const auto channels = s.find("channels")) {
-      signal.channels = channels->integer(1, 4);
+      signal.channels = channels->integer(1, runtime::kMaxChannels);
       if (signal.channels == 2) channels->fail("must be 1, 3 or 4 (got 2)");
     }
     for (const Field& variant : s.member("variants").items(1, kVariants.size())) signal.variants.push_back(variant.one_of(kVariants));

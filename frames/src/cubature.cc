@@ -6,6 +6,7 @@
 #include <string>
 #include <sys/stat.h>
 
+#include "zhf/runtime/limits.h"
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/sh/reference_rotation.h"
 
@@ -20,8 +21,8 @@ bool is_file(const std::string& path) {
 }  // namespace
 
 Cubature gauss_product_cubature(int degree) {
-  if (degree < 0 || degree > kMaxCubatureDegree)
-    throw std::invalid_argument("cubature degree must be 0.." + std::to_string(kMaxCubatureDegree) + " (got " + std::to_string(degree) + ")");
+  if (degree < 0 || degree > runtime::kMaxCubatureDegree)
+    throw std::invalid_argument("cubature degree must be 0.." + std::to_string(runtime::kMaxCubatureDegree) + " (got " + std::to_string(degree) + ")");
   const int nz = degree / 2 + 1, nphi = degree + 1;
   std::vector<double> z, wz;
   sh::gauss_legendre(nz, z, wz);
@@ -40,7 +41,7 @@ Cubature gauss_product_cubature(int degree) {
 }
 
 Cubature design_cubature(const std::string& folder, int degree) {
-  for (int t = std::max(degree, 1); t <= kMaxDesignStrength; ++t) {
+  for (int t = std::max(degree, 1); t <= runtime::kMaxDesignStrength; ++t) {
     const std::string path = folder + "/t_" + std::to_string(t) + ".json";
     if (!is_file(path)) continue;
     Cubature c;

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <random>
 #include <stdexcept>
-#include <thread>
 
 #include <Eigen/Dense>
 #include <nlopt.hpp>
@@ -12,16 +11,16 @@
 #include "zhf/runtime/errors.h"
 #include "zhf/runtime/json.h"
 #include "zhf/runtime/limits.h"
+#include "zhf/runtime/parallel.h"
 #include "zhf/runtime/read_file.h"
 #include "zhf/runtime/sh_eval.h"
+#include "zhf/runtime/tolerances.h"
+#include "zhf/sh/random.h"
 
 namespace zhf::frames {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-// Central differences along the tangent plane: error h^2 |y'''| ~ 1e-10 relative, plenty for the
-// descent and for Levenberg-Marquardt's steps (the residual itself is evaluated exactly).
-constexpr double kStep = 1e-5;
 
 Point normalized(const Point& p) {
   const double n = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
@@ -52,10 +51,11 @@ class Evaluator {
   }
   // d/ds y(normalize(x + s w)) at s = 0.
   void derivative(const Point& x, const Point& w, double* out) {
+    const double h = runtime::tolerance::kDesignDifferenceStep;
     std::vector<double> plus(size()), minus(size());
-    at(normalized({x[0] + kStep * w[0], x[1] + kStep * w[1], x[2] + kStep * w[2]}), plus.data());
-    at(normalized({x[0] - kStep * w[0], x[1] - kStep * w[1], x[2] - kStep * w[2]}), minus.data());
-    for (int k = 0; k < size(); ++k) out[k] = (plus[k] - minus[k]) / (2 * kStep);
+    at(normalized({x[0] + h * w[0], x[1] + h * w[1], x[2] + h * w[2]}), plus.data());
+    at(normalized({x[0] - h * w[0], x[1] - h * w[1], x[2] - h * w[2]}), minus.data());
+    for (int k = 0; k < size(); ++k) out[k] = (plus[k] - minus[k]) / (2 * h);
   }
 
  private:
@@ -104,8 +104,8 @@ void polish(std::vector<Point>& x, int t, bool symmetric) {
   Evaluator e(t, symmetric);
   const int m = static_cast<int>(x.size()), rows = e.size(), cols = 2 * m;
   Eigen::VectorXd r = residual_vector(x, e);
-  double lambda = 1e-6;
-  // On to the rounding floor, not just below kDesignResidual: integrals of polynomials weigh the
+  double lambda = runtime::tolerance::kDampingStart;
+  // On to the rounding floor, not just below runtime::tolerance::kDesignResidual: integrals of polynomials weigh the
   // residual by up to ~30 (4 pi over the SH normalisation).
   for (int iteration = 0; iteration < 100 && r.cwiseAbs().maxCoeff() > 0; ++iteration) {
     Eigen::MatrixXd j(rows, cols);
@@ -136,7 +136,7 @@ void polish(std::vector<Point>& x, int t, bool symmetric) {
       if (next.squaredNorm() < r.squaredNorm()) {
         x.swap(trial);
         r = next;
-        lambda = std::max(lambda / 10, 1e-15);
+        lambda = std::max(lambda / 10, runtime::tolerance::kDampingFloor);
         improved = true;
       } else {
         lambda *= 10;
@@ -150,7 +150,7 @@ void polish(std::vector<Point>& x, int t, bool symmetric) {
 // first start, jittered in its tangent planes by up to half the spacing.
 std::vector<Point> start_points(int count, int k, std::uint64_t seed) {
   std::mt19937_64 rng(seed * 1000003 + static_cast<std::uint64_t>(k));
-  std::normal_distribution<double> normal;
+  sh::Normal<> normal;
   std::vector<Point> x(count);
   const double golden = kPi * (3 - std::sqrt(5.0));
   for (int i = 0; i < count; ++i) {
@@ -184,8 +184,8 @@ Design run_start(int t, int count, bool symmetric, int k, std::uint64_t seed) {
   EnergyProblem problem{count, Evaluator(t, symmetric)};
   nlopt::opt opt(nlopt::LD_LBFGS, 3 * count);
   opt.set_min_objective(energy, &problem);
-  opt.set_ftol_abs(1e-26);
-  opt.set_ftol_rel(1e-15);
+  opt.set_ftol_abs(runtime::tolerance::kDesignEnergyAbsolute);
+  opt.set_ftol_rel(runtime::tolerance::kDesignEnergyRelative);
   opt.set_maxeval(4000);
   std::vector<double> p;
   for (const Point& q : x) p.insert(p.end(), q.begin(), q.end());
@@ -203,7 +203,7 @@ Design run_start(int t, int count, bool symmetric, int k, std::uint64_t seed) {
   d.t = t;
   d.residual = design_residual(x, t);
   d.points = std::move(x);
-  d.start = d.residual <= kDesignResidual ? k : -1;
+  d.start = d.residual <= runtime::tolerance::kDesignResidual ? k : -1;
   return d;
 }
 
@@ -236,8 +236,8 @@ DesignChoice default_design(int t) {
 }
 
 Design search_design(const DesignSearch& s) {
-  if (s.t < 1 || s.t > kMaxDesignStrength)
-    throw std::invalid_argument("t " + std::to_string(s.t) + " is outside 1.." + std::to_string(kMaxDesignStrength));
+  if (s.t < 1 || s.t > runtime::kMaxDesignStrength)
+    throw std::invalid_argument("t " + std::to_string(s.t) + " is outside 1.." + std::to_string(runtime::kMaxDesignStrength));
   if (s.points < 2) throw std::invalid_argument("a design needs at least 2 points (got " + std::to_string(s.points) + ")");
   if (s.symmetric && s.points % 2) throw std::invalid_argument("a symmetric design has an even point count (got " + std::to_string(s.points) + ")");
   const int threads = std::max(1, s.threads);
@@ -247,11 +247,12 @@ Design search_design(const DesignSearch& s) {
   // and otherwise the lowest residual (ties: the lower start).
   for (int first = 0; first < s.starts; first += threads) {
     if (s.interrupted && s.interrupted()) break;
+    if (s.progress) s.progress(first);
     const int batch = std::min(threads, s.starts - first);
     std::vector<Design> results(batch);
-    std::vector<std::thread> pool;
-    for (int b = 0; b < batch; ++b) pool.emplace_back([&, b] { results[b] = run_start(s.t, s.symmetric ? s.points / 2 : s.points, s.symmetric, first + b, s.seed); });
-    for (std::thread& th : pool) th.join();
+    runtime::parallel_for(batch, batch, [&](int b) {
+      results[b] = run_start(s.t, s.symmetric ? s.points / 2 : s.points, s.symmetric, first + b, s.seed);
+    });
     for (int b = 0; b < batch; ++b) {
       if (results[b].start >= 0) return results[b];
       if (best.points.empty() || results[b].residual < best.residual) best = results[b];
@@ -269,11 +270,11 @@ std::vector<Point> read_points(const std::string& path) {
     top = top.member("points");
   }
   std::vector<Point> points;
-  for (const runtime::json::Field& item : top.items(1, kMaxPoints)) {
+  for (const runtime::json::Field& item : top.items(1, runtime::kMaxDesignPoints)) {
     const std::vector<runtime::json::Field> xyz = item.items(3);
     const Point p{xyz[0].number(), xyz[1].number(), xyz[2].number()};
     const double norm = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
-    if (!(norm > 1e-150) || !std::isfinite(norm)) item.fail("not a direction (length " + std::to_string(norm) + ")");
+    if (!(norm > runtime::tolerance::kShortestDirection) || !std::isfinite(norm)) item.fail("not a direction (length " + std::to_string(norm) + ")");
     points.push_back(normalized(p));
   }
   return points;

@@ -7,16 +7,18 @@
 
 #include <Eigen/Dense>
 
+#include "zhf/runtime/limits.h"
 #include "zhf/runtime/sh_eval.h"
+#include "zhf/runtime/tolerances.h"
 
 namespace zhf::frames {
 namespace {
 
 void check(const std::vector<Point>& directions, int lmin, int lmax) {
   if (directions.empty()) throw std::invalid_argument("a frame needs at least one direction");
-  if (lmin < 0 || lmax < lmin || lmax > kMaxFrameBand)
+  if (lmin < 0 || lmax < lmin || lmax > runtime::kMaxFrameBand)
     throw std::invalid_argument("bands " + std::to_string(lmin) + ".." + std::to_string(lmax) + " are not within 0.." +
-                                std::to_string(kMaxFrameBand));
+                                std::to_string(runtime::kMaxFrameBand));
 }
 
 // Phi: row i holds y_l^m(w_i) for the bands of the range.
@@ -33,7 +35,7 @@ Eigen::MatrixXd analysis(const std::vector<Point>& directions, int lmin, int lma
 
 }  // namespace
 
-bool FrameBounds::parseval() const { return tight() && std::abs(lower - 1) <= kTightFrame && std::abs(upper - 1) <= kTightFrame; }
+bool FrameBounds::parseval() const { return tight() && std::abs(lower - 1) <= runtime::tolerance::kTightFrame && std::abs(upper - 1) <= runtime::tolerance::kTightFrame; }
 
 double FrameBounds::condition() const {
   return frame() ? std::sqrt(upper / lower) : std::numeric_limits<double>::infinity();

@@ -7,7 +7,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "zhf/runtime/limits.h"
 #include "zhf/runtime/sh_eval.h"
+#include "zhf/runtime/tolerances.h"
+#include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 
 namespace zhf::frames {
@@ -41,14 +44,14 @@ void kronrod(double a, double b, double& estimate, double& error) {
 double integrate(double a, double b, int depth = 0) {
   double whole = 0, error = 0;
   kronrod(a, b, whole, error);
-  if (error <= 1e-17 || depth >= 40) return whole;
+  if (error <= runtime::tolerance::kKronrodError || depth >= 40) return whole;
   const double m = (a + b) / 2;
   return integrate(a, m, depth + 1) + integrate(m, b, depth + 1);
 }
 
 void check_dilation(double dilation) {
-  if (!(dilation >= kMinDilation && dilation <= kMaxDilation))
-    throw std::invalid_argument("B must be in [" + std::to_string(kMinDilation).substr(0, 4) + ", " + std::to_string(int(kMaxDilation)) +
+  if (!(dilation >= runtime::kMinDilation && dilation <= runtime::kMaxDilation))
+    throw std::invalid_argument("B must be in [" + std::to_string(runtime::kMinDilation).substr(0, 4) + ", " + std::to_string(int(runtime::kMaxDilation)) +
                                 "] (got " + std::to_string(dilation) + ")");
 }
 
@@ -81,8 +84,8 @@ double needlet_window(double x, double dilation) {
 
 std::vector<WindowValue> needlet_windows(double dilation, int lmax) {
   check_dilation(dilation);
-  if (lmax < 0 || lmax > kMaxNeedletBand)
-    throw std::invalid_argument("lmax must be 0.." + std::to_string(kMaxNeedletBand) + " (got " + std::to_string(lmax) + ")");
+  if (lmax < 0 || lmax > runtime::kMaxNeedletBand)
+    throw std::invalid_argument("lmax must be 0.." + std::to_string(runtime::kMaxNeedletBand) + " (got " + std::to_string(lmax) + ")");
   std::vector<WindowValue> out;
   // Level j covers B^(j-1) < l < B^(j+1); stop once B^(j-1) passes lmax.
   for (int j = 0; std::pow(dilation, j - 1) < lmax + 1; ++j) {
@@ -132,8 +135,8 @@ Point rotate_point(const runtime::Matrix3& r, const Point& p) {
 NeedletFrame::NeedletFrame(double dilation, int band_limit, const CubatureSource& cubature)
     : dilation_(dilation), band_limit_(band_limit) {
   check_dilation(dilation);
-  if (band_limit < 0 || band_limit > kMaxNeedletFrameBand)
-    throw std::invalid_argument("band limit must be 0.." + std::to_string(kMaxNeedletFrameBand) + " (got " + std::to_string(band_limit) + ")");
+  if (band_limit < 0 || band_limit > runtime::kMaxNeedletFrameBand)
+    throw std::invalid_argument("band limit must be 0.." + std::to_string(runtime::kMaxNeedletFrameBand) + " (got " + std::to_string(band_limit) + ")");
   NeedletLevel scaling;
   scaling.j = -1;
   scaling.window = {1.0};
@@ -256,8 +259,8 @@ std::vector<double> NeedletFrame::rotate_exact(const std::vector<double>& beta, 
 // ---- Look-up tables -----------------------------------------------------------------------------
 
 UniformTable::UniformTable(const std::function<double(double)>& f, int size) {
-  if (size < kMinTableSize || size > kMaxTableSize)
-    throw std::invalid_argument("table size must be " + std::to_string(kMinTableSize) + ".." + std::to_string(kMaxTableSize) +
+  if (size < runtime::kMinNeedletTableSize || size > runtime::kMaxNeedletTableSize)
+    throw std::invalid_argument("table size must be " + std::to_string(runtime::kMinNeedletTableSize) + ".." + std::to_string(runtime::kMaxNeedletTableSize) +
                                 " (got " + std::to_string(size) + ")");
   values_.resize(size);
   for (int i = 0; i < size; ++i) values_[i] = f(i == size - 1 ? 1.0 : -1.0 + 2.0 * i / (size - 1));
@@ -324,9 +327,9 @@ std::vector<double> TabulatedNeedletRotation::rotate(const std::vector<double>& 
 int needlet_top_band(double dilation, int j) {
   check_dilation(dilation);
   const double top = std::ceil(std::pow(dilation, j + 1)) - 1;  // compared before the cast: B^(j+1) may pass any int
-  if (!(j >= 0 && top <= kMaxNeedletBand))
+  if (!(j >= 0 && top <= runtime::kMaxNeedletBand))
     throw std::invalid_argument("level " + std::to_string(j) + " of B = " + std::to_string(dilation) + " reaches past band " +
-                                std::to_string(kMaxNeedletBand));
+                                std::to_string(runtime::kMaxNeedletBand));
   return static_cast<int>(top);
 }
 
@@ -342,8 +345,8 @@ double sh_delta_kernel(int lmax, double t) {
 }
 
 Localisation localisation(const std::function<double(double)>& kernel, int degree, double cap) {
-  if (degree < 0 || degree > kMaxProfileBand)
-    throw std::invalid_argument("profile degree must be 0.." + std::to_string(kMaxProfileBand) + " (got " + std::to_string(degree) + ")");
+  if (degree < 0 || degree > runtime::kMaxProfileBand)
+    throw std::invalid_argument("profile degree must be 0.." + std::to_string(runtime::kMaxProfileBand) + " (got " + std::to_string(degree) + ")");
   std::vector<double> x, w;
   sh::gauss_legendre(degree + 1, x, w);
   const double edge = std::cos(cap);
@@ -369,7 +372,7 @@ Localisation localisation(const std::function<double(double)>& kernel, int degre
 MaskExperiment mask_experiment(const NeedletFrame& frame, double cut, double margin) {
   const int band_limit = frame.band_limit(), n = runtime::coefficient_count(band_limit + 1);
   std::mt19937_64 rng(1);
-  std::normal_distribution<double> normal(0, 1);
+  sh::Normal<> normal(0, 1);
   std::vector<double> whole(n);
   for (int l = 0; l <= band_limit; ++l)
     for (int m = -l; m <= l; ++m) whole[runtime::index(l, m)] = normal(rng) / (l + 1);

@@ -4,7 +4,9 @@
 #include <random>
 #include <stdexcept>
 
+#include "zhf/runtime/limits.h"
 #include "zhf/runtime/sh_eval.h"
+#include "zhf/sh/random.h"
 
 namespace zhf::frames {
 namespace {
@@ -15,7 +17,7 @@ constexpr double kCapRadius = 30 * runtime::kPi / 180;
 const std::vector<double>& band_limited_coefficients() {
   static const std::vector<double> f = [] {
     std::mt19937_64 rng(8);
-    std::normal_distribution<double> normal(0, 1);
+    sh::Normal<> normal(0, 1);
     std::vector<double> c(runtime::coefficient_count(kBandLimitedBands));
     for (int l = 0; l < kBandLimitedBands; ++l)
       for (int m = -l; m <= l; ++m) c[runtime::index(l, m)] = normal(rng) / (l + 1);
@@ -30,8 +32,8 @@ double legendre(int l, double t) { return runtime::legendre_q(l, 0, t) / (std::s
 }  // namespace
 
 std::vector<std::vector<double>> project_samples(const Cubature& nodes, const std::vector<double>& values, int channels, int order) {
-  if (order < 1 || order > kMaxProjectionOrder)
-    throw std::invalid_argument("projection order must be 1.." + std::to_string(kMaxProjectionOrder) + " (got " + std::to_string(order) + ")");
+  if (order < 1 || order > runtime::kMaxProjectionOrder)
+    throw std::invalid_argument("projection order must be 1.." + std::to_string(runtime::kMaxProjectionOrder) + " (got " + std::to_string(order) + ")");
   if (channels < 1 || values.size() != nodes.points.size() * channels)
     throw std::invalid_argument("samples: " + std::to_string(values.size()) + " values for " + std::to_string(nodes.points.size()) +
                                 " nodes and " + std::to_string(channels) + " channels");

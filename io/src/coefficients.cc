@@ -43,7 +43,7 @@ void add_vector(CoefficientFile& out, std::vector<std::vector<double>> channels,
 
 double checked(double x, const std::string& where) {
   if (!(std::abs(x) <= kMaxCoefficientMagnitude))
-    throw InputError(where + ": " + runtime::format_number(x, 6) + " is beyond the largest coefficient magnitude, 1e150");
+    throw InputError(where + ": " + runtime::format_number(x, 6) + " is beyond the largest coefficient magnitude, " + runtime::format_number(kMaxCoefficientMagnitude));
   return x;
 }
 

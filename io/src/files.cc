@@ -16,6 +16,7 @@
 
 #include "zhf/io/errors.h"
 #include "zhf/io/private_dir.h"
+#include "zhf/io/signals.h"
 #include "zhf/runtime/read_file.h"
 
 namespace zhf::io {
@@ -91,11 +92,13 @@ PendingFile::PendingFile(const std::string& destination) : destination_(resolve_
     throw OutputError(destination + ": cannot create a temporary file beside it: " + why);
   }
   temp_ = name.data();
+  register_temporary(private_dir_.empty() ? temp_ : private_dir_);
   // mkstemp makes the file 0600; give it the mode of the file it replaces, or of a plain create.
   fchmod(fd_, exists && !through ? (st.st_mode & 07777) : creation_mode());
 }
 
 PendingFile::~PendingFile() {
+  unregister_temporary(private_dir_.empty() ? temp_ : private_dir_);
   if (fd_ >= 0) ::close(fd_);
   if (!committed_) std::remove(temp_.c_str());
   if (!private_dir_.empty()) {
@@ -117,6 +120,7 @@ void PendingFile::commit() {
     if (std::rename(temp_.c_str(), destination_.c_str()) != 0)
       throw OutputError(destination_ + ": cannot move the new file into place: " + error_text());
     committed_ = true;
+    unregister_temporary(temp_);  // it is the output now
     return;
   }
   // A FIFO or device: its bytes go through it; it stays what it is.

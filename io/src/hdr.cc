@@ -6,6 +6,7 @@
 
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
+#include "zhf/runtime/tolerances.h"
 
 namespace zhf::io {
 namespace {
@@ -115,7 +116,7 @@ std::string encode_hdr(const HdrImage& image) {
       const float* p = &image.rgb[(static_cast<std::size_t>(row) * w + x) * 3];
       const float largest = std::fmax(p[0], std::fmax(p[1], p[2]));
       int e = 0;
-      if (!(largest > 1e-32f)) {
+      if (!(largest > runtime::tolerance::kRgbeBlack)) {
         scan[4 * x] = scan[4 * x + 1] = scan[4 * x + 2] = scan[4 * x + 3] = 0;
         continue;
       }

@@ -1,9 +1,5 @@
 #include "zhf/io/lobe_table_writer.h"
 
-#include <algorithm>
-#include <utility>
-#include <vector>
-
 #include "zhf/io/files.h"
 
 namespace zhf::io {
@@ -45,12 +41,8 @@ nlohmann::ordered_json lobe_table_json(const runtime::LobeTable& table) {
   out["bands"] = bands;
   out["zeros"] = table.zeros;
   out["entries"] = table.entries;
-  std::vector<std::pair<std::string, const runtime::json::Value*>> provenance;
-  for (const auto& [key, value] : table.provenance.members) provenance.push_back({key, &value});
-  std::sort(provenance.begin(), provenance.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  nlohmann::ordered_json recorded = nlohmann::ordered_json::object();
-  for (const auto& [key, value] : provenance) recorded[key] = to_ordered_json(*value);
-  out["provenance"] = recorded;
+  // Keys sorted (nlohmann::json's object order), so a table's bytes do not depend on who built it.
+  out["provenance"] = nlohmann::ordered_json::parse(nlohmann::json::parse(table.provenance).dump());
   return out;
 }
 

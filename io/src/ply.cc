@@ -65,8 +65,8 @@ Header read_header(std::istream& in, const std::string& source) {
     // A line ends at '\n'; the header's size is bounded before any line is kept.
     for (char c; in.get(c) && c != '\n';) {
       line += c;
-      if (header.text.size() + line.size() > kMaxHeaderBytes)
-        throw InputError(source + ": the header is longer than " + std::to_string(kMaxHeaderBytes) + " bytes");
+      if (header.text.size() + line.size() > kMaxPlyHeaderBytes)
+        throw InputError(source + ": the header is longer than " + std::to_string(kMaxPlyHeaderBytes) + " bytes");
     }
     if (!in) throw InputError(source + ": the header ends before end_header");
     header.text += line + "\n";
@@ -101,7 +101,7 @@ Header read_header(std::istream& in, const std::string& source) {
       if (w.size() != 3 || w[1] != "vertex") throw InputError(where + ": expected 'element vertex <count>'");
       const std::string& count = w[2];
       if (count.empty() || count.size() > 10 || count.find_first_not_of("0123456789") != std::string::npos ||
-          std::stoull(count) > kMaxVertices)
+          std::stoull(count) > kMaxPlyVertices)
         throw InputError(where + ": the vertex count '" + excerpt(count) + "' is not a count up to 2^31");
       header.vertices = std::stoull(count);
       vertex_seen = true;
@@ -109,8 +109,8 @@ Header read_header(std::istream& in, const std::string& source) {
       if (!vertex_seen) throw InputError(where + ": a property before 'element vertex'");
       if (w.size() >= 2 && w[1] == "list") throw InputError(where + ": list properties are not supported in a splat file");
       if (w.size() != 3) throw InputError(where + ": expected 'property <type> <name>'");
-      if (header.properties.size() == kMaxProperties)
-        throw InputError(where + ": more than " + std::to_string(kMaxProperties) + " properties");
+      if (header.properties.size() == kMaxPlyProperties)
+        throw InputError(where + ": more than " + std::to_string(kMaxPlyProperties) + " properties");
       const TypeName* type = nullptr;
       for (const TypeName& t : kTypeNames)
         if (t.name == w[1]) type = &t;

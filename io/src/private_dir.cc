@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "zhf/io/errors.h"
+#include "zhf/io/signals.h"
 
 namespace zhf::io {
 
@@ -22,7 +23,10 @@ std::string make_private_dir(const std::string& prefix) {
   return name.data();
 }
 
+PrivateDir::PrivateDir(const std::string& prefix) : path_(make_private_dir(prefix)) { register_temporary(path_); }
+
 PrivateDir::~PrivateDir() {
+  unregister_temporary(path_);
   if (keep_) return;
   std::error_code ignored;
   std::filesystem::remove_all(path_, ignored);

@@ -14,7 +14,10 @@
 #include "search_support.h"
 #include "zhf/optimizer/objective.h"
 #include "zhf/runtime/limits.h"
+#include "zhf/runtime/parallel.h"
 #include "zhf/runtime/sh_eval.h"
+#include "zhf/runtime/tolerances.h"
+#include "zhf/sh/random.h"
 
 namespace zhf::optimizer {
 namespace {
@@ -76,7 +79,7 @@ StartResult descend_from(int order, std::vector<double> x, const AmplificationOp
     nlopt::opt opt(nlopt::LN_SBPLX, static_cast<unsigned>(x.size()));
     opt.set_min_objective(objective, &problem);
     opt.set_maxeval(options.max_evaluations_per_pass);
-    opt.set_xtol_rel(1e-10);
+    opt.set_xtol_rel(runtime::tolerance::kContinuousSearchStep);
     double value = 0;
     try {
       opt.optimize(x, value);
@@ -105,12 +108,12 @@ AmplificationResult amplification_search(int order, const AmplificationOptions& 
   std::vector<std::vector<double>> points(std::max(0, options.starts), std::vector<double>(2 * lobes));
   for (std::vector<double>& x : points)
     for (int i = 0; i < lobes; ++i) {
-      x[2 * i] = std::acos(2 * detail::unit(rng) - 1);
-      x[2 * i + 1] = kPi * (2 * detail::unit(rng) - 1);
+      x[2 * i] = std::acos(2 * sh::uniform01(rng) - 1);
+      x[2 * i + 1] = kPi * (2 * sh::uniform01(rng) - 1);
     }
   const int count = static_cast<int>(points.size());
   std::vector<StartResult> results(count);
-  detail::parallel_for(count, std::min(detail::resolve_threads(options.threads), std::max(1, count)),
+  runtime::parallel_for(count, std::min(runtime::worker_count(options.threads), std::max(1, count)),
                        [&](int s) { results[s] = descend_from(order, points[s], options); });
 
   AmplificationResult best;
@@ -139,7 +142,7 @@ AmplificationResult amplification_search(int order, const AmplificationOptions& 
   return best;
 }
 
-runtime::LobeTable make_amplification_table(int order, const AmplificationResult& result, runtime::json::Value provenance) {
+runtime::LobeTable make_amplification_table(int order, const AmplificationResult& result, nlohmann::json provenance) {
   runtime::LobeTable table;
   table.order = order;
   table.lobe_sharing = true;
@@ -153,7 +156,7 @@ runtime::LobeTable make_amplification_table(int order, const AmplificationResult
     dirs.push_back(lobe.xyz);
     table.lobes.push_back(lobe);
   }
-  std::vector<runtime::json::Value> amplification;
+  std::vector<double> amplification;
   for (int l = 2; l < order; ++l) {
     runtime::TableBand band;
     band.l = l;
@@ -166,11 +169,11 @@ runtime::LobeTable make_amplification_table(int order, const AmplificationResult
     band.zeros = static_cast<int>((inverse.array() == 0).count());
     table.zeros += band.zeros;
     table.entries += static_cast<int>(inverse.size());
-    amplification.push_back(runtime::json::make_number(runtime::band_amplification(y)));
+    amplification.push_back(runtime::band_amplification(y));
     table.bands.push_back(std::move(band));
   }
-  table.provenance = std::move(provenance);
-  table.provenance.set("amplification", runtime::json::make_array(std::move(amplification)));
+  provenance["amplification"] = amplification;
+  table.provenance = provenance.dump();
   return table;
 }
 

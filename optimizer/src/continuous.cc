@@ -8,6 +8,8 @@
 
 #include "search_support.h"
 #include "zhf/runtime/sh_eval.h"
+#include "zhf/runtime/tolerances.h"
+#include "zhf/sh/random.h"
 
 namespace zhf::optimizer {
 namespace {
@@ -37,7 +39,7 @@ double log_sparsity(const std::vector<double>& x, const Problem& p) {
       for (int k = 0; k < size; ++k) y(d, k) = row[k];
     }
     Eigen::PartialPivLU<Eigen::MatrixXd> lu(y);
-    if (!(std::abs(lu.determinant()) > 1e-12)) return kSingularPenalty;
+    if (!(std::abs(lu.determinant()) > runtime::tolerance::kSearchSingularDeterminant)) return kSingularPenalty;
     const Eigen::MatrixXd a = lu.inverse();
     total += (a.cwiseAbs().array() + 1).log().sum() + (y.cwiseAbs().array() + 1).log().sum();
   }
@@ -57,13 +59,13 @@ std::vector<ContinuousStart> continuous_search(const LobeEvaluator& evaluator, c
   for (int s = 0; s < options.starts; ++s) {
     std::vector<double> x(2 * problem.lobes);
     for (int i = 0; i < problem.lobes; ++i) {
-      x[2 * i] = std::acos(2 * detail::unit(rng) - 1);
-      x[2 * i + 1] = kPi * (2 * detail::unit(rng) - 1);
+      x[2 * i] = std::acos(2 * sh::uniform01(rng) - 1);
+      x[2 * i + 1] = kPi * (2 * sh::uniform01(rng) - 1);
     }
     nlopt::opt opt(nlopt::LN_SBPLX, static_cast<unsigned>(x.size()));
     opt.set_min_objective(objective, const_cast<Problem*>(&problem));
     opt.set_maxeval(options.max_evaluations_per_start);
-    opt.set_xtol_rel(1e-10);
+    opt.set_xtol_rel(runtime::tolerance::kContinuousSearchStep);
     double value = 0;
     try {
       opt.optimize(x, value);

@@ -1,4 +1,6 @@
 #include "zhf/optimizer/genetic.h"
+#include "zhf/runtime/parallel.h"
+#include "zhf/sh/random.h"
 
 #include <algorithm>
 #include <chrono>
@@ -14,8 +16,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-using detail::pick;
-using detail::unit;
 
 class GenePool {
  public:
@@ -24,9 +24,9 @@ class GenePool {
         per_gene_(per_gene) {}
   int genes() const { return genes_; }
   int random_value(int gene, std::mt19937_64& rng) const {
-    if (per_gene_.empty()) return pick(rng, total_);
+    if (per_gene_.empty()) return sh::uniform_index(rng, total_);
     const std::vector<int>& allowed = per_gene_[gene];
-    return allowed[pick(rng, static_cast<int>(allowed.size()))];
+    return allowed[sh::uniform_index(rng, static_cast<int>(allowed.size()))];
   }
   Genome random_genome(std::mt19937_64& rng) const {
     Genome g(genes_);
@@ -72,8 +72,8 @@ void evaluate_all(const LobeEvaluator& evaluator, const std::vector<Genome>& gen
                   int threads) {
   out.assign(genomes.size(), Fitness{});
   const int count = static_cast<int>(genomes.size());
-  const int workers = std::min(detail::resolve_threads(threads), std::max(1, count / 8));
-  detail::parallel_for(count, workers, [&](int i) { out[i] = evaluator.evaluate(genomes[i]); });
+  const int workers = std::min(runtime::worker_count(threads), std::max(1, count / 8));
+  runtime::parallel_for(count, workers, [&](int i) { out[i] = evaluator.evaluate(genomes[i]); });
 }
 
 SearchResult genetic_search(const LobeEvaluator& evaluator, const GeneticOptions& options) {
@@ -107,8 +107,8 @@ SearchResult genetic_search(const LobeEvaluator& evaluator, const GeneticOptions
   };
   // Population is sorted best first, so a tournament winner is the smallest index drawn.
   auto tournament = [&] {
-    int winner = pick(rng, size);
-    for (int k = 1; k < options.tournament_size; ++k) winner = std::min(winner, pick(rng, size));
+    int winner = sh::uniform_index(rng, size);
+    for (int k = 1; k < options.tournament_size; ++k) winner = std::min(winner, sh::uniform_index(rng, size));
     return winner;
   };
 
@@ -135,7 +135,7 @@ SearchResult genetic_search(const LobeEvaluator& evaluator, const GeneticOptions
       } else {
         Genome child = population[tournament()];
         for (int g = 0; g < pool.genes(); ++g)
-          if (unit(rng) < mutation_rate) child[g] = pool.random_value(g, rng);
+          if (sh::uniform01(rng) < mutation_rate) child[g] = pool.random_value(g, rng);
         next.push_back(std::move(child));
       }
     }

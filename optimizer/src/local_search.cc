@@ -1,4 +1,5 @@
 #include "zhf/optimizer/local_search.h"
+#include "zhf/sh/random.h"
 
 #include <chrono>
 #include <random>
@@ -126,10 +127,10 @@ SearchResult iterated_local_search(const LobeEvaluator& evaluator, const Genome&
     if (since_improvement >= options.stall_kicks) break;
     Genome kicked = result.best;
     for (int k = 0; k < options.kick_genes; ++k) {
-      const int g = detail::pick(rng, genes);
+      const int g = sh::uniform_index(rng, genes);
       kicked[g] = options.gene_candidates.empty()
-                      ? detail::pick(rng, total)
-                      : options.gene_candidates[g][detail::pick(rng, static_cast<int>(options.gene_candidates[g].size()))];
+                      ? sh::uniform_index(rng, total)
+                      : options.gene_candidates[g][sh::uniform_index(rng, static_cast<int>(options.gene_candidates[g].size()))];
     }
     const Fitness kicked_fitness = evaluator.evaluate(kicked);
     ++result.evaluations;

@@ -8,6 +8,7 @@
 #include <Eigen/SVD>
 
 #include "zhf/runtime/sh_eval.h"
+#include "zhf/runtime/tolerances.h"
 
 namespace zhf::optimizer {
 
@@ -42,7 +43,7 @@ int multiply_cost(const Eigen::MatrixXd& inverse) {
       if (inverse(i, j) != 0) magnitudes.push_back(std::abs(inverse(i, j)));
     std::sort(magnitudes.begin(), magnitudes.end());
     for (size_t k = 0; k < magnitudes.size(); ++k)
-      if (k == 0 || magnitudes[k] - magnitudes[k - 1] > 1e-12 * magnitudes[k]) ++cost;
+      if (k == 0 || magnitudes[k] - magnitudes[k - 1] > runtime::tolerance::kSameMagnitude * magnitudes[k]) ++cost;
   }
   return cost;
 }
@@ -138,7 +139,7 @@ runtime::Matrix to_matrix(const Eigen::MatrixXd& m) {
   return out;
 }
 
-runtime::LobeTable make_table(const LobeEvaluator& evaluator, const Genome& genes, runtime::json::Value provenance) {
+runtime::LobeTable make_table(const LobeEvaluator& evaluator, const Genome& genes, const nlohmann::json& provenance) {
   runtime::LobeTable table;
   table.order = evaluator.order();
   table.lobe_sharing = evaluator.lobe_sharing();
@@ -162,7 +163,7 @@ runtime::LobeTable make_table(const LobeEvaluator& evaluator, const Genome& gene
     table.entries += static_cast<int>(analysis.inverse.size());
     table.bands.push_back(std::move(band));
   }
-  table.provenance = std::move(provenance);
+  table.provenance = provenance.dump();
   return table;
 }
 

@@ -1,4 +1,5 @@
 #include "zhf/pipeline/project.h"
+#include "zhf/runtime/table_io.h"
 
 #include <filesystem>
 #include <system_error>
@@ -9,7 +10,7 @@ namespace fs = std::filesystem;
 
 runtime::LobeTable Project::table(int order) const {
   if (order == 2) return runtime::lobe_free_table();
-  return runtime::read_lobe_table(lobes() + "/order_" + std::to_string(order) + ".json", order);
+  return runtime::read_lobe_table(runtime::table_path(lobes(), order), order);
 }
 
 namespace {

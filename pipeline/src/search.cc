@@ -14,20 +14,14 @@
 namespace zhf::pipeline {
 namespace {
 
-using runtime::json::make_integer;
-using runtime::json::make_string;
-
 std::string format(const char* pattern, double a = 0, double b = 0, double c = 0, double d = 0, double e = 0) {
   char text[256];
   std::snprintf(text, sizeof text, pattern, a, b, c, d, e);
   return text;
 }
 
-runtime::json::Value base_provenance(const SearchRequest& r) {
-  runtime::json::Value p(runtime::json::Value::Kind::kObject);
-  p.set("zhf_version", make_string(ZHF_VERSION));
-  p.set("command", make_string(r.command));
-  return p;
+nlohmann::json base_provenance(const SearchRequest& r) {
+  return {{"zhf_version", ZHF_VERSION}, {"command", r.command}};
 }
 
 void say(const SearchRequest& r, const std::string& line) {
@@ -50,11 +44,11 @@ SearchOutcome amplification(const SearchRequest& r) {
     out.summary = "interrupted before the first pass ended";
     return out;
   }
-  runtime::json::Value provenance = base_provenance(r);
-  provenance.set("seed", make_integer(static_cast<long long>(r.seed)));
-  provenance.set("objective", make_string("amplification"));
-  provenance.set("starts", make_integer(r.starts));
-  provenance.set("evaluations", make_integer(result.evaluations));
+  nlohmann::json provenance = base_provenance(r);
+  provenance["seed"] = r.seed;
+  provenance["objective"] = "amplification";
+  provenance["starts"] = r.starts;
+  provenance["evaluations"] = result.evaluations;
   out.table = optimizer::make_amplification_table(r.order, result, provenance);
   out.found = true;
   out.summary = "  float error amplification per band:";
@@ -72,9 +66,9 @@ SearchOutcome exhaustive(const SearchRequest& r, const optimizer::LobeEvaluator&
     out.summary = format("exhaustive: no invertible lobe set among the %.0f searched (%.1f s)", e.sets_evaluated, e.search.seconds);
     return out;
   }
-  runtime::json::Value provenance = base_provenance(r);
-  provenance.set("exhaustive", make_string(e.complete ? "complete" : "partial"));
-  provenance.set("evaluations", make_integer(e.search.evaluations));
+  nlohmann::json provenance = base_provenance(r);
+  provenance["exhaustive"] = e.complete ? "complete" : "partial";
+  provenance["evaluations"] = e.search.evaluations;
   out.table = optimizer::make_table(evaluator, e.search.best, provenance);
   out.found = true;
   out.feasible = e.search.fitness.feasible;
@@ -117,7 +111,7 @@ SearchOutcome sparsity(const SearchRequest& r, const optimizer::LobeEvaluator& e
   ils.stall_kicks = r.local_search_stall;
   ils.threads = r.threads;
   ils.stop = r.stop;
-  ils.time_limit_seconds = r.time_limit > 0 ? std::max(1e-3, r.time_limit - ga_result.seconds) : 0;
+  ils.time_limit_seconds = r.time_limit > 0 ? std::max(runtime::kMinSearchSeconds, r.time_limit - ga_result.seconds) : 0;
   if (r.progress)
     ils.on_improvement = [&r](int kick, const optimizer::Fitness& best, long evaluations) {
       say(r, format("local search kick %.0f: best zeros %.0f, worst cond %.2f, %.0f evaluations", kick, best.zeros,
@@ -130,12 +124,12 @@ SearchOutcome sparsity(const SearchRequest& r, const optimizer::LobeEvaluator& e
   SearchOutcome out;
   out.interrupted = ga_result.interrupted || ils_result.interrupted;
   const bool timed_out = ga_result.timed_out || ils_result.timed_out;
-  runtime::json::Value provenance = base_provenance(r);
-  provenance.set("seed", make_integer(static_cast<long long>(r.seed)));
-  provenance.set("generations", make_integer(ga_result.generations));
-  provenance.set("local_search_kicks", make_integer(ils_result.generations));
-  provenance.set("evaluations", make_integer(ga_result.evaluations + ils_result.evaluations));
-  provenance.set("stopped_by", make_string(out.interrupted ? "interrupt" : timed_out ? "time limit" : "stall"));
+  nlohmann::json provenance = base_provenance(r);
+  provenance["seed"] = r.seed;
+  provenance["generations"] = ga_result.generations;
+  provenance["local_search_kicks"] = ils_result.generations;
+  provenance["evaluations"] = ga_result.evaluations + ils_result.evaluations;
+  provenance["stopped_by"] = out.interrupted ? "interrupt" : timed_out ? "time limit" : "stall";
   out.table = optimizer::make_table(evaluator, final_result.best, provenance);
   out.found = true;
   out.feasible = final_result.fitness.feasible;

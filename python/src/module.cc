@@ -19,7 +19,7 @@
 #include "zhf/io/lobe_table_writer.h"
 #include "zhf/runtime/conventions.h"
 #include "zhf/runtime/finite.h"
-#include "zhf/runtime/lobe_table.h"
+#include "zhf/runtime/table_io.h"
 #include "zhf/runtime/orthogonal.h"
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/rotator.h"
@@ -233,7 +233,8 @@ py::dict analyze(const Array<double>& coeffs, double tolerance) {
   const py::buffer_info in = coeffs.request();
   if (in.ndim != 2 || in.shape[0] < 1) throw rt::InputError("coeffs: expected a non-empty (count, N^2) array");
   order_of(in);
-  if (!(tolerance >= 1e-15 && tolerance <= 1)) throw rt::InputError("tolerance: must be in [1e-15, 1]");
+  if (!(tolerance >= rt::kMinZonalTolerance && tolerance <= 1))
+    throw rt::InputError("tolerance: must be in [" + rt::format_number(rt::kMinZonalTolerance) + ", 1]");
   const std::size_t count = in.shape[0], n = in.shape[1];
   refuse_non_finite(coeffs.data(), 0, count * n, n);
   std::vector<Eigen::VectorXd> signals(count);
@@ -279,6 +280,7 @@ PYBIND11_MODULE(_zhf, m) {
   m.attr("max_table_order") = rt::kMaxTableOrder;
   m.attr("max_generated_order") = rt::kMaxGeneratedOrder;
   m.attr("max_threads") = rt::kMaxThreads;
+  m.attr("default_zonal_fit") = rt::tolerance::kDefaultZonalFit;
   // The named tolerances the Python tests hold results to (runtime/tolerances.h).
   py::dict tolerances;
   tolerances["double"] = rt::tolerance::kDouble;
@@ -304,12 +306,14 @@ PYBIND11_MODULE(_zhf, m) {
       .def_property_readonly("directions", &table_directions, "the lobe directions, (lobes, 3) unit vectors")
       .def_property_readonly("bands", &table_bands, "per band l >= 2: l, lobes (indices), inverse A_l, zeros, condition")
       .def_property_readonly("worst_condition", &rt::LobeTable::worst_condition)
-      .def_property_readonly("command", &rt::LobeTable::command, "the command that made it (provenance)")
+      .def_property_readonly("command", &rt::provenance_command, "the command that made it (provenance)")
       .def("__repr__", [](const rt::LobeTable& t) {
         return "<zhf.LobeTable order " + std::to_string(t.order) + ", " + std::to_string(t.lobes.size()) + " lobes, " +
                std::to_string(t.zeros) + " zeros of " + std::to_string(t.entries) + ">";
       });
 
+  m.def("table_path", [](const std::string& dir, int order) { return rt::table_path(dir, order); }, py::arg("dir"),
+        py::arg("order"), "dir/order_N.json: where the lobe table of an order lives in a tables folder");
   m.def("read_lobe_table", [](const std::string& path, int order) { return rt::read_lobe_table(path, order); },
         py::arg("path"), py::arg("order") = 0);
   m.def("write_lobe_table", [](const rt::LobeTable& table, const std::string& path) {

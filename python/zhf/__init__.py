@@ -146,7 +146,7 @@ def convert(coeffs, source: str, target: str = "zhf", *, threads: int = 0) -> np
     return rotate(coeffs, m, threads=threads)
 
 
-def analyze(coeffs, tolerance: float = 1e-3) -> dict:
+def analyze(coeffs, tolerance: float = _zhf.default_zonal_fit) -> dict:
     """What SH data needs, as `zhf analyze` reports it: coeffs (..., N*N), every vector counted.
 
     Returns order, band_energy (per band, summed), truncation_error (relative L2 error of keeping
@@ -231,7 +231,7 @@ def _threads(threads):
 def _shipped_table(order):
     if order <= _zhf.max_generated_order:
         return None
-    path = Path(__file__).parent / "lobes" / f"order_{order}.json"
+    path = Path(_zhf.table_path(str(Path(__file__).parent / "lobes"), order))
     if not path.is_file():
         shipped = sorted(int(p.stem.split("_")[1]) for p in path.parent.glob("order_*.json"))
         raise ValueError(

@@ -1,3 +1,5 @@
+#include "zhf/runtime/tolerances.h"
+#include "zhf/sh/random.h"
 #include "zhf/sh/rotation_matrix.h"
 
 #include <algorithm>
@@ -13,21 +15,21 @@ Matrix3 rotation_about_axis(const Eigen::Vector3d& axis, double angle) {
 }
 
 Matrix3 random_rotation(std::mt19937_64& rng) {
-  std::normal_distribution<double> normal(0.0, 1.0);
+  sh::Normal<> normal(0.0, 1.0);
   Eigen::Quaterniond q;
   do {
     q.coeffs() << normal(rng), normal(rng), normal(rng), normal(rng);
-  } while (q.norm() < 1e-6);
+  } while (!(q.norm() > 0));
   q.normalize();
   return Matrix3(q.toRotationMatrix());
 }
 
 Eigen::Vector3d random_direction(std::mt19937_64& rng) {
-  std::normal_distribution<double> normal(0.0, 1.0);
+  sh::Normal<> normal(0.0, 1.0);
   Eigen::Vector3d v;
   do {
     v << normal(rng), normal(rng), normal(rng);
-  } while (v.norm() < 1e-6);
+  } while (!(v.norm() > 0));
   return v.normalized();
 }
 
@@ -42,14 +44,14 @@ std::vector<std::pair<std::string, Matrix3>> extreme_rotations(const std::vector
       {"180 about (1,1,1)", rotation_about_axis(Eigen::Vector3d(1, 1, 1), pi)},
       {"zyz beta=0", rotation_from_zyz(0.4, 0.0, -1.3)},
       {"zyz beta=pi", rotation_from_zyz(0.4, pi, -1.3)},
-      {"zyz beta=1e-9", rotation_from_zyz(2.0, 1e-9, 0.5)},
-      {"1e-7 rad", rotation_about_axis(Eigen::Vector3d(0.3, -0.2, 0.9), 1e-7)},
-      {"1e-8 rad about z", rotation_about_axis(Eigen::Vector3d::UnitZ(), 1e-8)},
+      {"zyz beta=1e-9", rotation_from_zyz(2.0, 1e-9, 0.5)},  // an input, not a tolerance
+      {"1e-7 rad", rotation_about_axis(Eigen::Vector3d(0.3, -0.2, 0.9), 1e-7)},  // an input, not a tolerance
+      {"1e-8 rad about z", rotation_about_axis(Eigen::Vector3d::UnitZ(), 1e-8)},  // an input, not a tolerance
   };
   // The turn carrying unit a onto unit b (none needed when they already agree).
   auto carry = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) -> std::pair<bool, Matrix3> {
     const Eigen::Vector3d axis = a.cross(b);
-    if (axis.norm() < 1e-12) return {false, Matrix3::Identity()};
+    if (axis.norm() < runtime::tolerance::kParallelAxes) return {false, Matrix3::Identity()};
     return {true, rotation_about_axis(axis, std::acos(std::clamp(a.dot(b), -1.0, 1.0)))};
   };
   for (std::size_t d = 0; d < lobes.size() && d < 3; ++d) {

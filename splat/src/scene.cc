@@ -1,3 +1,4 @@
+#include "zhf/runtime/limits.h"
 #include "zhf/splat/scene.h"
 
 #include <algorithm>
@@ -30,8 +31,6 @@ namespace {
 namespace ply = io::ply;
 using io::InputError;
 
-// The longest ASCII line read: 1024 properties of up to 60 characters.
-constexpr std::size_t kMaxAsciiLine = 64 << 10;
 
 // Where the transformed properties are (indices into the header's properties; -1: absent).
 struct Layout {
@@ -295,14 +294,14 @@ void transform_ascii(std::istream& file, io::PendingFile& pending, const ply::He
   for (int i : layout.changed) changed[i] = true;
   std::vector<std::string> lines;
   std::vector<std::string> output;
-  std::vector<char> buffer(kMaxAsciiLine + 2);
+  std::vector<char> buffer(runtime::kMaxPlyAsciiLine + 2);
   for (std::uint64_t done = 0; done < header.vertices;) {
     const std::uint64_t count = std::min(kChunkSplats, header.vertices - done);
     lines.resize(count);
     for (std::uint64_t s = 0; s < count; ++s) {
       file.getline(buffer.data(), std::streamsize(buffer.size()));
       if (file.fail() && !file.eof())
-        throw InputError(source + ": splat " + std::to_string(done + s) + ": a line longer than " + std::to_string(kMaxAsciiLine) + " bytes");
+        throw InputError(source + ": splat " + std::to_string(done + s) + ": a line longer than " + std::to_string(runtime::kMaxPlyAsciiLine) + " bytes");
       if (file.gcount() == 0 && file.eof())
         throw InputError(source + ": truncated: the data ends before splat " + std::to_string(done + s) + " of " +
                          std::to_string(header.vertices));

@@ -10,7 +10,7 @@
 
 #include "test_support.h"
 #include "zhf/codegen/kernels.h"
-#include "zhf/runtime/lobe_table.h"
+#include "zhf/runtime/table_io.h"
 #include "zhf/runtime/tolerances.h"
 
 namespace zhf {
@@ -51,13 +51,13 @@ TEST(Bench, QuickRunMeasuresEveryMethodWithinItsTolerance) {
       if (method == "zxzxz") {
         tolerance = zxzxz_float(order);
       } else {
-        fs::path table = root / "generated" / "lobes" / ("order_" + std::to_string(order) + ".json");
+        fs::path table = runtime::table_path((root / "generated" / "lobes").string(), order);
         if (variant == "table cond<=50") table = root / "bench" / "tables" / "order_6_cond50.json";
         if (variant == "no sharing") table = root / "bench" / "tables" / ("order_" + std::to_string(order) + "_no_sharing.json");
         if (method == "zhf_lanes") {
           // The lanes tables; the all-float knob is held to its model, the default to the target.
           const runtime::LobeTable lanes =
-              runtime::read_lobe_table((root / "generated" / "lobes" / ("lanes_order_" + std::to_string(order) + ".json")).string());
+              runtime::read_lobe_table(runtime::table_path((root / "generated" / "lobes").string(), order, runtime::TableKind::kLanes));
           tolerance = variant == "all float" ? std::max(kFloatRotation, kLanesFloatMargin * codegen::lanes_float_error_model(lanes))
                                              : kFloatRotation;
         } else if (method == "tight_frame") {  // condition 1 at every order: the plain float target

@@ -13,7 +13,7 @@ namespace zhf::candidates {
 namespace {
 
 constexpr double kSourceResidual = runtime::tolerance::kRootResidual;
-using runtime::tolerance::kPaperLobeMatch;
+using test::kPaperLobeMatch;
 
 TEST(Candidates, Order3CountsDerivedByHand) {
   // theta: poles (2), roots of P_2^0 (cos^2 = 1/3: 0.9553, 2.1863), P_2^1 (pi/2, also the
@@ -68,11 +68,11 @@ TEST(Candidates, EveryPhiMakesItsSourceVanish) {
 
 TEST(Candidates, SortedUniqueAndUnit) {
   const CandidateSet set = enumerate_candidates(8);
-  for (size_t i = 1; i < set.thetas.size(); ++i) EXPECT_GT(set.thetas[i].value - set.thetas[i - 1].value, kThetaMergeTolerance);
+  for (size_t i = 1; i < set.thetas.size(); ++i) EXPECT_GT(set.thetas[i].value - set.thetas[i - 1].value, runtime::tolerance::kThetaMergeTolerance);
   for (size_t i = 1; i < set.phis.size(); ++i) EXPECT_GT(set.phis[i].value, set.phis[i - 1].value);
   for (size_t i = 0; i < set.directions.size(); ++i) {
     const double* v = set.directions[i].xyz;
-    EXPECT_NEAR(v[0] * v[0] + v[1] * v[1] + v[2] * v[2], 1.0, 1e-15) << "direction " << i;
+    EXPECT_NEAR(v[0] * v[0] + v[1] * v[1] + v[2] * v[2], 1.0, runtime::tolerance::kExactToRounding) << "direction " << i;
     for (size_t j = 0; j < i; ++j) {
       const double* w = set.directions[j].xyz;
       ASSERT_GT(std::abs(v[0] - w[0]) + std::abs(v[1] - w[1]) + std::abs(v[2] - w[2]), 1e-9)

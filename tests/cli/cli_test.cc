@@ -51,7 +51,7 @@ namespace {
 TEST(CliOptimize, RecordedCommandsReproduceTheTablesByteForByte) {
   namespace fs = std::filesystem;
   for (int order : {3, 4}) {
-    const fs::path table = source_path("generated/lobes/order_" + std::to_string(order) + ".json");
+    const fs::path table = test::checked_in_table(order);
     const nlohmann::json checked_in = read_json(table.string());
     std::string command = checked_in.at("provenance").at("command");
     ASSERT_EQ(command.rfind("zhf ", 0), 0u) << command;

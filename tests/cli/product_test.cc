@@ -9,6 +9,7 @@
 
 #include "test_support.h"
 #include "zhf/runtime/tolerances.h"
+#include "zhf/sh/random.h"
 
 namespace zhf {
 namespace {
@@ -23,7 +24,7 @@ TEST(ProductCli, ClosedFormsChannelsBroadcastAndOrders) {
   const std::string out = (dir / "out.json").string();
   // The function 1 (f_0 = sqrt(4 pi)) times g is g: one vector used with each of g's, per channel.
   std::mt19937_64 rng(5);
-  std::normal_distribution<double> normal;
+  sh::Normal<> normal;
   nlohmann::json vectors = nlohmann::json::array();
   for (int v = 0; v < 3; ++v) {
     nlohmann::json rgb = nlohmann::json::array();

@@ -11,6 +11,7 @@
 #include "test_support.h"
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/tolerances.h"
+#include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
 
@@ -23,7 +24,7 @@ constexpr double kDoubleTolerance = runtime::tolerance::kDouble;
 TEST(RotateCli, RotatesAFileLikeTheReference) {
   const fs::path dir = test::make_temp_dir();
   std::mt19937_64 rng(4);
-  std::normal_distribution<double> normal;
+  sh::Normal<> normal;
   for (int order : {3, 8, 10}) {
     std::vector<double> f(order * order);
     for (double& x : f) x = normal(rng);
@@ -63,7 +64,7 @@ TEST(RotateCli, NonRotationsAreRejectedWithTheDefectOrRepairedOnRequest) {
   // rotation (so the double result is a rotation's to double precision), and said so.
   const test::RunResult near = test::run_zhf(base + "--matrix '1 0 0 0 1 0 0 0 1.000001'");
   EXPECT_EQ(near.exit_code, 0) << near.err;
-  EXPECT_NE(near.err.find("--matrix: off orthonormal by 2e-06; used the nearest orthogonal matrix"), std::string::npos) << near.err;
+  EXPECT_NE(near.err.find("--matrix: off orthonormal by 2e-6; used the nearest orthogonal matrix"), std::string::npos) << near.err;
   const nlohmann::json got = test::read_json(out);
   const double input[4] = {1, 0.1, 0.2, 0.3};
   for (int i = 0; i < 4; ++i) EXPECT_NEAR(got[0][i].get<double>(), input[i], kDoubleTolerance) << "index " << i;
@@ -98,7 +99,7 @@ TEST(RotateCli, EveryRotationFormReflectionsAndConventions) {
   const fs::path dir = test::make_temp_dir();
   const std::string in = (dir / "in.json").string();
   std::mt19937_64 rng(5);
-  std::normal_distribution<double> normal;
+  sh::Normal<> normal;
   std::vector<double> f(16);
   for (double& x : f) x = normal(rng);
   test::write_text(in, nlohmann::json::array({f}).dump());

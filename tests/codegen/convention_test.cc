@@ -12,8 +12,9 @@
 
 #include "test_support.h"
 #include "zhf/codegen/kernels.h"
-#include "zhf/runtime/lobe_table.h"
+#include "zhf/runtime/table_io.h"
 #include "zhf/runtime/tolerances.h"
+#include "zhf/sh/random.h"
 #include "zhf/sh/rotation_matrix.h"
 
 namespace zhf {
@@ -62,7 +63,7 @@ TEST(Conventions, CondonShortleyKernelsAreZhfsOnTheArgumentsInZhfsTerms) {
   const codegen::Module cs_module = codegen::build_module(table, options);
   ASSERT_EQ(zhf_module.functions.size(), cs_module.functions.size());
   std::mt19937_64 rng(31);
-  std::normal_distribution<double> normal;
+  sh::Normal<> normal;
   int checked = 0;
   for (std::size_t k = 0; k < cs_module.functions.size(); ++k) {
     const codegen::Function& cs = cs_module.functions[k];

@@ -12,8 +12,10 @@
 #include "test_support.h"
 #include "zhf/frames/designs.h"
 #include "zhf/frames/frame.h"
-#include "zhf/runtime/lobe_table.h"
+#include "zhf/runtime/limits.h"
+#include "zhf/runtime/table_io.h"
 #include "zhf/runtime/tolerances.h"
+#include "zhf/sh/random.h"
 
 namespace zhf::frames {
 namespace {
@@ -43,14 +45,14 @@ long double rule(const std::vector<Point>& points, int a, int b, int c) {
 
 TEST(Designs, ShippedDesignsIntegrateEveryPolynomialOfTheirDegree) {
   std::mt19937_64 rng(9);
-  std::normal_distribution<double> normal;
+  sh::Normal<> normal;
   int checked = 0;
   for (const auto& entry : fs::directory_iterator(test::source_path("generated/designs"))) {
     const nlohmann::json j = test::read_json(entry.path().string());
     const int t = j.at("t");
     const std::vector<Point> points = read_points(entry.path().string());
     ASSERT_EQ(points.size(), j.at("count").get<size_t>()) << entry.path();
-    EXPECT_LE(design_residual(points, t), kDesignResidual) << "t " << t;
+    EXPECT_LE(design_residual(points, t), runtime::tolerance::kDesignResidual) << "t " << t;
     if (j.at("symmetric")) {
       for (size_t i = 0; i < points.size() / 2; ++i)
         for (int c = 0; c < 3; ++c) ASSERT_EQ(points[i][c], -points[i + points.size() / 2][c]) << "t " << t << ", point " << i;
@@ -91,13 +93,13 @@ TEST(Designs, SearchIsDeterministicWhateverTheThreads) {
   s.points = symmetric_count(9);  // 48, the smallest known count
   const Design antipodal = search_design(s);
   ASSERT_GE(antipodal.start, 0);
-  EXPECT_LE(design_residual(antipodal.points, 9), kDesignResidual);
+  EXPECT_LE(design_residual(antipodal.points, 9), runtime::tolerance::kDesignResidual);
 }
 
 TEST(Designs, RefusesWhatItCannotSearch) {
   DesignSearch s;
   s.points = 10;
-  for (int t : {0, kMaxDesignStrength + 1}) {
+  for (int t : {0, runtime::kMaxDesignStrength + 1}) {
     s.t = t;
     EXPECT_THROW(search_design(s), std::invalid_argument) << t;
   }
@@ -119,13 +121,13 @@ TEST(Frames, DesignsMakeTightFramesUpToHalfTheirStrength) {
     std::vector<Point> same = d;
     const FrameBounds one_band = frame_bounds(same, t / 2, t / 2);
     EXPECT_TRUE(one_band.tight()) << "t " << t;
-    EXPECT_NEAR(one_band.condition(), 1.0, 1e-12) << "t " << t;
+    EXPECT_NEAR(one_band.condition(), 1.0, runtime::tolerance::kTightFrame) << "t " << t;
   }
 }
 
 TEST(Frames, LobeTablesAreFramesWithTheirConditionNumbers) {
   for (int order : {4, 6, 8, 12}) {
-    const runtime::LobeTable table = runtime::read_lobe_table(test::source_path("generated/lobes/order_" + std::to_string(order) + ".json"));
+    const runtime::LobeTable table = runtime::read_lobe_table(test::checked_in_table(order));
     for (const runtime::TableBand& band : table.bands) {
       std::vector<Point> lobes;
       for (int d : band.lobes) lobes.push_back({table.lobes[d].xyz[0], table.lobes[d].xyz[1], table.lobes[d].xyz[2]});

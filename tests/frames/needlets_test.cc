@@ -7,9 +7,13 @@
 
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 #include "zhf/frames/needlets.h"
+#include "zhf/runtime/limits.h"
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/runtime/tolerances.h"
+#include "zhf/sh/random.h"
 #include "zhf/sh/rotation_matrix.h"
 
 namespace zhf::frames {
@@ -35,7 +39,7 @@ long double tanh_sinh(long double a, long double b) {
 }
 
 TEST(NeedletWindow, IntegralsMatchAnIndependentQuadrature) {
-  EXPECT_NEAR(bump_integral(), 0.4439938162, 1e-10);  // the value the needlet literature quotes
+  EXPECT_NEAR(bump_integral(), 0.4439938162, test::kQuotedTenDigits);  // the value the needlet literature quotes
   EXPECT_NEAR(bump_integral(), double(tanh_sinh(-1, 1)), kNeedletWindow);
   for (double u : {-0.99, -0.7, -0.3, 0.0, 0.2, 0.6, 0.95})
     EXPECT_NEAR(needlet_psi(u), double(tanh_sinh(-1, u) / tanh_sinh(-1, 1)), kNeedletWindow) << "u " << u;
@@ -72,12 +76,12 @@ TEST(NeedletWindow, PartitionOfUnityForEveryBand) {
   }
   EXPECT_THROW(needlet_windows(1.0, 10), std::invalid_argument);
   EXPECT_THROW(needlet_windows(2.0, -1), std::invalid_argument);
-  EXPECT_THROW(needlet_windows(2.0, kMaxNeedletBand + 1), std::invalid_argument);
+  EXPECT_THROW(needlet_windows(2.0, runtime::kMaxNeedletBand + 1), std::invalid_argument);
 }
 
 // Random SH coefficients of bands 0..L, about unit norm.
 std::vector<double> random_sh(int band_limit, std::mt19937_64& rng) {
-  std::normal_distribution<double> normal(0, 1.0 / (band_limit + 1));
+  sh::Normal<> normal(0, 1.0 / (band_limit + 1));
   std::vector<double> f(runtime::coefficient_count(band_limit + 1));
   for (double& c : f) c = normal(rng);
   return f;
@@ -179,7 +183,7 @@ TEST(NeedletFrame, SampledAnalysisAndPointEvaluationAgreeWithTheSpectralPath) {
   }
   EXPECT_THROW(frame.analyze_samples(gauss_product_cubature(2 * c.band_limit - 1), std::vector<double>(1)), std::invalid_argument);
   EXPECT_THROW(frame.analyze(std::vector<double>(3)), std::invalid_argument);
-  EXPECT_THROW(NeedletFrame(2.0, kMaxNeedletFrameBand + 1), std::invalid_argument);
+  EXPECT_THROW(NeedletFrame(2.0, runtime::kMaxNeedletFrameBand + 1), std::invalid_argument);
 }
 
 // Rotation: the exact path against analysing samples of f(R^T x); the tabulated path converging
@@ -220,7 +224,7 @@ TEST(NeedletTables, NodesAreExactAndQuadraticsReproduced) {
     const double t = -1 + 2.0 * i / 8;
     EXPECT_DOUBLE_EQ(square(t, Interpolation::kLinear), 3 * t * t - t + 0.5) << "node " << i;
   }
-  for (double t = -1; t <= 1; t += 0.013) EXPECT_NEAR(square(t, Interpolation::kQuadratic), 3 * t * t - t + 0.5, 1e-14) << "t " << t;
+  for (double t = -1; t <= 1; t += 0.013) EXPECT_NEAR(square(t, Interpolation::kQuadratic), 3 * t * t - t + 0.5, runtime::tolerance::kQuadraticTableExact) << "t " << t;
   EXPECT_THROW(UniformTable([](double) { return 0.0; }, 2), std::invalid_argument);
 }
 
@@ -244,11 +248,11 @@ TEST(NeedletLocalisation, UncutKernelsAndCapEnergies) {
       all += e;
       if (theta > cap) outside += e;
     }
-    EXPECT_NEAR(localisation(delta, lmax, cap).outside_energy, outside / all, 1e-4) << "lmax " << lmax;
+    EXPECT_NEAR(localisation(delta, lmax, cap).outside_energy, outside / all, runtime::tolerance::kCapEnergyMidpoint) << "lmax " << lmax;
     EXPECT_NEAR(localisation(delta, lmax, runtime::kPi).outside_energy, 0.0, kNeedletFrame) << "lmax " << lmax;
     EXPECT_NEAR(delta(1), (lmax + 1) * (lmax + 1) / (4 * runtime::kPi), kNeedletFrame) << "lmax " << lmax;
   }
-  EXPECT_THROW(localisation([](double) { return 1.0; }, kMaxProfileBand + 1, 0.1), std::invalid_argument);
+  EXPECT_THROW(localisation([](double) { return 1.0; }, runtime::kMaxProfileBand + 1, 0.1), std::invalid_argument);
   EXPECT_THROW(needlet_top_band(64, 16), std::invalid_argument);  // 64^17 passes any int
   EXPECT_EQ(needlet_top_band(2, 3), 15);
 }

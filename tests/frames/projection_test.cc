@@ -40,7 +40,7 @@ TEST(Projection, CapCoefficientsMatchAOneDimensionalIntegral) {
     constexpr int kSteps = 100000;
     double sum = 0;
     for (int i = 0; i < kSteps; ++i) sum += runtime::legendre_q<double>(l, 0, edge + (1 - edge) * (i + 0.5) / kSteps);
-    EXPECT_NEAR(exact[runtime::index(l, 0)], 2 * runtime::kPi * sum * (1 - edge) / kSteps, 1e-9) << "band " << l;
+    EXPECT_NEAR(exact[runtime::index(l, 0)], 2 * runtime::kPi * sum * (1 - edge) / kSteps, runtime::tolerance::kCapCoefficientMidpoint) << "band " << l;
     for (int m = 1; m <= l; ++m) EXPECT_EQ(exact[runtime::index(l, m)], 0.0) << "band " << l << ", m " << m;
   }
 }
@@ -51,7 +51,7 @@ TEST(Projection, EqualAngleGridsHaveExactSolidAnglesAndConverge) {
     const Cubature grid = equirectangular_nodes(2 * height, height);
     double total = 0;
     for (double w : grid.weights) total += w;
-    EXPECT_NEAR(total, 4 * runtime::kPi, 1e-12) << "height " << height;
+    EXPECT_NEAR(total, 4 * runtime::kPi, runtime::tolerance::kDouble) << "height " << height;
     const double error = projection_error(grid, 8).band_limited;
     EXPECT_LT(error, previous / 4) << "height " << height;  // midpoint in theta: ~h^2
     previous = error;
@@ -75,10 +75,10 @@ TEST(Projection, ARadianceImageBecomesRgbCoefficients) {
   const double scale[3] = {1.0, 0.5, 2.0};
   for (int c = 0; c < 3; ++c) {
     // A constant: only y_0^0, with weight 4 pi / sqrt(4 pi); odd bands and m != 0 vanish by symmetry.
-    EXPECT_NEAR(j[0][c][0].get<double>(), scale[c] * std::sqrt(4 * runtime::kPi), 1e-6) << "channel " << c;
+    EXPECT_NEAR(j[0][c][0].get<double>(), scale[c] * std::sqrt(4 * runtime::kPi), runtime::tolerance::kFloatProjection) << "channel " << c;
     for (int i = 1; i < 9; ++i) {
       if (i == runtime::index(2, 0)) continue;  // the grid's midpoint rule in theta leaves y_2^0 a little
-      EXPECT_NEAR(j[0][c][i].get<double>(), 0.0, 1e-6) << "channel " << c << ", index " << i;
+      EXPECT_NEAR(j[0][c][i].get<double>(), 0.0, runtime::tolerance::kFloatProjection) << "channel " << c << ", index " << i;
     }
   }
   test::write_text(path, io::encode_hdr(image) + "x");

@@ -8,6 +8,7 @@
 
 #include "zhf/frames/tight_frame_rotation.h"
 #include "zhf/runtime/tolerances.h"
+#include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
 
@@ -20,7 +21,7 @@ using runtime::tolerance::kTightFrameRotation;
 template <class T>
 double worst_error(const TightFrameRotator<T>& rotator, const sh::Matrix3& r, std::mt19937_64& rng) {
   const int order = rotator.order(), n = order * order;
-  std::normal_distribution<double> normal(0, 1.0 / order);
+  sh::Normal<> normal(0, 1.0 / order);
   Eigen::VectorXd f(n);
   for (int i = 0; i < n; ++i) f[i] = normal(rng);
   f.normalize();

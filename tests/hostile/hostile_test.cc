@@ -24,7 +24,8 @@
 
 #include "test_support.h"
 #include "zhf/io/process.h"
-#include "zhf/runtime/lobe_table.h"
+#include "zhf/runtime/limits.h"
+#include "zhf/runtime/table_io.h"
 #include "zhf/runtime/product.h"
 #include "zhf/runtime/rotator.h"
 #include "zhf/runtime/zonal.h"
@@ -432,8 +433,9 @@ TEST(Hostile, ConcurrentGeneratesIntoOneNewDirectoryLeaveOneWinner) {
   }
 }
 
-// Starts zhf in the sandbox, sends it `sig` after `delay_ms`, and returns its exit code.
-int interrupted_exit(const Sandbox& box, std::vector<std::string> argv, int sig, int delay_ms) {
+// Starts zhf in the sandbox, sends it `sig` after `delay_ms`, and returns its exit code; its
+// stderr goes to stderr_path when given.
+int interrupted_exit(const Sandbox& box, std::vector<std::string> argv, int sig, int delay_ms, const std::string& stderr_path = "") {
   argv.insert(argv.begin(), zhf_binary());
   std::vector<char*> args;
   for (std::string& a : argv) args.push_back(a.data());
@@ -448,7 +450,7 @@ int interrupted_exit(const Sandbox& box, std::vector<std::string> argv, int sig,
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 2, stderr_path.empty() ? "/dev/null" : stderr_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
   pid_t pid = 0;
   posix_spawn(&pid, args[0], &actions, nullptr, args.data(), env.data());
   posix_spawn_file_actions_destroy(&actions);
@@ -491,6 +493,25 @@ TEST(Hostile, InterruptsStopChildrenAndLeaveThePreviousOutputs) {
       exit == 130 && snapshot(box.dir()) == before && leftovers(box).empty();
 }
 
+// One start of a large design search runs for minutes without polling: the watchdog ends it a
+// grace period after the signal, its temporary output gone and the previous file as it was.
+TEST(Hostile, WorkThatCannotPollIsEndedByTheWatchdog) {
+  Sandbox box;
+  box.write("design.json", "previous design\n");
+  const Snapshot before = snapshot(box.dir());
+  const std::string errors = test::make_temp_dir() + "/stderr.txt";
+  const int exit = interrupted_exit(box, {"designs", "--t", "40", "--starts", "1", "--quiet", "--out", box.path("design.json")},
+                                    SIGTERM, 1500, errors);
+  EXPECT_EQ(exit, 143);
+  // The watchdog's own line: the search did not poll, so the watchdog ended it (not the search's end).
+  EXPECT_NE(read_text(errors).find("did not stop, ended it"), std::string::npos) << read_text(errors);
+  fs::remove_all(fs::path(errors).parent_path());
+  EXPECT_TRUE(snapshot(box.dir()) == before) << "the sandbox changed";
+  EXPECT_EQ(leftovers(box), "");
+  ++tally()["WorkThatCannotPollIsEndedByTheWatchdog"].first;
+  tally()["WorkThatCannotPollIsEndedByTheWatchdog"].second += exit == 143 && snapshot(box.dir()) == before && leftovers(box).empty();
+}
+
 TEST(Hostile, BenchLeavesUserFilesAloneAndReportsGnuplotFailing) {
   Sandbox box;
   box.write("p.csv", "a user's data\n");
@@ -499,6 +520,8 @@ TEST(Hostile, BenchLeavesUserFilesAloneAndReportsGnuplotFailing) {
   box.write("bin/gnuplot", "#!/bin/sh\necho 'gnuplot: broken' >&2\nexit 1\n");
   fs::permissions(box.path("bin/gnuplot"), fs::perms::owner_all);
   const char* path = std::getenv("PATH");
+  refused("--plot without gnuplot", box, {"bench", "--quick", "--quiet", "--orders", "2", "--json", box.path("b.json"), "--plot", box.path("q.svg")}, 4,
+          "gnuplot is not installed", {"PATH=" + box.path("no-programs")});
   refused("gnuplot failing", box, {"bench", "--quick", "--quiet", "--orders", "2", "--json", box.path("b.json"), "--plot", box.path("q.svg")}, 4,
           "gnuplot failed", {"PATH=" + box.path("bin") + ":" + (path ? path : "/usr/bin:/bin")});
 }
@@ -614,8 +637,8 @@ TEST(Hostile, EveryReaderRefusesEveryMalformedDocument) {
     box.write("tables9/order_9.json", text);  // rotate reads tables only above the compiled orders
     box.write("tree/manifest.json", text);
     for (int order = 2; order <= 12; ++order)
-      box.write("tables/order_" + std::to_string(order) + ".json",
-                order == 3 ? text : read_text(source_path("generated/lobes/order_" + std::to_string(order) + ".json")));
+      box.write(runtime::table_path("tables", order),
+                order == 3 ? text : read_text(test::checked_in_table(order)));
     const std::vector<std::pair<std::string, std::vector<std::string>>> readers = {
         {"emit --table", {"emit", "--table", box.path("bad.json"), "--lang", "cpp", "--out", box.path("o")}},
         {"generate --tables", {"generate", "--tables", box.path("tables"), "--out", box.path("o")}},

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 #include "zhf/io/errors.h"
 #include "zhf/io/rotation_text.h"
 #include "zhf/runtime/tolerances.h"
@@ -34,11 +36,11 @@ TEST(RotationText, EveryFormGivesTheReferenceMatrix) {
     EXPECT_NEAR(b[i], turn(i / 3, i % 3), runtime::tolerance::kExactToRounding) << "axis-angle entry " << i;
     EXPECT_NEAR(e[i], zyz(i / 3, i % 3), runtime::tolerance::kExactToRounding) << "euler entry " << i;
     // to_string keeps 6 decimals.
-    EXPECT_NEAR(q1.matrix[i], turn(i / 3, i % 3), 1e-6) << "quaternion wxyz entry " << i;
+    EXPECT_NEAR(q1.matrix[i], turn(i / 3, i % 3), test::kSixDecimals) << "quaternion wxyz entry " << i;
     EXPECT_EQ(q1.matrix[i], q2.matrix[i]) << "quaternion xyzw entry " << i;
     EXPECT_EQ(column[i], c[3 * (i % 3) + i / 3]) << "column-major entry " << i;
   }
-  EXPECT_NEAR(q1.quaternion_length, len, 1e-6);
+  EXPECT_NEAR(q1.quaternion_length, len, test::kSixDecimals);
   EXPECT_EQ(c[1], -1.0);
   EXPECT_EQ(c[3], 1.0);
 }

@@ -11,8 +11,9 @@
 #include "zhf/optimizer/exhaustive.h"
 #include "zhf/optimizer/genetic.h"
 #include "zhf/optimizer/local_search.h"
-#include "zhf/runtime/lobe_table.h"
+#include "zhf/runtime/table_io.h"
 #include "zhf/runtime/tolerances.h"
+#include "zhf/sh/random.h"
 #include "zhf/sh/slow_reference.h"
 
 namespace zhf::optimizer {
@@ -20,8 +21,8 @@ namespace {
 
 using runtime::lobe_count;
 using runtime::lobe_index;
-using runtime::tolerance::kPaperConditionRelative;
-using runtime::tolerance::kPaperLobeMatch;
+using test::kPaperConditionRelative;
+using test::kPaperLobeMatch;
 using runtime::tolerance::kZeroInLongDouble;
 
 const candidates::CandidateSet& candidate_set(int order) {
@@ -100,7 +101,7 @@ TEST(Objective, OnDemandEvaluationMatchesTheTable) {
   const LobeEvaluator tabulated(set, true, kDefaultMaxCondition);
   const LobeEvaluator on_demand(set, true, kDefaultMaxCondition, /*max_tabulated_values=*/0);
   std::mt19937_64 rng(6);
-  std::uniform_int_distribution<int> pick(0, static_cast<int>(set.directions.size()) - 1);
+  auto pick = [&](std::mt19937_64& g) { return sh::uniform_index(g, static_cast<int>(set.directions.size())); };
   for (int trial = 0; trial < 50; ++trial) {
     Genome genome(tabulated.genes());
     for (int& g : genome) g = pick(rng);
@@ -214,12 +215,11 @@ TEST(Tables, MadeFromASearchValidateAndRoundTrip) {
   options.population = 60;
   options.stall_generations = 10;
   const SearchResult r = genetic_search(evaluator, options);
-  runtime::json::Value provenance(runtime::json::Value::Kind::kObject);
-  provenance.set("command", runtime::json::make_string("test"));
+  const nlohmann::json provenance = {{"command", "test"}};
   const runtime::LobeTable table = make_table(evaluator, r.best, provenance);
   EXPECT_NO_THROW(runtime::validate_lobe_table(table, "made"));
   EXPECT_EQ(table.zeros, r.fitness.zeros);
-  EXPECT_EQ(table.command(), "test");
+  EXPECT_EQ(runtime::provenance_command(table), "test");
 }
 
 // The amplification search: a continuous set that beats the sparse table's worst a_l, the same
@@ -247,7 +247,7 @@ TEST(Amplification, FindsALowerAmplificationThanTheSparseTableReproducibly) {
   EXPECT_LT(worst, sparse_worst);
   EXPECT_GE(worst, 1.0);  // a_l = 1 only for an orthogonal Y_l
 
-  const runtime::LobeTable table = make_amplification_table(kOrder, a, runtime::json::Value(runtime::json::Value::Kind::kObject));
+  const runtime::LobeTable table = make_amplification_table(kOrder, a, nlohmann::json::object());
   EXPECT_NO_THROW(runtime::validate_lobe_table(table, "made"));
   ASSERT_EQ(table.bands.size(), 2u);
   for (size_t b = 0; b < table.bands.size(); ++b)

@@ -9,10 +9,12 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "zhf/runtime/limits.h"
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/rotator.h"
 #include "zhf/runtime/soa_batch.h"
 #include "zhf/runtime/tolerances.h"
+#include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
 #include "zhf_kernels.h"
@@ -25,7 +27,7 @@ using namespace runtime::tolerance;
 // count unit vectors of order N, flat.
 template <class T>
 std::vector<T> unit_vectors(std::size_t count, int order, std::mt19937_64& rng) {
-  std::normal_distribution<double> normal;
+  sh::Normal<> normal;
   const std::size_t n = std::size_t(order) * order;
   std::vector<T> out(count * n);
   for (std::size_t v = 0; v < count; ++v) {
@@ -201,7 +203,7 @@ TEST(Batch, PerVectorRotationsDoNotDependOnTheThreadCount) {
 
 TEST(Batch, QuaternionsGiveEigensRotation) {
   std::mt19937_64 rng(6);
-  std::normal_distribution<double> normal;
+  sh::Normal<> normal;
   for (int k = 0; k < 200; ++k) {
     const double scale = std::pow(10.0, 100 * (k % 7 - 3));  // lengths from 1e-300 to 1e300
     const Eigen::Quaterniond q(normal(rng), normal(rng), normal(rng), normal(rng));

@@ -11,10 +11,12 @@
 #include "sh_bases.h"
 
 #include "zhf/runtime/conventions.h"
+#include "zhf/runtime/limits.h"
 #include "zhf/runtime/orthogonal.h"
 #include "zhf/runtime/rotator.h"
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/runtime/tolerances.h"
+#include "zhf/sh/random.h"
 #include "zhf/sh/rotation_matrix.h"
 #include "zhf_kernels.h"
 
@@ -25,7 +27,7 @@ using namespace runtime::tolerance;
 using runtime::Matrix3;
 
 std::vector<double> random_unit(int order, std::mt19937_64& rng) {
-  std::normal_distribution<double> normal;
+  sh::Normal<> normal;
   std::vector<double> f(order * order);
   double norm = 0;
   for (double& x : f) {

@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include "zhf/runtime/gaunt.h"
+#include "zhf/runtime/limits.h"
 #include "zhf/runtime/tolerances.h"
+#include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/slow_reference.h"
 
@@ -55,7 +57,7 @@ TEST(Gaunt, EveryTripleUpToOrder8MatchesQuadrature) {
 }
 
 TEST(Gaunt, Order16TableMatchesQuadratureAndIsComplete) {
-  constexpr int kOrder = kMaxGauntOrder;
+  constexpr int kOrder = runtime::kMaxGauntOrder;
   const std::vector<GauntEntry> table = gaunt_table(kOrder);
   const Quadrature q(kOrder);
   for (const GauntEntry& e : table)
@@ -63,7 +65,7 @@ TEST(Gaunt, Order16TableMatchesQuadratureAndIsComplete) {
         << "order 16, indices " << e.a << " " << e.b << " " << e.c;
   // Random triples the table leaves out are zero by quadrature too.
   std::mt19937_64 rng(16);
-  std::uniform_int_distribution<int> pick(0, q.n - 1);
+  auto pick = [&](std::mt19937_64& g) { return sh::uniform_index(g, q.n); };
   for (int k = 0; k < 20000; ++k) {
     const int a = pick(rng), b = pick(rng), c = pick(rng);
     if (gaunt_allowed(band_of(a), a - band_of(a) * (band_of(a) + 1), band_of(b), b - band_of(b) * (band_of(b) + 1), band_of(c),
@@ -77,11 +79,11 @@ TEST(Gaunt, SymmetricAndBandZeroIsTheIdentity) {
   constexpr int kN = 36;
   for (int a = 0; a < kN; ++a)
     for (int b = 0; b < kN; ++b) {
-      EXPECT_NEAR(real_gaunt(0, a, b), a == b ? kInvSqrt4Pi : 0.0, 1e-16) << "indices 0 " << a << " " << b;
+      EXPECT_NEAR(real_gaunt(0, a, b), a == b ? kInvSqrt4Pi : 0.0, runtime::tolerance::kGauntSymmetry) << "indices 0 " << a << " " << b;
       for (int c = 0; c < kN; ++c) {
         const double g = real_gaunt(a, b, c);
         ASSERT_EQ(g, real_gaunt(b, a, c)) << a << " " << b << " " << c;
-        ASSERT_NEAR(g, real_gaunt(c, b, a), 1e-16) << a << " " << b << " " << c;
+        ASSERT_NEAR(g, real_gaunt(c, b, a), runtime::tolerance::kGauntSymmetry) << a << " " << b << " " << c;
       }
     }
 }
@@ -102,7 +104,7 @@ TEST(Gaunt, SelectionRulesHold) {
 
 TEST(Gaunt, RefusesOrdersOutsideItsRange) {
   EXPECT_THROW(gaunt_table(0), std::invalid_argument);
-  EXPECT_THROW(gaunt_table(kMaxGauntOrder + 1), std::invalid_argument);
+  EXPECT_THROW(gaunt_table(runtime::kMaxGauntOrder + 1), std::invalid_argument);
 }
 
 }  // namespace

@@ -12,7 +12,9 @@
 #include "zhf/runtime/lanes.h"
 #include "zhf/runtime/rotator.h"
 #include "zhf/runtime/sh_eval.h"
+#include "zhf/runtime/table_io.h"
 #include "zhf/runtime/tolerances.h"
+#include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
 #include "zhf_kernels.h"
@@ -39,7 +41,7 @@ struct Case {
 
 std::vector<Case> cases(int order, int count, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
-  std::normal_distribution<double> normal;
+  sh::Normal<> normal;
   std::vector<Case> out;
   for (int k = 0; k < count; ++k) {
     Case c;
@@ -158,7 +160,7 @@ void check_variants() {
 
     if (N >= 3) {
       const runtime::Rotator<T> from_json =
-          runtime::Rotator<T>::from_table(runtime::read_lobe_table(test::source_path("generated/lobes/order_" + std::to_string(N) + ".json")));
+          runtime::Rotator<T>::from_table(runtime::read_lobe_table(test::checked_in_table(N)));
       from_json.rotate(r.data(), in.data(), other.data());
       for (int i = 0; i < N * N; ++i) EXPECT_NEAR(other[i], scalar[i], kDoubleTolerance) << "runtime JSON order " << N << " index " << i;
     }

@@ -9,6 +9,7 @@
 
 #include "zhf/runtime/lanes.h"
 #include "zhf/runtime/tolerances.h"
+#include "zhf/sh/random.h"
 #include "zhf_kernels.h"
 
 namespace zhf {
@@ -26,7 +27,7 @@ typename runtime::KernelSet<T>::Kernel lanes_kernel(int order) {
 
 TEST(LanesPlainLoops, FloatWithinTheTargetOfDouble) {
   std::mt19937_64 rng(5);
-  std::normal_distribution<double> normal;
+  sh::Normal<> normal;
   for (int order = 3; order <= 8; ++order) {
     const auto plain = lanes_kernel<float>(order);
     const auto wide = lanes_kernel<double>(order);

@@ -8,7 +8,7 @@
 
 #include "test_support.h"
 #include "zhf/io/lobe_table_writer.h"
-#include "zhf/runtime/lobe_table.h"
+#include "zhf/runtime/table_io.h"
 #include "zhf/runtime/rotator.h"
 
 namespace zhf::runtime {

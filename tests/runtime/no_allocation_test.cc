@@ -13,9 +13,11 @@
 
 #include "test_support.h"
 #include "zhf/runtime/lanes.h"
-#include "zhf/runtime/lobe_table.h"
+#include "zhf/runtime/limits.h"
+#include "zhf/runtime/table_io.h"
 #include "zhf/runtime/rotator.h"
 #include "zhf/runtime/soa_batch.h"
+#include "zhf/sh/random.h"
 #include "zhf_kernels.h"
 
 namespace {
@@ -53,7 +55,7 @@ struct Data {
   std::vector<T> r, in, out;
   Data(int order, std::size_t count) : r(9 * count), in(3 * order * order * count), out(in.size()) {
     std::mt19937_64 rng(order);
-    std::normal_distribution<double> normal;
+    sh::Normal<> normal;
     for (std::size_t v = 0; v < count; ++v) {  // rotations about z by random angles
       const double a = normal(rng), c = std::cos(a), s = std::sin(a);
       const T m[9] = {T(c), T(-s), 0, T(s), T(c), 0, 0, 0, 1};
@@ -111,7 +113,7 @@ TEST(NoAllocation, NoRotateCallAllocatesAfterConstruction) {
   }
   for (int order : {3, 8, 12, 16, 32}) {
     const runtime::LobeTable table =
-        runtime::read_lobe_table(test::source_path("generated/lobes/order_" + std::to_string(order) + ".json"));
+        runtime::read_lobe_table(test::checked_in_table(order));
     check_rotator(runtime::Rotator<float>::from_table(table), "table float");
     check_rotator(runtime::Rotator<double>::from_table(table), "table double");
   }

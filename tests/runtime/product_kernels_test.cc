@@ -10,6 +10,7 @@
 #include "zhf/runtime/product.h"
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/runtime/tolerances.h"
+#include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
 #include "zhf_kernels.h"
@@ -24,7 +25,7 @@ using runtime::tolerance::kFloatProduct;
 // phase at w, the largest values a unit vector reaches, the Gauss-Fourier kernels' worst case).
 std::vector<std::vector<double>> unit_inputs(int order, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
-  std::normal_distribution<double> normal;
+  sh::Normal<> normal;
   std::vector<std::vector<double>> out;
   const int n = order * order;
   for (int k = 0; k < 200; ++k) {

@@ -6,8 +6,11 @@
 #include <gtest/gtest.h>
 
 #include "test_support.h"
+#include "zhf/runtime/limits.h"
 #include "zhf/runtime/product.h"
+#include "zhf/runtime/table_io.h"
 #include "zhf/runtime/tolerances.h"
+#include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
 
@@ -82,10 +85,10 @@ class ProductMixes : public ::testing::TestWithParam<int> {
  protected:
   void SetUp() override {
     order_ = GetParam();
-    table_ = order_ == 2 ? lobe_free_table() : read_lobe_table(test::source_path("generated/lobes/order_" + std::to_string(order_) + ".json"));
+    table_ = order_ == 2 ? lobe_free_table() : read_lobe_table(test::checked_in_table(order_));
   }
   Term random_term(std::mt19937_64& rng, bool zhf, bool rotated) const {
-    std::normal_distribution<double> normal;
+    sh::Normal<> normal;
     Term t;
     for (int i = 0; i < order_ * order_; ++i) t.values.push_back(normal(rng) / order_);
     if (zhf) t.table = &table_;
@@ -132,7 +135,7 @@ TEST_P(ProductMixes, DoubleAndTripleProductsMatchIntegration) {
       pf[k] = {single[k].data(), p[k].basis};
     }
     EXPECT_NEAR(triple_product(product, pf[0], pf[1], pf[2]), triple, tolerance::kFloatProduct) << where << ", float";
-    if (order_ <= kMaxTripleCouplingOrder) {
+    if (order_ <= runtime::kMaxTripleCouplingOrder) {
       const ZhfBasis* slots[3] = {p[0].basis, p[1].basis, p[2].basis};
       const std::vector<double> t = triple_coupling(order_, slots);
       double contracted = 0;
@@ -194,7 +197,7 @@ TEST(ProductTable, NonzeroCountsMatchSnyder2006) {
 
 TEST(ProductTable, RefusesCouplingTensorsBeyondItsOrderAndBasesOfAnotherOrder) {
   const ZhfBasis* slots[3] = {nullptr, nullptr, nullptr};
-  EXPECT_THROW(triple_coupling(kMaxTripleCouplingOrder + 1, slots), std::invalid_argument);
+  EXPECT_THROW(triple_coupling(runtime::kMaxTripleCouplingOrder + 1, slots), std::invalid_argument);
   const ZhfBasis basis(read_lobe_table(test::source_path("generated/lobes/order_4.json")));
   const ZhfBasis* wrong[3] = {&basis, nullptr, nullptr};
   EXPECT_THROW(triple_coupling(5, wrong), std::invalid_argument);

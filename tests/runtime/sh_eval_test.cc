@@ -6,6 +6,7 @@
 
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/runtime/tolerances.h"
+#include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/slow_reference.h"
 
@@ -23,7 +24,7 @@ struct Angles {
 std::vector<Angles> test_angles() {
   std::vector<Angles> angles = {{0, 0}, {M_PI, 0}, {M_PI / 2, 0}, {M_PI / 2, M_PI / 2}, {1e-9, 0.3}, {M_PI - 1e-9, -2.0}};
   std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> u(0, 1);
+  auto u = [](std::mt19937_64& g) { return sh::uniform01(g); };
   for (int i = 0; i < 40; ++i) angles.push_back({std::acos(2 * u(rng) - 1), 2 * M_PI * u(rng) - M_PI});
   return angles;
 }

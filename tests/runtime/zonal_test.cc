@@ -8,6 +8,7 @@
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/runtime/tolerances.h"
 #include "zhf/runtime/zonal.h"
+#include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
 
@@ -16,7 +17,7 @@ namespace {
 
 TEST(Zonal, RuntimeFastPathMatchesTheReferenceRotation) {
   std::mt19937_64 rng(8);
-  std::normal_distribution<double> normal;
+  sh::Normal<> normal;
   for (int order : {1, 2, 5, 8, 16}) {
     const runtime::ZonalRotator<double> zonal(order);
     const int n = order * order;

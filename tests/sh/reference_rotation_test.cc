@@ -6,6 +6,7 @@
 
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/runtime/tolerances.h"
+#include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
 
@@ -19,7 +20,7 @@ using runtime::tolerance::kPointwise;
 using runtime::tolerance::kReferenceAgreement;
 
 Eigen::VectorXd random_coefficients(int order, std::mt19937_64& rng) {
-  std::normal_distribution<double> normal(0, 1);
+  sh::Normal<> normal(0, 1);
   Eigen::VectorXd f(coefficient_count(order));
   for (int i = 0; i < f.size(); ++i) f[i] = normal(rng);
   return f.normalized();

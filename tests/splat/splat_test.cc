@@ -19,6 +19,7 @@
 #include "zhf/io/ply.h"
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/tolerances.h"
+#include "zhf/sh/random.h"
 #include "zhf/sh/rotation_matrix.h"
 
 namespace zhf {
@@ -37,7 +38,7 @@ struct Scene {
 };
 
 Scene random_scene(int degree, int splats, std::mt19937_64& rng) {
-  std::normal_distribution<double> normal;
+  sh::Normal<> normal;
   Scene s;
   s.degree = degree;
   s.names = {"x", "y", "z", "nx", "ny", "nz", "f_dc_0", "f_dc_1", "f_dc_2"};

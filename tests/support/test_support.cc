@@ -8,6 +8,7 @@
 
 #include "zhf/io/private_dir.h"
 #include "zhf/io/process.h"
+#include "zhf/runtime/table_io.h"
 
 namespace zhf::test {
 
@@ -69,6 +70,8 @@ void remove_dir(const std::string& dir) {
 }
 
 std::string source_path(const std::string& relative) { return std::string(ZHF_SOURCE_DIR) + "/" + relative; }
+
+std::string checked_in_table(int order) { return runtime::table_path(source_path("generated/lobes"), order); }
 
 std::string data_path(const std::string& name) { return source_path("tests/data/" + name); }
 

@@ -10,6 +10,15 @@
 
 namespace zhf::test {
 
+// The published lobe table (tests/data) is a paper's, not zhf's: its lobes, snapped to exact
+// candidate values, match to kPaperLobeMatch, and its condition numbers are printed to 2 decimals.
+inline constexpr double kPaperLobeMatch = 1e-9;
+inline constexpr double kPaperConditionRelative = 0.01;
+// Other published and printed numbers: a value quoted to 10 digits; a number std::to_string wrote
+// (6 decimals).
+inline constexpr double kQuotedTenDigits = 1e-10;
+inline constexpr double kSixDecimals = 1e-6;
+
 struct RunResult {
   int exit_code = -1;
   int signal = 0;
@@ -34,6 +43,8 @@ void remove_dir(const std::string& dir);
 
 // The project's files, e.g. source_path("generated/lobes/order_3.json").
 std::string source_path(const std::string& relative);
+// The checked-in lobe table of an order: generated/lobes/order_N.json.
+std::string checked_in_table(int order);
 // tests/data/<name>: test data kept in the project (the published lobe table among them).
 std::string data_path(const std::string& name);
 

@@ -9,6 +9,7 @@
 
 #include "zhf/runtime/product.h"
 #include "zhf/runtime/sh_eval.h"
+#include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
 
@@ -36,7 +37,7 @@ Inputs make_inputs(int order, int random_count, const runtime::LobeTable& table,
   std::vector<std::pair<std::string, sh::Matrix3>> rotations = sh::extreme_rotations(lobes);
   std::mt19937_64 rng(20261122 + order);
   for (int k = 0; k < random_count; ++k) rotations.push_back({"random", sh::random_rotation(rng)});
-  std::normal_distribution<double> normal;
+  sh::Normal<> normal;
   for (const auto& [name, r] : rotations) {
     for (int i = 0; i < 9; ++i) in.rotations.push_back(r(i / 3, i % 3));
     Eigen::VectorXd f(order * order);

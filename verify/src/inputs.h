@@ -7,12 +7,13 @@
 #include <vector>
 
 #include "zhf/codegen/kernels.h"
+#include "zhf/runtime/limits.h"
 #include "zhf/runtime/lobe_table.h"
 
 namespace zhf::verify {
 
 // Every output holds up to kMaxChannels channels: output v of a mode is at [v * kMaxChannels * n].
-constexpr int kMaxChannels = 4;
+using runtime::kMaxChannels;
 // Per input in the rotations stream: R (9) and the zonal axis (3).
 constexpr int kRotationStride = 12;
 

@@ -1,3 +1,4 @@
+#include "zhf/sh/random.h"
 #include "zhf/verify/needlets.h"
 
 #include <algorithm>
@@ -31,7 +32,7 @@ struct Case {
 
 Case make_case(const frames::NeedletFrame& frame, const codegen::NeedletLutOptions& lut, int directions) {
   std::mt19937_64 rng(2024);
-  std::normal_distribution<double> normal(0, 1);
+  sh::Normal<> normal(0, 1);
   std::vector<double> f(runtime::coefficient_count(frame.band_limit() + 1));
   double norm = 0;
   for (double& c : f) {

@@ -21,7 +21,7 @@
 #include "zhf/io/errors.h"
 #include "zhf/io/private_dir.h"
 #include "zhf/io/signals.h"
-#include "zhf/runtime/lobe_table.h"
+#include "zhf/runtime/table_io.h"
 
 namespace zhf::verify {
 namespace fs = std::filesystem;
@@ -134,6 +134,8 @@ VerifyReport run_verify(const VerifyOptions& options) {
   // C++ first: the shaders' float results are compared with its float results too.
   std::vector<codegen::Language> languages = options.languages;
   std::stable_partition(languages.begin(), languages.end(), [](codegen::Language l) { return l == codegen::Language::kCpp; });
+  const int steps = static_cast<int>(orders.size() * languages.size());
+  int step = 0;
   for (int order : orders) {
     const std::string o = "order " + std::to_string(order);
     const ManifestFile* any = nullptr;
@@ -145,13 +147,15 @@ VerifyReport run_verify(const VerifyOptions& options) {
     }
     const runtime::LobeTable table =
         order == 2 ? runtime::lobe_free_table()
-                   : runtime::read_lobe_table((generated / "lobes" / ("order_" + std::to_string(order) + ".json")).string(), order);
+                   : runtime::read_lobe_table(runtime::table_path((generated / "lobes").string(), order), order);
     const Inputs in = make_inputs(order, options.rotations, table, any->zero_bands);
     const bool has_lanes = std::any_of(manifest.files.begin(), manifest.files.end(), [&](const ManifestFile& f) {
       return f.kind == codegen::FileKind::kLanesTables && f.order == order;
     });
     std::map<std::string, std::vector<double>> cpp_float;  // by function name
     for (codegen::Language language : languages) {
+      if (options.progress) options.progress(step, steps, "kernel files (order " + std::to_string(order) + ")");
+      ++step;
       const ManifestFile* file = manifest.kernels(order, language);
       if (!file || file->precision == codegen::FilePrecision::kDouble) continue;  // shaders are run in float
       const std::string name = codegen::language_name(language);

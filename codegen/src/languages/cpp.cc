@@ -6,6 +6,8 @@
 #include <stdexcept>
 
 #include "../c_family_printer.h"
+#include "zhf/runtime/table_io.h"
+#include "zhf/runtime/tolerances.h"
 
 namespace zhf::codegen {
 namespace {
@@ -74,7 +76,7 @@ EmittedFile emit_lanes_tables(const Module& module, const EmitOptions& options) 
   std::vector<std::string> derivation = {
       "Lobe directions w_d for the lobe-parallel rotation (runtime/lanes.h) at order " + std::to_string(n) + ", from",
       options.table_path + ";"};
-  if (!table.command().empty()) derivation.push_back("made by: " + table.command());
+  if (const std::string command = runtime::provenance_command(table); !command.empty()) derivation.push_back("made by: " + command);
   std::string amplification = "a_l = sqrt((2l+1)/4pi) ||A_l||_2 with lobe sharing (band l uses lobes 0..2l). a_l per band:";
   for (const runtime::TableBand& band : table.bands) {
     char text[16];
@@ -88,7 +90,7 @@ EmittedFile emit_lanes_tables(const Module& module, const EmitOptions& options) 
                 lanes_float_error_model(table), runtime::tolerance::kLanesFloatMargin,
                 runtime::tolerance::kLanesLobesInDoubleMargin);
   derivation.push_back(model);
-  derivation.push_back(std::string("(double-rotation) against the 1e-6 target, the lobe stage is ") +
+  derivation.push_back("(double-rotation) against the " + runtime::format_number(runtime::tolerance::kFloatRotation) + " target, the lobe stage is " +
                        runtime::lobe_stage_name(module.lobe_stage) + ".");
   out << commented(derivation);
   out << "template <int N>\nstruct LanesTables;\ntemplate <>\nstruct LanesTables<" << n << "> {\n";

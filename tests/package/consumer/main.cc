@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "zhf/runtime/lobe_table.h"
+#include "zhf/runtime/table_io.h"
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/rotator.h"
 #include "zhf/runtime/tolerances.h"

@@ -41,18 +41,4 @@ struct SuiteReport {
 
 SuiteReport run_suite(const SuiteOptions& options);
 
-// Least-squares slope of log(ns) against log(N) for one method and scenario (orders >= 3).
-double scaling_exponent(const SuiteReport& report, const std::string& method, const std::string& scenario,
-                        const std::string& variant = "");
-
-// Refuses (OutputError) a --plot path write_plots could not use: control characters in it, or a
-// file beside it (FILE.csv, FILE.gp, FILE_scaling.svg) that zhf bench did not write. Call it
-// before measuring.
-void check_plot_targets(const std::string& svg_path);
-
-// Writes path (Pareto: max error against time, one series per method, log-log) and
-// path-with-"_scaling" (time against N), with their .csv and .gp beside them; runs gnuplot
-// when installed. Returns what it wrote, or why it could not draw.
-std::string write_plots(const SuiteReport& report, const std::string& svg_path);
-
 }  // namespace zhf::bench

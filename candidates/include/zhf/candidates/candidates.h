@@ -12,12 +12,10 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
+#include "zhf/runtime/limits.h"
 
 namespace zhf::candidates {
 
-// Theta values closer than this are one value (roots of different P_l^m meet only at pi/2,
-// which is set exactly; anything closer than 1e-12 that is not the same value would be a bug).
-inline constexpr double kThetaMergeTolerance = 1e-12;
 
 struct AngleValue {
   double value = 0;

@@ -30,6 +30,7 @@
 
 #include "zhf/codegen/backend.h"
 #include "zhf/runtime/json.h"
+#include "zhf/runtime/limits.h"
 
 namespace zhf::codegen {
 
@@ -53,7 +54,6 @@ struct Scene {
 };
 
 inline constexpr const char* kSceneFormat = "zhf-scene-1";
-inline constexpr int kMaxSceneSignals = 256;
 
 // Throws io::InputError naming the file and field, e.g. "scene.json: signals[1].channels: must
 // be 1, 3 or 4 (got 2)".

@@ -5,7 +5,7 @@
 // Antipodal sets (x and -x) need only the even bands: half the points, a third fewer equations.
 //
 // Accuracy: a design is accepted when its residual, max_{l,m} |sum_i y_l^m(x_i)| / M, is at most
-// kDesignResidual (1e-14). Cost per start: O(M t^2) per energy evaluation and gradient, O(M^3) per
+// runtime::tolerance::kDesignResidual (1e-14). Cost per start: O(M t^2) per energy evaluation and gradient, O(M^3) per
 // Levenberg-Marquardt step (M ~ t^2 / 2).
 #pragma once
 
@@ -14,15 +14,13 @@
 #include <functional>
 #include <string>
 #include <vector>
+#include "zhf/runtime/limits.h"
+#include "zhf/runtime/tolerances.h"
 
 namespace zhf::frames {
 
 using Point = std::array<double, 3>;
 
-// Strengths zhf searches: t = 1..kMaxDesignStrength (efficient designs of 1302 points at t = 50).
-inline constexpr int kMaxDesignStrength = 50;
-// Accepted residual: a few roundings of sums of M terms of size <= 1.
-inline constexpr double kDesignResidual = 1e-14;
 
 // max over 1 <= l <= t and m of |sum_i y_l^m(x_i)| / M.
 double design_residual(const std::vector<Point>& points, int t);
@@ -55,6 +53,7 @@ struct DesignSearch {
   int threads = 1;           // starts run in parallel; the result does not depend on this
   bool symmetric = false;    // antipodal pairs (points even)
   std::function<bool()> interrupted;  // checked between starts
+  std::function<void(int)> progress;  // told how many starts were tried, between starts
 };
 
 struct Design {
@@ -64,13 +63,12 @@ struct Design {
   int start = -1;            // which start converged (-1: none did; points are the best found)
 };
 
-// Throws std::invalid_argument for t outside 1..kMaxDesignStrength or a count below 2.
+// Throws std::invalid_argument for t outside 1..runtime::kMaxDesignStrength or a count below 2.
 Design search_design(const DesignSearch& search);
 
 // Point sets in files: a JSON array of [x, y, z], or an object with "points" such (a design file,
-// "format": "zhf-design-1"). Nonzero finite vectors, normalised; up to kMaxPoints of them, files up
+// "format": "zhf-design-1"). Nonzero finite vectors, normalised; up to runtime::kMaxDesignPoints of them, files up
 // to runtime::kMaxTableBytes. Throws runtime::InputError naming the file and entry.
-inline constexpr int kMaxPoints = 100000;
 std::vector<Point> read_points(const std::string& path);
 inline constexpr const char* kDesignFormat = "zhf-design-1";
 

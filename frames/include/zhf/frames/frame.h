@@ -15,30 +15,25 @@
 #include <vector>
 
 #include "zhf/frames/designs.h"
+#include "zhf/runtime/limits.h"
+#include "zhf/runtime/tolerances.h"
 
 namespace zhf::frames {
 
-// Relative spread (B - A) / B at or below which a frame counts as tight.
-inline constexpr double kTightFrame = 1e-12;
-// A / B at or below which the lobes do not span the space (rounding leaves ~1e-16 B where A is 0;
-// the lobe tables' singular bound, condition 1e6, is A / B = 1e-12).
-inline constexpr double kSpanning = 1e-12;
-// Bands a frame report covers.
-inline constexpr int kMaxFrameBand = 63;
 
 struct FrameBounds {
   int lmin = 0, lmax = 0;
   int directions = 0;       // M
   int dimension = 0;        // D
   double lower = 0, upper = 0;  // A, B
-  bool frame() const { return lower > kSpanning * upper; }
-  bool tight() const { return upper > 0 && (upper - lower) <= kTightFrame * upper; }
+  bool frame() const { return lower > runtime::tolerance::kSpanning * upper; }
+  bool tight() const { return upper > 0 && (upper - lower) <= runtime::tolerance::kTightFrame * upper; }
   bool parseval() const;
   double redundancy() const { return double(directions) / dimension; }
   double condition() const;  // sqrt(B / A); infinite when not a frame
 };
 
-// Throws std::invalid_argument for an empty set or a band range outside 0..kMaxFrameBand.
+// Throws std::invalid_argument for an empty set or a band range outside 0..runtime::kMaxFrameBand.
 FrameBounds frame_bounds(const std::vector<Point>& directions, int lmin, int lmax);
 
 // The Gram matrix of the lobes, row-major M x M.

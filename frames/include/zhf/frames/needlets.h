@@ -36,6 +36,7 @@
 
 #include "zhf/frames/cubature.h"
 #include "zhf/frames/designs.h"
+#include "zhf/runtime/limits.h"
 #include "zhf/runtime/rotation.h"
 
 namespace zhf::frames {
@@ -43,8 +44,7 @@ namespace zhf::frames {
 // int_{-1}^{1} exp(-1 / (1 - t^2)) dt.
 double bump_integral();
 double needlet_psi(double u);
-// B in [kMinDilation, kMaxDilation]: a B closer to 1 asks for ~log(l) / log(B) levels.
-inline constexpr double kMinDilation = 1.05, kMaxDilation = 64;
+// B in [runtime::kMinDilation, runtime::kMaxDilation]: a B closer to 1 asks for ~log(l) / log(B) levels.
 double needlet_phi(double t, double dilation);
 double needlet_window(double x, double dilation);  // b(x)
 
@@ -53,13 +53,11 @@ struct WindowValue {
   double value;
 };
 // Every non-zero b(l / B^j) for l = 0..lmax, j = 0, 1, ... Throws std::invalid_argument for B
-// outside [kMinDilation, kMaxDilation] or lmax outside 0..kMaxNeedletBand.
-inline constexpr int kMaxNeedletBand = 4096;
+// outside [runtime::kMinDilation, runtime::kMaxDilation] or lmax outside 0..runtime::kMaxNeedletBand.
 std::vector<WindowValue> needlet_windows(double dilation, int lmax);
 
 // ---- The needlet frame ------------------------------------------------------------------------
 
-inline constexpr int kMaxNeedletFrameBand = 63;  // L of a NeedletFrame: levels need degree 2L
 
 struct NeedletLevel {
   int j = 0;                    // -1: the scaling function
@@ -72,8 +70,8 @@ struct NeedletLevel {
 class NeedletFrame {
  public:
   // The scaling function and every level j >= 0 whose window reaches a band in 1..band_limit.
-  // Throws std::invalid_argument for B outside [kMinDilation, kMaxDilation] or L outside
-  // 0..kMaxNeedletFrameBand, or a cubature that is not exact to the degree asked.
+  // Throws std::invalid_argument for B outside [runtime::kMinDilation, runtime::kMaxDilation] or L outside
+  // 0..runtime::kMaxNeedletFrameBand, or a cubature that is not exact to the degree asked.
   NeedletFrame(double dilation, int band_limit, const CubatureSource& cubature = gauss_product_cubature);
 
   double dilation() const { return dilation_; }
@@ -124,7 +122,6 @@ class UniformTable {
  private:
   std::vector<double> values_;
 };
-inline constexpr int kMinTableSize = 3, kMaxTableSize = 1 << 20;
 
 // max |table(t) - f(t)| over `probes` equally spaced t (midpoints of the nodes among them),
 // relative to max |f| over the same t.
@@ -157,7 +154,7 @@ namespace zhf::frames {
 // The full needlet kernel of level j (its window uncut): sum_l b(l / B^j) (2l+1)/(4 pi) P_l(t) over
 // B^(j-1) < l < B^(j+1); and the truncated SH delta of bands 0..lmax, sum_l (2l+1)/(4 pi) P_l(t).
 // Top bands: needlet_top_band(B, j) = ceil(B^(j+1)) - 1; std::invalid_argument for a level below 0
-// or reaching past kMaxNeedletBand. Cost: O(lmax) per t.
+// or reaching past runtime::kMaxNeedletBand. Cost: O(lmax) per t.
 int needlet_top_band(double dilation, int j);
 std::function<double(double)> needlet_kernel(double dilation, int j);  // its windows computed once
 double sh_delta_kernel(int lmax, double t);
@@ -165,8 +162,7 @@ double sh_delta_kernel(int lmax, double t);
 // How much of a zonal kernel K (a polynomial of degree `degree` in t = cos theta) lies outside the
 // cap theta < cap: its energy fraction there, int_{theta > cap} K^2 / int K^2 (exact: Gauss-Legendre
 // on each side), and its largest |K| there relative to K(1) (sampled at 20001 angles). Degrees up
-// to kMaxProfileBand (std::invalid_argument beyond).
-inline constexpr int kMaxProfileBand = 63;
+// to runtime::kMaxProfileBand (std::invalid_argument beyond).
 struct Localisation {
   double outside_energy = 0;
   double sidelobe = 0;

@@ -14,13 +14,13 @@
 #include <vector>
 
 #include "zhf/frames/cubature.h"
+#include "zhf/runtime/limits.h"
 
 namespace zhf::frames {
 
-inline constexpr int kMaxProjectionOrder = 64;
 
 // values: channels per node, node-major (values[k * channels + c]). Returns channels vectors of
-// N^2 coefficients. Throws std::invalid_argument for an order outside 1..kMaxProjectionOrder or
+// N^2 coefficients. Throws std::invalid_argument for an order outside 1..runtime::kMaxProjectionOrder or
 // values of the wrong length.
 std::vector<std::vector<double>> project_samples(const Cubature& nodes, const std::vector<double>& values, int channels, int order);
 

@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <string>
 #include <vector>
+#include "zhf/runtime/limits.h"
 
 namespace zhf::io {
 
@@ -21,11 +22,11 @@ struct CoefficientFile {
   std::vector<std::vector<double>> signals;  // one per vector and channel, N^2 each
 };
 
-// Orders up to runtime::kMaxShOrder; files up to runtime::kMaxCoefficientBytes. Magnitudes up to
-// 1e150, so squares and their sums (band energies) stay finite.
-inline constexpr double kMaxCoefficientMagnitude = 1e150;
-inline constexpr std::size_t kMaxChannels = 4;
-inline constexpr std::size_t kMaxCoefficientCount = 64 * 64;
+// Limits (runtime/limits.h): orders up to kMaxShOrder, files up to kMaxCoefficientBytes, channels
+// up to kMaxChannels, magnitudes up to kMaxCoefficientMagnitude.
+using runtime::kMaxChannels;
+using runtime::kMaxCoefficientCount;
+using runtime::kMaxCoefficientMagnitude;
 
 // channels: 0 to take it from the JSON nesting (text then means 1). Throws InputError naming
 // the source and the vector (line for text) that is wrong.

@@ -12,13 +12,14 @@
 #include <cstddef>
 #include <string>
 #include <vector>
+#include "zhf/runtime/limits.h"
 
 namespace zhf::io {
 
-inline constexpr std::size_t kMaxHdrBytes = std::size_t(256) << 20;
-inline constexpr std::size_t kMaxHdrHeader = 64 << 10;
-inline constexpr int kMaxHdrSide = 32767;
-inline constexpr long long kMaxHdrPixels = 1LL << 25;
+using runtime::kMaxHdrBytes;
+using runtime::kMaxHdrHeader;
+using runtime::kMaxHdrPixels;
+using runtime::kMaxHdrSide;
 
 struct HdrImage {
   int width = 0, height = 0;

@@ -11,15 +11,16 @@
 #include <string>
 #include <string_view>
 #include <vector>
+#include "zhf/runtime/limits.h"
 
 namespace zhf::io::ply {
 
 enum class Format { kAscii, kBinaryLittleEndian };
 enum class Type { kInt8, kUint8, kInt16, kUint16, kInt32, kUint32, kFloat32, kFloat64 };
 
-inline constexpr std::size_t kMaxHeaderBytes = std::size_t(64) << 10;
-inline constexpr std::size_t kMaxProperties = 1024;
-inline constexpr std::uint64_t kMaxVertices = std::uint64_t(1) << 31;
+using runtime::kMaxPlyHeaderBytes;
+using runtime::kMaxPlyProperties;
+using runtime::kMaxPlyVertices;
 
 struct Property {
   std::string name;

@@ -14,7 +14,7 @@ std::string make_private_dir(const std::string& prefix);
 // A private directory removed with everything in it when this goes out of scope (unless kept).
 class PrivateDir {
  public:
-  explicit PrivateDir(const std::string& prefix) : path_(make_private_dir(prefix)) {}
+  explicit PrivateDir(const std::string& prefix);
   ~PrivateDir();
   PrivateDir(const PrivateDir&) = delete;
   PrivateDir& operator=(const PrivateDir&) = delete;

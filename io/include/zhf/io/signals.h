@@ -1,15 +1,19 @@
 // zhf's one signal policy. For the whole run of a command, SIGINT and SIGTERM only set a flag:
 // long work polls it and stops, child processes are stopped with their process group, nothing
 // half-written is committed, and the command exits 130 (SIGINT) or 143 (SIGTERM), its previous
-// outputs intact. SIGPIPE is ignored, so a closed pipe is a write error, not a silent death.
+// outputs intact. Work that cannot poll (a driver compiling a shader, one long search start) is
+// ended by a watchdog: runtime::kInterruptGraceSeconds after the signal it removes every
+// registered temporary (PendingFile's, private directories) and exits with the same code. SIGPIPE
+// is ignored, so a closed pipe is a write error, not a silent death.
 #pragma once
 
 #include <atomic>
 #include <stdexcept>
+#include <string>
 
 namespace zhf::io {
 
-// Installs the handlers for its lifetime (main holds one).
+// Installs the handlers and the watchdog for its lifetime (main holds one).
 class InterruptGuard {
  public:
   InterruptGuard();
@@ -29,5 +33,10 @@ struct Interrupted : std::runtime_error {
 };
 // Throws Interrupted when a signal has arrived: the check before committing an output.
 void throw_if_interrupted();
+
+// Temporaries the watchdog removes if it has to end the process: a file, or a directory with
+// everything in it. Registered while they exist.
+void register_temporary(const std::string& path);
+void unregister_temporary(const std::string& path);
 
 }  // namespace zhf::io

@@ -11,7 +11,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "zhf/runtime/json.h"
+#include <nlohmann/json.hpp>
+#include "zhf/runtime/limits.h"
 #include "zhf/runtime/lobe_table.h"
 
 namespace zhf::optimizer {
@@ -38,6 +39,6 @@ AmplificationResult amplification_search(int order, const AmplificationOptions& 
 
 // The table of the set found: dense A_l, each lobe's source saying where it came from, and a_l
 // per band in the provenance (runtime::band_amplification).
-runtime::LobeTable make_amplification_table(int order, const AmplificationResult& result, runtime::json::Value provenance);
+runtime::LobeTable make_amplification_table(int order, const AmplificationResult& result, nlohmann::json provenance);
 
 }  // namespace zhf::optimizer

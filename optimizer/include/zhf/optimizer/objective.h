@@ -5,8 +5,10 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <nlohmann/json.hpp>
 
 #include "zhf/candidates/candidates.h"
+#include "zhf/runtime/limits.h"
 #include "zhf/runtime/lobe_table.h"
 #include "zhf/runtime/tolerances.h"
 
@@ -48,9 +50,8 @@ class LobeEvaluator {
  public:
   // Candidates' SH values are tabulated up front when they fit in max_tabulated_values doubles,
   // else evaluated on demand (same results, slower).
-  static constexpr size_t kMaxTabulatedValues = size_t(1) << 27;  // 1 GiB
   LobeEvaluator(const candidates::CandidateSet& set, bool lobe_sharing, double max_condition,
-                size_t max_tabulated_values = kMaxTabulatedValues);
+                size_t max_tabulated_values = runtime::kMaxTabulatedValues);
 
   int order() const { return order_; }
   bool lobe_sharing() const { return lobe_sharing_; }
@@ -77,7 +78,7 @@ class LobeEvaluator {
 // The table of a lobe set: the lobes' angles, directions and sources, each band's A_l with its
 // exact zeros and condition, and the provenance given (an object).
 runtime::Matrix to_matrix(const Eigen::MatrixXd& m);
-runtime::LobeTable make_table(const LobeEvaluator& evaluator, const Genome& genes, runtime::json::Value provenance);
+runtime::LobeTable make_table(const LobeEvaluator& evaluator, const Genome& genes, const nlohmann::json& provenance);
 
 // Exact zeros: entries at or below tolerance::kZeroRelative * max|A| set to 0; returns their count.
 int zero_small_entries(Eigen::MatrixXd& inverse);

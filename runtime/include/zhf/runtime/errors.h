@@ -40,10 +40,19 @@ inline std::string excerpt(std::string_view text, std::size_t max_bytes = 24) {
 }
 
 // A number for a message: digits significant digits, %g style.
+// x to `digits` significant digits, exponents unpadded ("1e-6", not printf's "1e-06").
 inline std::string format_number(double x, int digits = 3) {
   char text[40];
   std::snprintf(text, sizeof text, "%.*g", digits, x);
-  return text;
+  std::string out = text;
+  const std::size_t e = out.find('e');
+  if (e != std::string::npos) {
+    std::size_t digit = e + 1 + (out[e + 1] == '-' || out[e + 1] == '+');
+    const bool negative = out[e + 1] == '-';
+    while (digit + 1 < out.size() && out[digit] == '0') out.erase(digit, 1);
+    if (!negative && out[e + 1] == '+') out.erase(e + 1, 1);
+  }
+  return out;
 }
 
 // Text that may be placed as it is into a message or an emitted comment: no control characters

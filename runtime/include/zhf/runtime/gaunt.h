@@ -27,15 +27,12 @@
 #include <string>
 #include <vector>
 
+#include "zhf/runtime/limits.h"
 #include "zhf/runtime/sh_eval.h"
+#include "zhf/runtime/tolerances.h"
 
 namespace zhf::runtime {
 
-// Gaunt tables and the products built on them: orders 1..16 (l <= 15, 3j arguments up to 45).
-inline constexpr int kMaxGauntOrder = 16;
-// 3j symbols have zeros the selection rules do not predict; Racah's sum leaves ~1e-20 there, where
-// every true coefficient up to order 16 is above 2.5e-5.
-inline constexpr double kGauntZero = 1e-15;
 
 namespace gaunt_detail {
 
@@ -144,7 +141,7 @@ inline std::vector<GauntEntry> gaunt_table(int order) {
     for (int a = 0; a < n; ++a)
       for (int b = a; b < n; ++b) {
         const double g = real_gaunt(a, b, c);
-        if (std::abs(g) > kGauntZero) table.push_back({c, a, b, g});
+        if (std::abs(g) > tolerance::kGauntZero) table.push_back({c, a, b, g});
       }
   return table;
 }

@@ -53,37 +53,58 @@ struct Value {
       if (k == key) return &v;
     return nullptr;
   }
-  // An object's member, replaced or appended.
-  Value& set(const std::string& key, Value value) {
-    for (auto& [k, v] : members)
-      if (k == key) return v = std::move(value);
-    members.emplace_back(key, std::move(value));
-    return members.back().second;
-  }
 };
 
-// Values to build (provenance records): what the reader would have produced for them.
-inline Value make_string(std::string text) {
-  Value v{Value::Kind::kString};
-  v.text = std::move(text);
-  return v;
+// A value as compact JSON text (members in file order, numbers as their tokens): what a reader
+// keeps of a part it carries without interpreting, such as a lobe table's provenance.
+inline void append_compact(const Value& v, std::string& out) {
+  switch (v.kind) {
+    case Value::Kind::kNull: out += "null"; return;
+    case Value::Kind::kBool: out += v.boolean ? "true" : "false"; return;
+    case Value::Kind::kNumber: out += v.text; return;
+    case Value::Kind::kString:
+      out += '"';
+      for (const char c : v.text) {
+        const auto u = static_cast<unsigned char>(c);
+        if (c == '"' || c == '\\') {
+          out += '\\';
+          out += c;
+        } else if (u < 0x20) {
+          char escape[8];
+          std::snprintf(escape, sizeof escape, "\\u%04x", u);
+          out += escape;
+        } else {
+          out += c;
+        }
+      }
+      out += '"';
+      return;
+    case Value::Kind::kArray:
+      out += '[';
+      for (std::size_t i = 0; i < v.items.size(); ++i) {
+        if (i) out += ',';
+        append_compact(v.items[i], out);
+      }
+      out += ']';
+      return;
+    case Value::Kind::kObject:
+      out += '{';
+      for (std::size_t i = 0; i < v.members.size(); ++i) {
+        if (i) out += ',';
+        Value key{Value::Kind::kString};
+        key.text = v.members[i].first;
+        append_compact(key, out);
+        out += ':';
+        append_compact(v.members[i].second, out);
+      }
+      out += '}';
+      return;
+  }
 }
-inline Value make_integer(long long x) {
-  Value v{Value::Kind::kNumber};
-  v.number = static_cast<double>(x);
-  v.integral = true;
-  v.text = std::to_string(x);
-  return v;
-}
-inline Value make_number(double x) {
-  Value v{Value::Kind::kNumber};
-  v.number = x;
-  return v;
-}
-inline Value make_array(std::vector<Value> items) {
-  Value v{Value::Kind::kArray};
-  v.items = std::move(items);
-  return v;
+inline std::string compact_text(const Value& v) {
+  std::string out;
+  append_compact(v, out);
+  return out;
 }
 
 inline const char* kind_name(Value::Kind kind) {

@@ -1,6 +1,6 @@
-// The lobe table: the file every stage after the search reads (code generation, verify, the
-// benchmarks, the runtime's table path). This header holds its type, its one reader and its one
-// validator; io/lobe_table_writer.h writes it.
+// The lobe table: what every stage after the search reads (code generation, verify, the
+// benchmarks, the runtime's table path). This header holds its type and its one validator, and
+// includes no reader: table_io.h reads it from JSON, io/lobe_table_writer.h writes it.
 //
 // JSON, "format": "zhf-lobes-1":
 //   order, lobe_sharing,
@@ -22,9 +22,7 @@
 #include <vector>
 
 #include "zhf/runtime/errors.h"
-#include "zhf/runtime/json.h"
 #include "zhf/runtime/limits.h"
-#include "zhf/runtime/read_file.h"
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/runtime/tolerances.h"
 
@@ -63,17 +61,14 @@ struct LobeTable {
   std::vector<TableLobe> lobes;
   std::vector<TableBand> bands;  // l = 2..order-1
   int zeros = 0, entries = 0;    // summed over bands
-  json::Value provenance{json::Value::Kind::kObject};  // zhf version, the command, the search's figures
+  // What made the table (zhf version, the command, the search's figures): one JSON object as
+  // compact text. The tools build it with their JSON writer; table_io.h's reader checks it.
+  std::string provenance = "{}";
 
   double worst_condition() const {
     double worst = 0;
     for (const TableBand& band : bands) worst = std::max(worst, band.condition);
     return worst;
-  }
-  // The command recorded in the provenance, or "".
-  std::string command() const {
-    const json::Value* c = provenance.find("command");
-    return c && c->kind == json::Value::Kind::kString ? c->text : std::string();
   }
 };
 
@@ -113,7 +108,7 @@ inline std::vector<double> singular_values(Matrix a) {
           beta += a(i, q) * a(i, q);
           gamma += a(i, p) * a(i, q);
         }
-        if (!(std::abs(gamma) > 1e-15 * std::sqrt(alpha * beta))) continue;
+        if (!(std::abs(gamma) > tolerance::kJacobiOrthogonal * std::sqrt(alpha * beta))) continue;
         rotated = true;
         const double zeta = (beta - alpha) / (2 * gamma);
         const double t = (zeta >= 0 ? 1.0 : -1.0) / (std::abs(zeta) + std::sqrt(1 + zeta * zeta));
@@ -151,16 +146,6 @@ inline double band_amplification(const Matrix& y) {
   return smallest > 0 ? row_norm / smallest : INFINITY;
 }
 
-namespace detail {
-
-inline std::string format_number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", value);
-  return text;
-}
-
-
-}  // namespace detail
 
 // kShape: what using a table safely needs (its order in range, the shape for its order and
 // sharing, each band's lobes as the sharing rule says, finite numbers, unit lobes). kFull adds
@@ -193,7 +178,7 @@ inline void validate_lobe_table(const LobeTable& table, const std::string& sourc
     double gap = 0;
     for (int k = 0; k < 3; ++k) gap = std::max(gap, std::abs(expected[k] - w[k]));
     if (!(gap <= tolerance::kTableDirection))
-      fail(field + ".xyz", "disagrees with theta/phi by " + format_number(gap) + " (tolerance 1e-12)");
+      fail(field + ".xyz", "disagrees with theta/phi by " + format_number(gap) + " (tolerance " + format_number(tolerance::kTableDirection) + ")");
     if (!is_printable_text(lobe.source))
       fail(field + ".source", "control characters and backslashes are not allowed ('" + excerpt(lobe.source) + "')");
   }
@@ -240,7 +225,7 @@ inline void validate_lobe_table(const LobeTable& table, const std::string& sourc
       }
     if (!(residual <= tolerance::kTableInverse))
       fail(field + ".inverse", "Y_" + std::to_string(l) + " * inverse differs from I by " + format_number(residual) +
-                                   " (tolerance 1e-10): directions and inverse disagree");
+                                   " (tolerance " + format_number(tolerance::kTableInverse) + "): directions and inverse disagree");
     if (!(std::abs(condition - band.condition) <= tolerance::kTableConditionRelative * condition))
       fail(field + ".condition", "says " + format_number(band.condition) + " but the lobes give " +
                                      format_number(condition));
@@ -248,86 +233,8 @@ inline void validate_lobe_table(const LobeTable& table, const std::string& sourc
   if (!full) return;
   if (table.zeros != zeros_total) fail("zeros", "does not equal the sum over bands (" + std::to_string(zeros_total) + ")");
   if (table.entries != entries_total) fail("entries", "does not equal the sum over bands (" + std::to_string(entries_total) + ")");
-  if (table.provenance.kind != json::Value::Kind::kObject) fail("provenance", "expected an object");
-}
-
-// Parses and validates a table. expected_order > 0 also requires that order (a file named
-// order_N.json holds order N).
-inline LobeTable parse_lobe_table(std::string_view text, const std::string& source, int expected_order = 0) {
-  const json::Value root = json::parse(text, source);
-  const json::Field top(root, source);
-  top.allow_only({"format", "order", "lobe_sharing", "lobes", "bands", "zeros", "entries", "provenance"});
-  const json::Field format = top.member("format");
-  if (format.string() != kLobeTableFormat)
-    format.fail(std::string("expected \"") + kLobeTableFormat + "\", found \"" + excerpt(format.string()) + "\"");
-  LobeTable table;
-  table.order = top.member("order").integer(kMinTableOrder, kMaxTableOrder);
-  if (expected_order > 0 && table.order != expected_order)
-    top.member("order").fail("is " + std::to_string(table.order) + ", but order " + std::to_string(expected_order) +
-                             " was expected (a file order_N.json holds order N)");
-  table.lobe_sharing = top.member("lobe_sharing").boolean();
-  const int lobe_total = lobe_count(table.order, table.lobe_sharing);
-  for (const json::Field& lobe : top.member("lobes").items(lobe_total)) {
-    lobe.allow_only({"theta", "phi", "xyz", "source"});
-    TableLobe t;
-    t.theta = lobe.member("theta").number();
-    t.phi = lobe.member("phi").number();
-    const std::vector<json::Field> xyz = lobe.member("xyz").items(3);
-    for (int k = 0; k < 3; ++k) t.xyz[k] = xyz[k].number();
-    t.source = lobe.member("source").string();
-    table.lobes.push_back(std::move(t));
-  }
-  const std::vector<json::Field> bands = top.member("bands").items(std::max(0, table.order - 2));
-  for (std::size_t b = 0; b < bands.size(); ++b) {
-    const json::Field& band = bands[b];
-    band.allow_only({"l", "lobes", "inverse", "zeros", "condition"});
-    const int size = band_size(int(b) + 2);
-    TableBand t;
-    t.l = band.member("l").integer(2, kMaxTableOrder - 1);
-    for (const json::Field& index : band.member("lobes").items(size)) t.lobes.push_back(index.integer(0, lobe_total - 1));
-    t.inverse = Matrix(size, size);
-    const std::vector<json::Field> rows = band.member("inverse").items(size);
-    for (int i = 0; i < size; ++i) {
-      const std::vector<json::Field> row = rows[i].items(size);
-      for (int j = 0; j < size; ++j) t.inverse(i, j) = row[j].number();
-    }
-    t.zeros = band.member("zeros").integer(0, size * size);
-    t.condition = band.member("condition").number();
-    table.bands.push_back(std::move(t));
-  }
-  table.zeros = top.member("zeros").integer(0, 1 << 30);
-  table.entries = top.member("entries").integer(0, 1 << 30);
-  const json::Field provenance = top.member("provenance");
-  provenance.expect(json::Value::Kind::kObject);
-  table.provenance = provenance.value();
-  validate_lobe_table(table, source);
-  return table;
-}
-
-// The order a file name states: N for ".../order_N.json" or ".../lanes_order_N.json", else 0.
-inline int order_in_file_name(const std::string& path) {
-  const std::size_t slash = path.find_last_of('/');
-  std::string_view name(path);
-  name.remove_prefix(slash == std::string::npos ? 0 : slash + 1);
-  if (name.substr(0, 6) == "lanes_") name.remove_prefix(6);
-  if (name.substr(0, 6) != "order_" || name.size() < 12 || name.substr(name.size() - 5) != ".json") return 0;
-  const std::string_view digits = name.substr(6, name.size() - 11);
-  int order = 0;
-  for (char c : digits) {
-    if (c < '0' || c > '9' || order > 1000) return 0;
-    order = order * 10 + (c - '0');
-  }
-  return order;
-}
-
-// Reads, parses and validates the table at path (at most kMaxTableBytes); a file named
-// order_N.json must hold order N.
-inline LobeTable read_lobe_table(const std::string& path, int expected_order = 0) {
-  const int named = order_in_file_name(path);
-  if (expected_order > 0 && named > 0 && named != expected_order)
-    throw InputError(path + ": the file name says order " + std::to_string(named) + ", order " +
-                     std::to_string(expected_order) + " was asked for");
-  return parse_lobe_table(read_file(path, kMaxTableBytes), path, expected_order > 0 ? expected_order : named);
+  if (table.provenance.size() < 2 || table.provenance.front() != '{' || table.provenance.back() != '}')
+    fail("provenance", "expected a JSON object");
 }
 
 // The empty table of an order without lobe bands (order 2).

@@ -1,7 +1,11 @@
-// parallel_chunks: the runtime's one way of spreading a batch over threads.
+// zhf's one thread pool: every batch, search and design start that runs on several threads goes
+// through parallel_chunks (contiguous ranges) or parallel_for (indices taken one at a time).
+// Both run on the calling thread among the workers, and carry on with the threads they could start
+// when the system refuses more (a process limit).
 #pragma once
 
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <system_error>
 #include <thread>
@@ -12,12 +16,35 @@ namespace zhf::runtime {
 // Below this many vectors a batch runs on the calling thread.
 inline constexpr std::size_t kParallelBatchThreshold = 4096;
 
+// A thread-count option: 0 means all cores.
+inline int worker_count(int threads) {
+  return threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+// Calls work(i) for i in [0, count) on `workers` threads, each taking the next index; results must
+// go to per-index slots so the order of completion never shows.
+template <class Work>
+void parallel_for(int count, int workers, Work&& work) {
+  std::atomic<int> next{0};
+  auto run = [&] {
+    for (int i = next.fetch_add(1); i < count; i = next.fetch_add(1)) work(i);
+  };
+  std::vector<std::thread> pool;
+  try {
+    for (int t = 1; t < workers; ++t) pool.emplace_back(run);
+  } catch (const std::system_error&) {
+    // No more threads: the ones started share the work.
+  }
+  run();
+  for (std::thread& t : pool) t.join();
+}
+
 // Runs work(begin, end) over [0, count) in contiguous chunks, one per worker (threads = 0: all
 // cores); below kParallelBatchThreshold items, or when no thread can be started, on the calling
 // thread alone.
 template <class Work>
 void parallel_chunks(std::size_t count, int threads, Work&& work) {
-  int workers = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  int workers = worker_count(threads);
   if (count < kParallelBatchThreshold) workers = 1;
   std::vector<std::thread> pool;
   const std::size_t chunk = (count + workers - 1) / workers;

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "zhf/runtime/gaunt.h"
+#include "zhf/runtime/limits.h"
 #include "zhf/runtime/lobe_table.h"
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/sh_eval.h"
@@ -160,9 +161,6 @@ inline Matrix double_coupling(int order, const ZhfBasis* first, const ZhfBasis* 
   return c;
 }
 
-// Triple-product couplings are dense N^2 x N^2 x N^2 tensors once a slot is in ZHF form: up to
-// order 8 (2 MiB).
-inline constexpr int kMaxTripleCouplingOrder = 8;
 
 // The coupling tensor T of int f g h with each slot in SH (null) or ZHF form: T_ijk, stored
 // dense in i-major order. Built from G by contracting Y into each ZHF slot.

@@ -100,7 +100,7 @@ bool nearest_rotation(const T r[9], T out[9]) {
                          x[2] * x[7] - x[1] * x[8], x[0] * x[8] - x[2] * x[6], x[1] * x[6] - x[0] * x[7],
                          x[1] * x[5] - x[2] * x[4], x[2] * x[3] - x[0] * x[5], x[0] * x[4] - x[1] * x[3]};
     const double det = x[0] * c[0] + x[1] * c[1] + x[2] * c[2];
-    if (!(std::abs(det) > 1e-300) || !std::isfinite(det)) return false;
+    if (!(std::abs(det) > tolerance::kSingularDeterminant) || !std::isfinite(det)) return false;
     // X^-T = cofactor matrix / det.
     double change = 0;
     for (int i = 0; i < 9; ++i) {
@@ -108,7 +108,7 @@ bool nearest_rotation(const T r[9], T out[9]) {
       change = std::max(change, std::abs(next - x[i]));
       x[i] = next;
     }
-    if (change < 1e-16) break;
+    if (change < tolerance::kPolarStep) break;
   }
   const double det = x[0] * (x[4] * x[8] - x[5] * x[7]) - x[1] * (x[3] * x[8] - x[5] * x[6]) +
                      x[2] * (x[3] * x[7] - x[4] * x[6]);

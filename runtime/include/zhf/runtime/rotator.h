@@ -30,6 +30,7 @@
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/runtime/table_rotation.h"
+#include "zhf/runtime/tolerances.h"
 #include "zhf/runtime/zxzxz_rotation.h"
 
 namespace zhf::gen {

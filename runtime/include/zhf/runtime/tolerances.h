@@ -1,6 +1,8 @@
 // zhf's named tolerances, all of them, each with where it comes from. Every check (the readers,
-// verify, the benchmarks' accuracy columns, the tests) uses a name from this table; a tolerance is
-// never loosened to make a check pass without finding out why it failed.
+// verify, the benchmarks' accuracy columns, the tests) and every numerical algorithm's stopping
+// rule or zero test uses a name from this table (scripts/check_one_place.py fails the tests on a
+// literal elsewhere); a tolerance is never loosened to make a check pass without finding out why
+// it failed.
 //
 // "Max error" is the largest absolute difference from the double reference rotation over
 // unit-norm coefficient vectors, unless a line says otherwise.
@@ -167,14 +169,106 @@ inline constexpr double kPointwise = 1e-12;
 inline constexpr double kRootResidual = 1e-13;
 // Zeros of A_l counted by the search, recomputed in long double, sit at rounding level.
 inline constexpr double kZeroInLongDouble = 1e-13;
-// The published lobes, snapped to exact candidate values in the reference file, match to this;
-// their printed condition numbers are rounded to 2 decimals (1%).
-inline constexpr double kPaperLobeMatch = 1e-9;
-inline constexpr double kPaperConditionRelative = 0.01;
 // The axis and weights zhf analyze finds for a zonal function (and the function rebuilt from
 // them): measured to about 1e-15.
 inline constexpr double kZonalFit = 1e-9;
 // Two zonal axes are one axis when |a x b| is below this (a and -a are the same axis).
 inline constexpr double kSameAxis = 1e-6;
+
+
+// ---- Goals and defaults that reports and options state ---------------------------------------
+// Run-time orders (16..32) in float: the error a user of Rotator::from_table may expect.
+inline constexpr double kRuntimeOrdersFloat = 1e-5;
+// zhf analyze / zhf.analyze: the relative L2 error within which a band limit or a zonal fit counts
+// as found, by default.
+inline constexpr double kDefaultZonalFit = 1e-3;
+// zhf bench: the pruning thresholds of its "pruned" rows (entries of A_l below this times the
+// band's largest dropped), and the error at which an exact result is drawn on a log axis (below
+// every measured error).
+inline constexpr double kBenchPruneSmall = 1e-3, kBenchPruneLarge = 1e-2;
+inline constexpr double kPlotErrorFloor = 1e-17;
+
+// ---- Checks the tests make that no section above covers -----------------------------------------
+// A quadratic look-up table reproduces a quadratic exactly, up to rounding of a few operations.
+inline constexpr double kQuadraticTableExact = 1e-14;
+// Cap energies of needlet kernels against a midpoint rule in theta (its own error, ~1e-5).
+inline constexpr double kCapEnergyMidpoint = 1e-4;
+// A cap's zonal coefficients against a 100000-step midpoint rule in cos theta (error ~h^2).
+inline constexpr double kCapCoefficientMidpoint = 1e-9;
+// A constant sky projected from float pixels: the pixel sum's float rounding.
+inline constexpr double kFloatProjection = 1e-6;
+// Float kernels on inputs scaled by 1e30 and 1e-30, relative to the scale: the float target with
+// the scaling's own rounding on top (no overflow, no subnormals).
+inline constexpr double kFloatExtremeScale = 2e-5;
+// Gaunt coefficients' symmetry in their three indices, and y_0^0 coupling as a delta: one rounding
+// of values below 0.6.
+inline constexpr double kGauntSymmetry = 1e-16;
+
+// ---- Frames, designs, products -------------------------------------------------------------------
+// A design's accepted residual: a few roundings of sums of M terms of size <= 1.
+inline constexpr double kDesignResidual = 1e-14;
+// Relative spread (B - A) / B at or below which a frame counts as tight.
+inline constexpr double kTightFrame = 1e-12;
+// A / B at or below which the lobes do not span the space (rounding leaves ~1e-16 B where A is 0;
+// the lobe tables' singular bound, condition 1e6, is A / B = 1e-12).
+inline constexpr double kSpanning = 1e-12;
+// 3j symbols have zeros the selection rules do not predict; Racah's sum leaves ~1e-20 there, where
+// every true coefficient up to order 16 is above 2.5e-5.
+inline constexpr double kGauntZero = 1e-15;
+
+// ---- Numerical algorithms: stopping rules and zero tests ----------------------------------------
+// One-sided Jacobi SVD: a column pair counts as orthogonal below this cosine (double rounding).
+inline constexpr double kJacobiOrthogonal = 1e-15;
+// Nearest rotation by polar iteration: a determinant below this is a singular matrix; the
+// iteration stops when no entry moves by more than kPolarStep (double rounding).
+inline constexpr double kSingularDeterminant = 1e-300;
+inline constexpr double kPolarStep = 1e-16;
+// A rotation off orthonormal by more than a few double roundings: worth saying that the nearest
+// rotation was used instead.
+inline constexpr double kDoubleRoundingDefect = 1e-14;
+// Two magnitudes this close (relative) are one value: grouping equal |A_l| entries and equal
+// lobe-scale factors; rounding of one evaluation is ~1e-16.
+inline constexpr double kSameMagnitude = 1e-12;
+// An entry this close to 0 or +-1 is exactly that (X+ = D(Rx(90)) from the reference, a rescaled
+// lobe's equal components): a few roundings of values of size 1.
+inline constexpr double kExactEntry = 1e-14;
+// A Gauss-Legendre node this close to 0 is the centre node (computed as a root).
+inline constexpr double kCenterNode = 1e-12;
+// Two axes whose cross product is below this are parallel (no turn carries one onto the other).
+inline constexpr double kParallelAxes = 1e-12;
+// Candidates: computed values within kSnapToZero of 0 are 0 (SH values at exact zeros round to
+// ~1e-17); theta values closer than kThetaMergeTolerance are one value (roots of different P_l^m
+// meet only at pi/2, which is set exactly; anything closer that is not the same value would be a
+// bug).
+inline constexpr double kSnapToZero = 1e-15;
+inline constexpr double kThetaMergeTolerance = 1e-12;
+// Legendre roots: bisection stops at this bracket width; the Newton polish gives up on a step
+// this large (it only polishes, never leaves the bracket).
+inline constexpr double kRootBracket = 1e-14;
+inline constexpr long double kRootPolishStep = 1e-10L;
+// Zonal analysis: the first odd band whose weight exceeds this (relative to the energy) orients
+// the axis; below it the weight is rounding.
+inline constexpr double kOrientingWeight = 1e-12;
+// Continuous searches (subplex): relative step at which a start has converged; a lobe matrix whose
+// determinant is below kSearchSingularDeterminant is penalised as singular.
+inline constexpr double kContinuousSearchStep = 1e-10;
+inline constexpr double kSearchSingularDeterminant = 1e-12;
+// Design search: central differences along the tangent plane with step h err by h^2 |y'''|, about
+// 1e-10 relative, plenty for the descent and Levenberg-Marquardt's steps (the residual itself is
+// evaluated exactly); the damping starts at kDampingStart and never drops below kDampingFloor;
+// L-BFGS on the design energy stops at these absolute and relative changes.
+inline constexpr double kDesignDifferenceStep = 1e-5;
+inline constexpr double kDampingStart = 1e-6;
+inline constexpr double kDampingFloor = 1e-15;
+inline constexpr double kDesignEnergyAbsolute = 1e-26;
+inline constexpr double kDesignEnergyRelative = 1e-15;
+// A point read from a file is refused as a direction below this length (its normalisation would
+// overflow).
+inline constexpr double kShortestDirection = 1e-150;
+// Adaptive Gauss-Kronrod (needlet windows): a panel is accepted at this error estimate, far below
+// double rounding of the window's integral (~0.44).
+inline constexpr double kKronrodError = 1e-17;
+// Radiance RGBE: a pixel whose largest channel is below this is stored black (the format's rule).
+inline constexpr float kRgbeBlack = 1e-32f;
 
 }  // namespace zhf::runtime::tolerance

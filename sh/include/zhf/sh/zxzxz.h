@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "zhf/runtime/limits.h"
+#include "zhf/runtime/tolerances.h"
 #include "zhf/runtime/zxzxz_rotation.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
@@ -83,8 +84,8 @@ class ZxzxzRotator {
     std::vector<Entry> out;
     for (int i = 0; i < x.rows(); ++i)
       for (int j = 0; j < x.cols(); ++j) {
-        if (std::abs(x(i, j)) <= 1e-14) continue;
-        const bool unit = std::abs(std::abs(x(i, j)) - 1) <= 1e-14;
+        if (std::abs(x(i, j)) <= runtime::tolerance::kExactEntry) continue;
+        const bool unit = std::abs(std::abs(x(i, j)) - 1) <= runtime::tolerance::kExactEntry;
         out.push_back({i, j, unit ? (x(i, j) > 0 ? 1.0 : -1.0) : x(i, j), unit});
       }
     return out;

@@ -10,6 +10,7 @@
 #include "zhf/codegen/backend.h"
 #include "zhf/codegen/needlet_lut.h"
 #include "zhf/frames/needlets.h"
+#include "zhf/runtime/tolerances.h"
 
 namespace zhf::verify {
 

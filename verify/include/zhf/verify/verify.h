@@ -5,6 +5,7 @@
 // glslang to SPIR-V on a Vulkan device), and the comparison and report are shared.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,8 @@ struct VerifyOptions {
   std::string compiler;        // C++ compiler and its leading arguments, split at spaces; empty: $CXX, else c++
   std::string work_dir;        // kept scratch (made if missing); empty: a private temp dir, removed afterwards
   std::string runtime_include; // runtime/include, for the lanes kernels
+  // Told before each order and language is run: how many of how many, and which.
+  std::function<void(int done, int total, const std::string& what)> progress;
 };
 
 struct FunctionResult {

@@ -1,162 +1,59 @@
+// zhf needlets: the needlet frame's windows, kernel look-up tables, localisation experiments, and
+// the emitted evaluators with their verification (frames/needlets.h, codegen/needlet_lut.h).
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
-#include <cstring>
 #include <cstdio>
+#include <cstring>
 #include <memory>
-#include <thread>
 #include <string>
 #include <vector>
 
 #include "commands.h"
 #include "options.h"
-#include "zhf/frames/designs.h"
-#include "zhf/frames/frame.h"
 #include "zhf/codegen/needlet_lut.h"
 #include "zhf/frames/needlets.h"
-#include "zhf/pipeline/project.h"
-#include "zhf/verify/needlets.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/io/signals.h"
+#include "zhf/pipeline/project.h"
 #include "zhf/runtime/limits.h"
-#include "zhf/runtime/lobe_table.h"
 #include "zhf/runtime/tolerances.h"
+#include "zhf/verify/needlets.h"
 
 namespace zhf::cli {
 namespace {
 
-struct DesignsOptions {
-  std::string t, points = "0", starts = "64", seed = "1", threads = "0";
-  bool symmetric = false;
-  std::string out;
-};
-
-int run_designs(const DesignsOptions& o) {
-  frames::DesignSearch s;
-  s.t = static_cast<int>(integer_option("--t", o.t, 1, frames::kMaxDesignStrength));
-  s.symmetric = o.symmetric;
-  const int best = frames::best_known_count(s.t);
-  const frames::DesignChoice choice = frames::default_design(s.t);
-  s.points = static_cast<int>(integer_option("--points", o.points, 0, frames::kMaxPoints));
-  if (s.points == 0) {
-    s.points = choice.points;
-    s.symmetric = s.symmetric || choice.symmetric;
-  }
-  if (s.points < 2) throw UsageError("--points: a design needs at least 2 points");
-  if (s.symmetric && s.points % 2) throw UsageError("--points: a symmetric design has an even count (got " + std::to_string(s.points) + ")");
-  s.starts = static_cast<int>(integer_option("--starts", o.starts, 1, 100000));
-  s.seed = seed_option("--seed", o.seed);
-  const int threads = static_cast<int>(integer_option("--threads", o.threads, 0, runtime::kMaxThreads));
-  s.threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
-  s.interrupted = [] { return io::interrupt_requested().load(); };
-  std::unique_ptr<io::PendingFile> out;
-  if (!o.out.empty()) out = std::make_unique<io::PendingFile>(o.out);
-  const auto t0 = std::chrono::steady_clock::now();
-  const frames::Design d = frames::search_design(s);
-  io::throw_if_interrupted();
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (d.start < 0) {
-    std::fprintf(stderr, "zhf designs: no %d-point %d-design in %d starts (best residual %.3g)\n", s.points, s.t, s.starts, d.residual);
-    return kExitFailure;
-  }
-  std::printf("t = %d: %zu points (best known %s), residual %.2e, start %d, %.2f s\n", s.t, d.points.size(),
-              best > 0 ? std::to_string(best).c_str() : "-", d.residual, d.start, seconds);
-  if (out) {
-    nlohmann::ordered_json j;
-    j["format"] = frames::kDesignFormat;
-    j["t"] = s.t;
-    j["count"] = d.points.size();
-    j["symmetric"] = s.symmetric;
-    j["residual"] = d.residual;
-    j["best_known_count"] = best > 0 ? nlohmann::ordered_json(best) : nlohmann::ordered_json(nullptr);
-    j["search"] = {{"seed", s.seed}, {"start", d.start}};
-    nlohmann::ordered_json points = nlohmann::ordered_json::array();
-    for (const frames::Point& p : d.points) points.push_back({p[0], p[1], p[2]});
-    j["points"] = points;
-    out->write(io::json_text(j));
-    out->commit();
-  }
-  return kExitOk;
-}
-
-struct FrameOptions {
-  std::string points, table, bands;
-  std::string out;
-};
-
-int run_frame(const FrameOptions& o) {
-  if (o.points.empty() == o.table.empty()) throw UsageError("--points or --table: give exactly one");
-  std::unique_ptr<io::PendingFile> out;
-  if (!o.out.empty()) out = std::make_unique<io::PendingFile>(o.out);
-  // Band ranges: --bands L0..L1 over every direction; a table without --bands: each band on its lobes.
-  struct Job {
-    std::vector<frames::Point> directions;
-    int lmin, lmax;
-  };
-  std::vector<Job> jobs;
-  int lmin = 0, lmax = -1;
-  if (!o.bands.empty()) {
-    const std::vector<int> bands = orders_option("--bands", o.bands, 0, frames::kMaxFrameBand);
-    lmin = bands.front();
-    lmax = bands.back();
-    if (lmax - lmin + 1 != static_cast<int>(bands.size())) throw UsageError("--bands: give a range L0..L1");
-  }
-  if (!o.points.empty()) {
-    if (o.bands.empty()) throw UsageError("--bands: required with --points");
-    jobs.push_back({frames::read_points(o.points), lmin, lmax});
-  } else {
-    const runtime::LobeTable table = runtime::read_lobe_table(o.table);
-    std::vector<frames::Point> all;
-    for (const runtime::TableLobe& lobe : table.lobes) all.push_back({lobe.xyz[0], lobe.xyz[1], lobe.xyz[2]});
-    if (!o.bands.empty()) {
-      jobs.push_back({all, lmin, lmax});
-    } else {
-      for (const runtime::TableBand& band : table.bands) {
-        std::vector<frames::Point> lobes;
-        for (int d : band.lobes) lobes.push_back(all[d]);
-        jobs.push_back({lobes, band.l, band.l});
-      }
-    }
-  }
-  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
-  std::printf("%-7s %10s %9s %14s %14s %10s %11s  %s\n", "bands", "directions", "dimension", "A", "B", "sqrt(B/A)", "redundancy",
-              "kind");
-  for (const Job& job : jobs) {
-    const frames::FrameBounds b = frames::frame_bounds(job.directions, job.lmin, job.lmax);
-    const std::string kind = !b.frame() ? "not a frame" : b.parseval() ? "Parseval tight" : b.tight() ? "tight" : "frame";
-    const std::string bands = std::to_string(b.lmin) + ".." + std::to_string(b.lmax);
-    std::printf("%-7s %10d %9d %14.8g %14.8g %10.4g %11.4g  %s\n", bands.c_str(), b.directions, b.dimension, b.lower, b.upper,
-                b.condition(), b.redundancy(), kind.c_str());
-    rows.push_back({{"lmin", b.lmin},
-                    {"lmax", b.lmax},
-                    {"directions", b.directions},
-                    {"dimension", b.dimension},
-                    {"lower_bound", b.lower},
-                    {"upper_bound", b.upper},
-                    {"condition", b.frame() ? nlohmann::ordered_json(b.condition()) : nlohmann::ordered_json(nullptr)},
-                    {"redundancy", b.redundancy()},
-                    {"tight", b.tight()},
-                    {"parseval", b.parseval()}});
-    io::throw_if_interrupted();
-  }
-  if (out) {
-    out->write(io::json_text(nlohmann::ordered_json{{"format", "zhf-frame-1"}, {"frames", rows}}));
-    out->commit();
-  }
-  return kExitOk;
-}
-
 struct NeedletOptions {
-  std::string dilation = "2", lmax, sizes = "64,256,1024,4096,16384";
+  std::string dilation = "2", order, lmax, sizes = "64,256,1024,4096,16384";
   bool gauss = false;
   std::string size = "1024", interpolation = "linear", lang, langs = "cpp,glsl,hlsl", prefix = "zhf_needlets", compiler;
   std::string out, data;
   std::string j = "1", cut = "10", margin = "4";
 };
 
+// The top band L of a needlet command's signals, in [lo, hi]: --order N means bands 0..N-1 (as in
+// every command), the old --lmax L bands 0..L.
+const std::string kDilationHelp = "Dilation B, in [" + runtime::format_number(runtime::kMinDilation) + ", " +
+                                  runtime::format_number(runtime::kMaxDilation) + "] (default 2)";
+const std::string kTableSizeRange = std::to_string(runtime::kMinNeedletTableSize) + ".." + std::to_string(runtime::kMaxNeedletTableSize);
+const std::string kTableSizeHelp = "Entries per kernel table, " + kTableSizeRange + " (default 1024)";
+
+// --order N (bands 0..N-1, N up to max_top_band + 1) and its old spelling --lmax L (bands 0..L).
+void add_band_limit(CLI::App* command, NeedletOptions& o, int max_top_band) {
+  CLI::Option* order = command->add_option("--order", o.order, "Bands 0..N-1, N in 1.." + std::to_string(max_top_band + 1));
+  CLI::Option* lmax = command->add_option("--lmax", o.lmax, "old spelling: the top band, --order minus 1")->group("");
+  old_spellings().push_back({"--lmax", lmax, order, "--order (minus 1)"});
+}
+
+int top_band(const NeedletOptions& o, int lo, int hi) {
+  if (!o.lmax.empty()) return static_cast<int>(integer_option("--lmax", o.lmax, lo, hi));
+  if (o.order.empty()) throw UsageError("--order: required (bands 0..N-1)");
+  return static_cast<int>(integer_option("--order", o.order, lo + 1, hi + 1)) - 1;
+}
+
 double dilation_option(const std::string& text) {
-  return number_option("--B", text, frames::kMinDilation, frames::kMaxDilation);
+  return number_option("--B", text, runtime::kMinDilation, runtime::kMaxDilation);
 }
 
 // Each level on the smallest shipped design exact for it, or on Gauss product nodes.
@@ -168,7 +65,7 @@ frames::NeedletFrame needlet_frame(double dilation, int lmax, bool gauss) {
 
 codegen::NeedletLutOptions lut_options(const NeedletOptions& o, const std::string& command) {
   codegen::NeedletLutOptions lut;
-  lut.table_size = static_cast<int>(integer_option("--size", o.size, frames::kMinTableSize, frames::kMaxTableSize));
+  lut.table_size = static_cast<int>(integer_option("--size", o.size, runtime::kMinNeedletTableSize, runtime::kMaxNeedletTableSize));
   if (o.interpolation == "linear") lut.interpolation = frames::Interpolation::kLinear;
   else if (o.interpolation == "quadratic") lut.interpolation = frames::Interpolation::kQuadratic;
   else throw UsageError("--interpolation: '" + io::excerpt(o.interpolation) + "' is not linear or quadratic");
@@ -187,7 +84,7 @@ codegen::Language language_option(const std::string& option, const std::string& 
 
 int run_needlet_emit(const NeedletOptions& o, const std::string& command) {
   const double dilation = dilation_option(o.dilation);
-  const int lmax = static_cast<int>(integer_option("--lmax", o.lmax, 1, frames::kMaxNeedletFrameBand));
+  const int lmax = top_band(o, 1, runtime::kMaxNeedletFrameBand);
   const codegen::NeedletLutOptions lut = lut_options(o, command);
   const codegen::Language language = language_option("--lang", o.lang);
   io::PendingFile out(o.out);
@@ -215,7 +112,7 @@ int run_needlet_emit(const NeedletOptions& o, const std::string& command) {
 
 int run_needlet_verify(const NeedletOptions& o) {
   const double dilation = dilation_option(o.dilation);
-  const int lmax = static_cast<int>(integer_option("--lmax", o.lmax, 1, frames::kMaxNeedletFrameBand));
+  const int lmax = top_band(o, 1, runtime::kMaxNeedletFrameBand);
   const codegen::NeedletLutOptions lut = lut_options(o, "zhf needlets verify");
   verify::NeedletLutVerify v;
   v.languages.clear();
@@ -263,8 +160,8 @@ int run_needlet_verify(const NeedletOptions& o) {
 int run_needlet_profile(const NeedletOptions& o) {
   const double dilation = dilation_option(o.dilation);
   const int j = static_cast<int>(integer_option("--j", o.j, 0, 16));
-  if (std::pow(dilation, j + 1) > frames::kMaxProfileBand + 1)
-    throw UsageError("--j: level " + o.j + " of B = " + o.dilation + " reaches past band " + std::to_string(frames::kMaxProfileBand));
+  if (std::pow(dilation, j + 1) > runtime::kMaxProfileBand + 1)
+    throw UsageError("--j: level " + o.j + " of B = " + o.dilation + " reaches past band " + std::to_string(runtime::kMaxProfileBand));
   const int top = frames::needlet_top_band(dilation, j);
   std::unique_ptr<io::PendingFile> out;
   if (!o.out.empty()) out = std::make_unique<io::PendingFile>(o.out);
@@ -295,7 +192,7 @@ int run_needlet_profile(const NeedletOptions& o) {
 // The talk's case: a signal cut to zero around the equator, in SH and in needlets.
 int run_needlet_mask(const NeedletOptions& o) {
   const double dilation = dilation_option(o.dilation);
-  const int lmax = static_cast<int>(integer_option("--lmax", o.lmax, 1, frames::kMaxNeedletFrameBand));
+  const int lmax = top_band(o, 1, runtime::kMaxNeedletFrameBand);
   const double cut = number_option("--cut", o.cut, 0.1, 80) * runtime::kPi / 180;
   const double margin = number_option("--margin", o.margin, 0, 64);
   const frames::NeedletFrame frame = needlet_frame(dilation, lmax, o.gauss);
@@ -314,7 +211,7 @@ int run_needlet_mask(const NeedletOptions& o) {
 
 int run_needlet_window(const NeedletOptions& o) {
   const double dilation = dilation_option(o.dilation);
-  const int lmax = static_cast<int>(integer_option("--lmax", o.lmax, 0, frames::kMaxNeedletBand));
+  const int lmax = top_band(o, 0, runtime::kMaxNeedletBand);
   std::unique_ptr<io::PendingFile> out;
   if (!o.out.empty()) out = std::make_unique<io::PendingFile>(o.out);
   nlohmann::ordered_json b = nlohmann::ordered_json::array();
@@ -337,8 +234,8 @@ int run_needlet_window(const NeedletOptions& o) {
 // size against the exact path; times on stdout only, so the JSON is the same on every run.
 int run_needlet_tables(const NeedletOptions& o) {
   const double dilation = dilation_option(o.dilation);
-  const int lmax = static_cast<int>(integer_option("--lmax", o.lmax, 1, frames::kMaxNeedletFrameBand));
-  const std::vector<int> sizes = orders_option("--sizes", o.sizes, frames::kMinTableSize, frames::kMaxTableSize);
+  const int lmax = top_band(o, 1, runtime::kMaxNeedletFrameBand);
+  const std::vector<int> sizes = orders_option("--sizes", o.sizes, runtime::kMinNeedletTableSize, runtime::kMaxNeedletTableSize);
   if (sizes.size() > 16) throw UsageError("--sizes: at most 16 sizes (got " + std::to_string(sizes.size()) + ")");
   std::unique_ptr<io::PendingFile> out;
   if (!o.out.empty()) out = std::make_unique<io::PendingFile>(o.out);
@@ -415,65 +312,45 @@ int run_needlet_tables(const NeedletOptions& o) {
   return kExitOk;
 }
 
+
 }  // namespace
 
-void add_frames_commands(CLI::App& app, Action& action, const std::string& command_line) {
-  auto d = std::make_shared<DesignsOptions>();
-  CLI::App* c = app.add_subcommand("designs", "Find a spherical t-design: equal-weight points exact for every SH of degree <= t");
-  c->add_option("--t", d->t, "Strength t, 1..50")->required();
-  c->add_option("--points", d->points,
-                "Point count (default: the smallest known for t <= 10, antipodal sets of the smallest known count for odd t "
-                "(Womersley's 192 and 234 at 19 and 21), the efficient count ceil((t+1)^2/2)+1 for even t >= 12)");
-  c->add_flag("--symmetric", d->symmetric, "Antipodal pairs: x and -x (odd bands vanish; half the unknowns)");
-  c->add_option("--starts", d->starts, "Starts to try, 1..100000 (default 64); the first that converges wins");
-  c->add_option("--seed", d->seed, "Random seed, 0..2^64-1 (default 1)");
-  c->add_option("--threads", d->threads, "Threads, 0..256 (0: all cores); never changes the result");
-  c->add_option("--json", d->out, "Write the design here (zhf-design-1)");
-  c->callback([d, &action] { action = [d] { return run_designs(*d); }; });
-
-  auto f = std::make_shared<FrameOptions>();
-  CLI::App* fc = app.add_subcommand("frame", "Frame bounds of the zonal lobes at a set of directions, for a band range");
-  fc->add_option("--points", f->points, "Directions: a JSON array of [x, y, z] or a design file");
-  fc->add_option("--table", f->table, "A lobe table's lobes (without --bands: each band on its own lobes)");
-  fc->add_option("--bands", f->bands, "Bands L0..L1 (0..63)");
-  fc->add_option("--json", f->out, "Write the bounds here (zhf-frame-1)");
-  fc->callback([f, &action] { action = [f] { return run_frame(*f); }; });
-
+void add_needlets_command(CLI::App& app, Action& action, const std::string& command_line) {
   CLI::App* nc = app.add_subcommand("needlets", "Spherical needlets: windows, kernel tables and tabulated rotation");
   nc->require_subcommand(1);
   auto w = std::make_shared<NeedletOptions>();
   CLI::App* wc = nc->add_subcommand("window", "The Littlewood-Paley windows b(l / B^j), every non-zero one for bands 0..lmax");
-  wc->add_option("--B", w->dilation, "Dilation B, in [1.05, 64] (default 2)");
-  wc->add_option("--lmax", w->lmax, "Highest band, 0..4096")->required();
-  wc->add_option("--json", w->out, "Write the windows here: {\"B\", \"lmax\", \"b\": [[j, l, value], ...]}");
+  wc->add_option("--B", w->dilation, kDilationHelp);
+  add_band_limit(wc, *w, runtime::kMaxNeedletBand);
+  keep_old_spelling(wc, wc->add_option("--out", w->out, "Write the windows here: {\"B\", \"lmax\", \"b\": [[j, l, value], ...]}"), "--json", w->out);
   wc->callback([w, &action] { action = [w] { return run_needlet_window(*w); }; });
   auto t = std::make_shared<NeedletOptions>();
   CLI::App* tc = nc->add_subcommand("tables", "The needlet frame of bands 0..lmax: levels, kernel look-up error and tabulated rotation error per table size");
-  tc->add_option("--B", t->dilation, "Dilation B, in [1.05, 64] (default 2)");
-  tc->add_option("--lmax", t->lmax, "Band limit, 1..63")->required();
-  tc->add_option("--sizes", t->sizes, "Table sizes, e.g. 64,256,1024 (3..1048576; default 64,256,1024,4096,16384)");
+  tc->add_option("--B", t->dilation, kDilationHelp);
+  add_band_limit(tc, *t, runtime::kMaxNeedletFrameBand);
+  tc->add_option("--sizes", t->sizes, "Table sizes, e.g. 64,256,1024 (" + kTableSizeRange + "; default 64,256,1024,4096,16384)");
   tc->add_flag("--gauss", t->gauss, "Gauss product cubatures at every level instead of the shipped designs");
-  tc->add_option("--json", t->out, "Write the tables here (zhf-needlet-tables-1)");
+  keep_old_spelling(tc, tc->add_option("--out", t->out, "Write the tables here (zhf-needlet-tables-1)"), "--json", t->out);
   tc->callback([t, &action] { action = [t] { return run_needlet_tables(*t); }; });
   auto pr = std::make_shared<NeedletOptions>();
   CLI::App* pc = nc->add_subcommand("profile", "One level's needlet against the SH delta of its top band: energy and side lobes outside caps");
-  pc->add_option("--B", pr->dilation, "Dilation B, in [1.05, 64] (default 2)");
+  pc->add_option("--B", pr->dilation, kDilationHelp);
   pc->add_option("--j", pr->j, "Level, 0..16 (default 1)");
-  pc->add_option("--csv", pr->out, "Write both profiles against theta here (degrees, each divided by its peak)");
+  keep_old_spelling(pc, pc->add_option("--out", pr->out, "Write both profiles against theta here as CSV (degrees, each divided by its peak)"), "--csv", pr->out);
   pc->callback([pr, &action] { action = [pr] { return run_needlet_profile(*pr); }; });
   auto mk = std::make_shared<NeedletOptions>();
   CLI::App* mc = nc->add_subcommand("mask", "A signal cut around the equator: which SH and needlet coefficients the cut disturbs");
-  mc->add_option("--B", mk->dilation, "Dilation B, in [1.05, 64] (default 2)");
-  mc->add_option("--lmax", mk->lmax, "Band limit, 1..63")->required();
+  mc->add_option("--B", mk->dilation, kDilationHelp);
+  add_band_limit(mc, *mk, runtime::kMaxNeedletFrameBand);
   mc->add_option("--cut", mk->cut, "Half-width of the cut band in degrees of latitude, 0.1..80 (default 10)");
   mc->add_option("--margin", mk->margin, "Beyond the cut by this many half-wavelengths of the top band (pi / lmax of a level, pi / L for SH), 0..64 (default 4)");
   mc->add_flag("--gauss", mk->gauss, "Gauss product cubatures instead of the shipped designs");
   mc->callback([mk, &action] { action = [mk] { return run_needlet_mask(*mk); }; });
   auto e = std::make_shared<NeedletOptions>();
   CLI::App* ec = nc->add_subcommand("emit", "Emit a needlet expansion's evaluator (kernel look-up tables) as C++, GLSL or HLSL");
-  ec->add_option("--B", e->dilation, "Dilation B, in [1.05, 64] (default 2)");
-  ec->add_option("--lmax", e->lmax, "Band limit, 1..63")->required();
-  ec->add_option("--size", e->size, "Entries per kernel table, 3..1048576 (default 1024)");
+  ec->add_option("--B", e->dilation, kDilationHelp);
+  add_band_limit(ec, *e, runtime::kMaxNeedletFrameBand);
+  ec->add_option("--size", e->size, kTableSizeHelp);
   ec->add_option("--interpolation", e->interpolation, "linear (default) or quadratic");
   ec->add_option("--lang", e->lang, "cpp, glsl or hlsl")->required();
   ec->add_option("--prefix", e->prefix, "Prefix of every emitted name (default zhf_needlets)");
@@ -483,14 +360,14 @@ void add_frames_commands(CLI::App& app, Action& action, const std::string& comma
   ec->callback([e, &action, command_line] { action = [e, command_line] { return run_needlet_emit(*e, command_line); }; });
   auto v = std::make_shared<NeedletOptions>();
   CLI::App* vc = nc->add_subcommand("verify", "Compile and run the emitted needlet evaluators against their CPU mirror and the exact expansion");
-  vc->add_option("--B", v->dilation, "Dilation B, in [1.05, 64] (default 2)");
-  vc->add_option("--lmax", v->lmax, "Band limit, 1..63")->required();
-  vc->add_option("--size", v->size, "Entries per kernel table, 3..1048576 (default 1024)");
+  vc->add_option("--B", v->dilation, kDilationHelp);
+  add_band_limit(vc, *v, runtime::kMaxNeedletFrameBand);
+  vc->add_option("--size", v->size, kTableSizeHelp);
   vc->add_option("--interpolation", v->interpolation, "linear (default) or quadratic");
   vc->add_option("--langs", v->langs, "Languages, e.g. cpp,glsl (default cpp,glsl,hlsl)");
   vc->add_option("--compiler", v->compiler, "C++ compiler and leading arguments (default $CXX, else c++)");
   vc->add_flag("--gauss", v->gauss, "Gauss product cubatures instead of the shipped designs");
-  vc->add_option("--json", v->out, "Write the results here (zhf-needlet-verify-1)");
+  keep_old_spelling(vc, vc->add_option("--out", v->out, "Write the results here (zhf-needlet-verify-1)"), "--json", v->out);
   vc->callback([v, &action] { action = [v] { return run_needlet_verify(*v); }; });
 }
 

@@ -1,0 +1,106 @@
+#!/usr/bin/env python3
+"""Fails when a thing that has one home is written somewhere else.
+
+Run from anywhere: python3 scripts/check_one_place.py. The test suite runs it (ctest: one_place).
+Each rule names its home; a finding prints file:line and the rule, and the exit code is 1.
+
+- Limits (order ranges, counts, sizes): defined in runtime/limits.h only (a test may name a bound
+  of its own on what it measures).
+- Tolerances: in C++ outside the tests, a literal in scientific notation with a negative
+  exponent (1e-6, 2.5e-7) stands in runtime/tolerances.h or runtime/limits.h only (a line that
+  uses one as an input, such as a tiny test angle, says "// an input, not a tolerance"); in the tests,
+  the bound of EXPECT_NEAR / ASSERT_NEAR is a name, never a literal.
+- Lobe table paths: "order_N.json" is built by runtime::table_path (runtime/table_io.h) only.
+- Threads: the pool in runtime/parallel.h and the interrupt watchdog in io/src/signals.cc only (tests may
+  start their own, e.g. to send signals).
+- Random draws: no std::*_distribution (implementation-defined); sh/random.h draws from raw bits.
+- JSON values: runtime::json::Value lives in the readers only (runtime/json.h and the files that
+  read JSON); nothing keeps one in a data type or builds one.
+"""
+import os
+import re
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+SKIP_DIRS = {"generated", "build", ".git", "node_modules", "fuzz_corpus", "data"}
+LIMITS = "runtime/include/zhf/runtime/limits.h"
+TOLERANCES = "runtime/include/zhf/runtime/tolerances.h"
+TABLE_IO = "runtime/include/zhf/runtime/table_io.h"
+PARALLEL = "runtime/include/zhf/runtime/parallel.h"
+WATCHDOG = "io/src/signals.cc"
+RANDOM = "sh/include/zhf/sh/random.h"
+
+
+def sources():
+    for folder, dirs, files in os.walk(ROOT):
+        rel_folder = os.path.relpath(folder, ROOT)
+        dirs[:] = [d for d in dirs if d not in SKIP_DIRS and not d.startswith("build")]
+        for name in files:
+            if name.endswith((".cc", ".h", ".py")):
+                yield os.path.normpath(os.path.join(rel_folder, name))
+
+
+def code_of(line):
+    """The line without its // comment (a // inside a string literal is kept)."""
+    quoted = False
+    for i, c in enumerate(line):
+        if c == '"' and (i == 0 or line[i - 1] != "\\"):
+            quoted = not quoted
+        if not quoted and line.startswith("//", i):
+            return line[:i]
+    return line
+
+
+LIMIT_DEFINITION = re.compile(r"constexpr\s+[\w:]+\s+k(Max|Min)[A-Z]\w*\s*=")
+SCIENTIFIC = re.compile(r"(?<![\w.])\d+(\.\d+)?[eE]-\d+[fFlL]?\b")
+NEAR_LITERAL = re.compile(r"(EXPECT|ASSERT)_NEAR\(.*,\s*-?[\d.]+([eE]-?\d+)?\)\s*(<<|;)")
+TABLE_NAME = re.compile(r"(order_\" \+ [^+]+ \+ \"\.json|order_\{\w+\}\.json)")
+THREAD = re.compile(r"std::thread\b(?!::hardware_concurrency)")
+DISTRIBUTION = re.compile(r"std::\w+_distribution\b")
+INPUT_MARK = "// an input, not a tolerance"
+JSON_VALUE = re.compile(r"json::Value\b")
+JSON_READERS = ("runtime/include/zhf/runtime/", "io/", "codegen/", "frames/src/", "python/src/", "cli/",
+                "tests/", "fuzz/", "verify/src/", "splat/src/")
+
+
+def check(path, findings):
+    cpp = path.endswith((".cc", ".h"))
+    test = path.startswith("tests/")
+    with open(os.path.join(ROOT, path), encoding="utf-8") as f:
+        lines = f.read().split("\n")
+    for number, raw in enumerate(lines, 1):
+        line = code_of(raw) if cpp else raw.split("#")[0]
+        where = f"{path}:{number}"
+        if cpp and not test and path != LIMITS and LIMIT_DEFINITION.search(line):
+            findings.append(f"{where}: a limit defined outside {LIMITS}")
+        if cpp and not test and path not in (LIMITS, TOLERANCES) and SCIENTIFIC.search(line) and INPUT_MARK not in raw:
+            findings.append(f"{where}: a tolerance literal outside {TOLERANCES} ({SCIENTIFIC.search(line).group(0)})")
+        if cpp and test and NEAR_LITERAL.search(line):
+            findings.append(f"{where}: a NEAR bound that is a literal, not a named tolerance")
+        if path != TABLE_IO and TABLE_NAME.search(line):
+            findings.append(f"{where}: a lobe table path built outside runtime::table_path ({TABLE_IO})")
+        if cpp and not test and path not in (PARALLEL, WATCHDOG) and THREAD.search(line):
+            findings.append(f"{where}: threads started outside {PARALLEL}")
+        if cpp and path != RANDOM and DISTRIBUTION.search(line):
+            findings.append(f"{where}: {DISTRIBUTION.search(line).group(0)} is implementation-defined; use {RANDOM}")
+        if cpp and JSON_VALUE.search(line) and not path.startswith(JSON_READERS):
+            findings.append(f"{where}: a runtime::json::Value outside a reader")
+
+
+def main():
+    findings = []
+    for path in sorted(sources()):
+        if path == "scripts/check_one_place.py":
+            continue
+        check(path, findings)
+    for finding in findings:
+        print(finding)
+    if findings:
+        print(f"check_one_place: {len(findings)} finding(s)", file=sys.stderr)
+        return 1
+    print("check_one_place: limits, tolerances, table paths, threads, random draws and JSON values each in one place")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
