@@ -19,9 +19,22 @@ struct BenchOptions {
   std::string orders;
   std::string json;
   std::string plot;
+  std::string from;
 };
 
+// --from: the plots of a report written before, drawn again (nothing measured).
+int redraw(const BenchOptions& o) {
+  if (o.plot.empty()) throw UsageError("--from: give --plot too (it redraws the plots of a saved report)");
+  if (o.quick || !o.orders.empty() || !o.json.empty()) throw UsageError("--from: measures nothing; drop --quick, --orders and --out");
+  io::PendingFile check(o.plot);
+  bench::check_plot_targets(o.plot);
+  const bench::SuiteReport report = bench::read_report(o.from);
+  std::printf("%s\n", bench::write_plots(report, o.plot).c_str());
+  return kExitOk;
+}
+
 int run_bench(const BenchOptions& o) {
+  if (!o.from.empty()) return redraw(o);
   bench::SuiteOptions options;
   options.quick = o.quick;
   if (!o.orders.empty()) options.orders = orders_option("--orders", o.orders, 2, runtime::kMaxBenchOrder);
@@ -69,6 +82,7 @@ void add_bench_command(CLI::App& app, Action& action) {
   c->add_option("--plot", o->plot,
                 "Write the Pareto fronts here (SVG), and beside it FILE_families.svg, FILE_scaling.svg, FILE.csv and FILE.gp "
                 "(replaced only when zhf bench wrote them; needs gnuplot)");
+  c->add_option("--from", o->from, "Redraw the --plot files from a report an earlier --out wrote (measures nothing)");
   c->callback([o, &action] { action = [o] { return run_bench(*o); }; });
 }
 

@@ -624,6 +624,39 @@ nlohmann::ordered_json SuiteReport::to_json() const {
   return j;
 }
 
+SuiteReport read_report(const std::string& path) {
+  const runtime::json::Value root = io::read_json_file(path, runtime::kMaxTableBytes);
+  const runtime::json::Field top(root, path);
+  if (top.member("format").string() != "zhf-bench-1") top.member("format").fail("expected \"zhf-bench-1\"");
+  SuiteReport report;
+  report.cpu = top.member("cpu").string();
+  report.compiler = top.member("compiler").string();
+  report.flags = top.member("flags").string();
+  report.date = top.member("date").string();
+  for (const runtime::json::Field& note : top.member("notes").items(0, 1000)) report.notes.push_back(note.string());
+  for (const runtime::json::Field& row : top.member("rows").items(0, std::size_t(1) << 20)) {
+    Row r;
+    r.method = row.member("method").string();
+    r.scenario = row.member("scenario").string();
+    r.precision = row.member("precision").string();
+    r.variant = row.member("variant").string();
+    r.order = row.member("order").integer(1, runtime::kMaxShOrder);
+    r.ns_median = row.member("ns_median").number(0, 1e300);
+    r.ns_min = row.member("ns_min").number(0, 1e300);
+    r.ns_max = row.member("ns_max").number(0, 1e300);
+    const auto optional = [&](const char* name) { return row.find(name) ? row.member(name).number() : NAN; };
+    r.max_error = optional("max_error");
+    r.rms_error = optional("rms_error");
+    r.worst_unit_error = optional("worst_unit_error");
+    if (row.find("multiplies")) {
+      r.multiplies = row.member("multiplies").integer(0LL, 1LL << 40);
+      r.adds = row.member("adds").integer(0LL, 1LL << 40);
+    }
+    report.rows.push_back(std::move(r));
+  }
+  return report;
+}
+
 std::string SuiteReport::table() const {
   std::ostringstream out;
   char line[300];

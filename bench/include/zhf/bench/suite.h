@@ -40,5 +40,8 @@ struct SuiteReport {
 };
 
 SuiteReport run_suite(const SuiteOptions& options);
+// A report zhf bench --out wrote (zhf-bench-1, at most runtime::kMaxTableBytes), to redraw its
+// plots without measuring again. Throws InputError naming the file and the field.
+SuiteReport read_report(const std::string& path);
 
 }  // namespace zhf::bench
