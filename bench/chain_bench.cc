@@ -24,10 +24,10 @@ void chain(int order, long steps) {
   for (int i = 0; i < n; ++i) f[i] = normal(rng);
   f.normalize();
   std::vector<T> v(f.data(), f.data() + n), next(n), r(9);
-  zhf::sh::Matrix3 total = zhf::sh::Matrix3::Identity();
+  zhf::sh::RotationMatrix total = zhf::sh::RotationMatrix::Identity();
   long checkpoint = 1000;
   for (long k = 1; k <= steps; ++k) {
-    const zhf::sh::Matrix3 step = zhf::sh::rotation_about_axis(zhf::sh::random_direction(rng), 0.01);
+    const zhf::sh::RotationMatrix step = zhf::sh::rotation_about_axis(zhf::sh::random_direction(rng), 0.01);
     total = step * total;
     for (int i = 0; i < 9; ++i) r[i] = static_cast<T>(step(i / 3, i % 3));
     rotator.rotate(r.data(), v.data(), next.data());

@@ -24,7 +24,7 @@ double max_error(const zhf::runtime::Rotator<T>& rotator, int order, int trials)
   double worst = 0;
   std::vector<T> r(9), in(n), out(n);
   for (int k = 0; k < trials; ++k) {
-    const zhf::sh::Matrix3 m = zhf::sh::random_rotation(rng);
+    const zhf::sh::RotationMatrix m = zhf::sh::random_rotation(rng);
     Eigen::VectorXd f(n);
     for (int i = 0; i < n; ++i) f[i] = normal(rng);
     f.normalize();

@@ -22,12 +22,12 @@ constexpr int kPool = 1024;
 
 struct Inputs {
   std::vector<float> r, f;
-  std::vector<zhf::sh::Matrix3> rd;
+  std::vector<zhf::sh::RotationMatrix> rd;
   Inputs(int order) {
     std::mt19937_64 rng(7);
     zhf::sh::Normal<float> normal;
     for (int k = 0; k < kPool; ++k) {
-      const zhf::sh::Matrix3 m = zhf::sh::random_rotation(rng);
+      const zhf::sh::RotationMatrix m = zhf::sh::random_rotation(rng);
       rd.push_back(m);
       for (int i = 0; i < 9; ++i) r.push_back(static_cast<float>(m(i / 3, i % 3)));
       for (int i = 0; i < 3 * order * order; ++i) f.push_back(normal(rng));

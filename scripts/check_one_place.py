@@ -60,7 +60,7 @@ DISTRIBUTION = re.compile(r"std::\w+_distribution\b")
 INPUT_MARK = "// an input, not a tolerance"
 JSON_VALUE = re.compile(r"json::Value\b")
 JSON_READERS = ("runtime/include/zhf/runtime/", "io/", "codegen/", "frames/src/", "python/src/", "cli/",
-                "tests/", "fuzz/", "verify/src/", "splat/src/")
+                "tests/", "fuzz/", "verify/src/", "splat/src/", "bench/src/")
 
 
 def check(path, findings):

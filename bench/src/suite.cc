@@ -54,7 +54,7 @@ struct Scale {
 // reference rotation of every channel.
 struct Pool {
   int order = 0, n = 0, size = 0;
-  std::vector<sh::Matrix3> r;
+  std::vector<sh::RotationMatrix> r;
   std::vector<double> rd, fd;   // 9 and 3 N^2 per input
   std::vector<float> rf, ff;
   std::vector<double> reference;  // 3 N^2 per input
@@ -233,7 +233,7 @@ struct Counted {
 
 void count_zxzxz(int order, Row& row) {
   const sh::ZxzxzRotator<Counted> z(order);
-  const sh::Matrix3 m = sh::rotation_from_zyz(0.3, 1.1, -0.4);
+  const sh::RotationMatrix m = sh::rotation_from_zyz(0.3, 1.1, -0.4);
   std::vector<Counted> r(9), in(order * order), out(order * order);
   for (int i = 0; i < 9; ++i) r[i] = m(i / 3, i % 3);
   Counted::multiplies = Counted::adds = Counted::calls = 0;
@@ -464,7 +464,7 @@ SuiteReport run_suite(const SuiteOptions& o) {
     {
       // The usual general method: band matrices per rotation (double, Eigen), then applied.
       auto ir = [&](const double* r, const double* in, double* out, int channels) {
-        const sh::BandMatrices bands = sh::ivanic_ruedenberg(Eigen::Map<const sh::Matrix3>(r), order);
+        const sh::BandMatrices bands = sh::ivanic_ruedenberg(Eigen::Map<const sh::RotationMatrix>(r), order);
         for (int c = 0; c < channels; ++c) {
           const Eigen::Map<const Eigen::VectorXd> f(in + c * pool.n, pool.n);
           Eigen::Map<Eigen::VectorXd>(out + c * pool.n, pool.n) = sh::apply_band_matrices(bands, f);

@@ -35,8 +35,8 @@ std::vector<Eigen::MatrixXd> band_generators(int l) {
   }
   // About x and y: conjugate by fixed quarter turns carrying z onto x (about y) and onto y
   // (about x), since rot(Q e_z, t) = Q rot(e_z, t) Q^T and D is a representation.
-  const Matrix3 z_to_x = rotation_about_axis(Eigen::Vector3d::UnitY(), kPi / 2);
-  const Matrix3 z_to_y = rotation_about_axis(Eigen::Vector3d::UnitX(), -kPi / 2);
+  const RotationMatrix z_to_x = rotation_about_axis(Eigen::Vector3d::UnitY(), kPi / 2);
+  const RotationMatrix z_to_y = rotation_about_axis(Eigen::Vector3d::UnitX(), -kPi / 2);
   const Eigen::MatrixXd qx = ivanic_ruedenberg(z_to_x, l + 1)[l];
   const Eigen::MatrixXd qy = ivanic_ruedenberg(z_to_y, l + 1)[l];
   return {qx * lz * qx.transpose(), qy * lz * qy.transpose(), lz};

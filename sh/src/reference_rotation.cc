@@ -50,7 +50,7 @@ double ir_w(int m, int n, int l, const ConstBandView& r1, const ConstBandView& p
 
 }  // namespace
 
-BandMatrices ivanic_ruedenberg(const Matrix3& r, int order) {
+BandMatrices ivanic_ruedenberg(const RotationMatrix& r, int order) {
   BandMatrices bands;
   if (order <= 0) return bands;
   bands.push_back(Eigen::MatrixXd::Ones(1, 1));
@@ -101,7 +101,7 @@ void gauss_legendre(int n, std::vector<double>& nodes, std::vector<double>& weig
   }
 }
 
-BandMatrices quadrature_rotation(const Matrix3& r, int order) {
+BandMatrices quadrature_rotation(const RotationMatrix& r, int order) {
   BandMatrices bands;
   for (int l = 0; l < order; ++l) bands.push_back(Eigen::MatrixXd::Zero(2 * l + 1, 2 * l + 1));
   // Integrands are products of two band-l functions: degree <= 2(order-1) in z and in phi.

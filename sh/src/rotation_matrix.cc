@@ -9,19 +9,19 @@
 
 namespace zhf::sh {
 
-Matrix3 rotation_about_axis(const Eigen::Vector3d& axis, double angle) {
+RotationMatrix rotation_about_axis(const Eigen::Vector3d& axis, double angle) {
   const Eigen::Vector3d u = axis.normalized();
   return to_eigen(runtime::rotation_about_unit_axis(u.data(), angle));
 }
 
-Matrix3 random_rotation(std::mt19937_64& rng) {
+RotationMatrix random_rotation(std::mt19937_64& rng) {
   sh::Normal<> normal(0.0, 1.0);
   Eigen::Quaterniond q;
   do {
     q.coeffs() << normal(rng), normal(rng), normal(rng), normal(rng);
   } while (!(q.norm() > 0));
   q.normalize();
-  return Matrix3(q.toRotationMatrix());
+  return RotationMatrix(q.toRotationMatrix());
 }
 
 Eigen::Vector3d random_direction(std::mt19937_64& rng) {
@@ -33,10 +33,10 @@ Eigen::Vector3d random_direction(std::mt19937_64& rng) {
   return v.normalized();
 }
 
-std::vector<std::pair<std::string, Matrix3>> extreme_rotations(const std::vector<Eigen::Vector3d>& lobes) {
+std::vector<std::pair<std::string, RotationMatrix>> extreme_rotations(const std::vector<Eigen::Vector3d>& lobes) {
   const double pi = runtime::kPi;
-  std::vector<std::pair<std::string, Matrix3>> out = {
-      {"identity", Matrix3::Identity()},
+  std::vector<std::pair<std::string, RotationMatrix>> out = {
+      {"identity", RotationMatrix::Identity()},
       {"180 about x", rotation_about_axis(Eigen::Vector3d::UnitX(), pi)},
       {"180 about y", rotation_about_axis(Eigen::Vector3d::UnitY(), pi)},
       {"180 about z", rotation_about_axis(Eigen::Vector3d::UnitZ(), pi)},
@@ -49,9 +49,9 @@ std::vector<std::pair<std::string, Matrix3>> extreme_rotations(const std::vector
       {"1e-8 rad about z", rotation_about_axis(Eigen::Vector3d::UnitZ(), 1e-8)},  // an input, not a tolerance
   };
   // The turn carrying unit a onto unit b (none needed when they already agree).
-  auto carry = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) -> std::pair<bool, Matrix3> {
+  auto carry = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) -> std::pair<bool, RotationMatrix> {
     const Eigen::Vector3d axis = a.cross(b);
-    if (axis.norm() < runtime::tolerance::kParallelAxes) return {false, Matrix3::Identity()};
+    if (axis.norm() < runtime::tolerance::kParallelAxes) return {false, RotationMatrix::Identity()};
     return {true, rotation_about_axis(axis, std::acos(std::clamp(a.dot(b), -1.0, 1.0)))};
   };
   for (std::size_t d = 0; d < lobes.size() && d < 3; ++d) {

@@ -119,7 +119,7 @@ TEST(Analyze, RotatedZonalFunctionRevealsItsAxis) {
   for (double& x : weights) x = normal(rng);
   // Zonal about +z, then turned by a random rotation: its axis is R e_z.
   const Eigen::VectorXd about_z = zonal_coefficients(Eigen::Vector3d::UnitZ(), weights);
-  const sh::Matrix3 r = sh::random_rotation(rng);
+  const sh::RotationMatrix r = sh::random_rotation(rng);
   const Eigen::VectorXd f = sh::apply_band_matrices(sh::ivanic_ruedenberg(r, 6), about_z);
   const nlohmann::json a = analyze(dir, nlohmann::json::array({std::vector<double>(f.data(), f.data() + f.size())}).dump(), 1e-6);
   EXPECT_EQ(a["zonal"], true);

@@ -195,7 +195,7 @@ TEST(NeedletFrame, RotationExactAndTabulated) {
   const std::vector<double> f = random_sh(c.band_limit, rng);
   const std::vector<double> beta = frame.analyze(f);
   const Cubature samples = gauss_product_cubature(2 * c.band_limit);
-  const sh::Matrix3 r = sh::random_rotation(rng);
+  const sh::RotationMatrix r = sh::random_rotation(rng);
   std::vector<double> values;
   for (const Point& p : samples.points) {
     const Eigen::Vector3d back = r.transpose() * Eigen::Vector3d(p[0], p[1], p[2]);

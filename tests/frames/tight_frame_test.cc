@@ -19,7 +19,7 @@ using runtime::tolerance::kFloatRotation;
 using runtime::tolerance::kTightFrameRotation;
 
 template <class T>
-double worst_error(const TightFrameRotator<T>& rotator, const sh::Matrix3& r, std::mt19937_64& rng) {
+double worst_error(const TightFrameRotator<T>& rotator, const sh::RotationMatrix& r, std::mt19937_64& rng) {
   const int order = rotator.order(), n = order * order;
   sh::Normal<> normal(0, 1.0 / order);
   Eigen::VectorXd f(n);
@@ -43,7 +43,7 @@ TEST(TightFrameRotation, MatchesTheReferenceAtEveryOrderOnDesignsAndGaussNodes) 
       const Cubature nodes = gauss ? gauss_product_cubature(2 * (order - 1)) : design_cubature(designs, 2 * (order - 1));
       const TightFrameRotator<double> d(order, nodes);
       const TightFrameRotator<float> f(order, nodes);
-      std::vector<std::pair<std::string, sh::Matrix3>> turns = sh::extreme_rotations({});
+      std::vector<std::pair<std::string, sh::RotationMatrix>> turns = sh::extreme_rotations({});
       for (int i = 0; i < 4; ++i) turns.push_back({"random " + std::to_string(i), sh::random_rotation(rng)});
       for (const auto& [name, r] : turns) {
         EXPECT_LT(worst_error(d, r, rng), kTightFrameRotation) << "order " << order << ", " << nodes.name << ", " << name;

@@ -17,9 +17,9 @@ namespace zhf {
 namespace {
 
 TEST(RotationText, EveryFormGivesTheReferenceMatrix) {
-  const sh::Matrix3 zyz = sh::rotation_from_zyz(0.4, 1.2, -2.0);
+  const sh::RotationMatrix zyz = sh::rotation_from_zyz(0.4, 1.2, -2.0);
   const auto a = io::parse_rotation("0.4, 1.2, -2.0", io::RotationForm::kZyz, "--zyz").matrix;
-  const sh::Matrix3 turn = sh::rotation_about_axis(Eigen::Vector3d(1, -2, 0.5), 0.7);
+  const sh::RotationMatrix turn = sh::rotation_about_axis(Eigen::Vector3d(1, -2, 0.5), 0.7);
   const auto b = io::parse_rotation("1 -2 0.5 0.7", io::RotationForm::kAxisAngle, "--axis-angle").matrix;
   const auto c = io::parse_rotation("0 -1 0  1 0 0  0 0 1", io::RotationForm::kMatrix, "--matrix").matrix;
   const auto column = io::parse_rotation("0 -1 0  1 0 0  0 0 1", io::RotationForm::kMatrixColumnMajor, "--matrix").matrix;

@@ -42,7 +42,7 @@ std::vector<T> unit_vectors(std::size_t count, int order, std::mt19937_64& rng) 
 template <class T>
 void check_shared(int order, double tolerance) {
   std::mt19937_64 rng(order);
-  const sh::Matrix3 m = sh::random_rotation(rng);
+  const sh::RotationMatrix m = sh::random_rotation(rng);
   T r[9];
   for (int i = 0; i < 9; ++i) r[i] = T(m(i / 3, i % 3));
   const sh::BandMatrices exact = sh::ivanic_ruedenberg(m, order);
@@ -80,7 +80,7 @@ TEST(Batch, SharedRotationMatchesTheReferenceAtEveryGeneratedOrder) {
 // reference per channel. Counts not a multiple of the pack
 // width, so the planar tail runs too.
 template <class T>
-void check_layouts(int order, const sh::Matrix3& m, double tolerance) {
+void check_layouts(int order, const sh::RotationMatrix& m, double tolerance) {
   std::mt19937_64 rng(100 + order);
   T r[9];
   for (int i = 0; i < 9; ++i) r[i] = T(m(i / 3, i % 3));
@@ -123,11 +123,11 @@ void check_layouts(int order, const sh::Matrix3& m, double tolerance) {
 
 TEST(Batch, BulkLayoutsMatchTheReferenceAtEveryGeneratedOrder) {
   std::mt19937_64 rng(7);
-  const std::vector<sh::Matrix3> rotations = {sh::random_rotation(rng), sh::Matrix3::Identity(),
-                                              sh::Matrix3(Eigen::AngleAxisd(runtime::kPi, Eigen::Vector3d(1, 1, 1).normalized())),
-                                              sh::Matrix3(Eigen::AngleAxisd(1e-7, Eigen::Vector3d::UnitZ()))};
+  const std::vector<sh::RotationMatrix> rotations = {sh::random_rotation(rng), sh::RotationMatrix::Identity(),
+                                              sh::RotationMatrix(Eigen::AngleAxisd(runtime::kPi, Eigen::Vector3d(1, 1, 1).normalized())),
+                                              sh::RotationMatrix(Eigen::AngleAxisd(1e-7, Eigen::Vector3d::UnitZ()))};
   for (int order = 2; order <= runtime::kMaxGeneratedOrder; ++order)
-    for (const sh::Matrix3& m : rotations) {
+    for (const sh::RotationMatrix& m : rotations) {
       check_layouts<double>(order, m, kDouble);
       check_layouts<float>(order, m, kFloatRotation);
     }
@@ -139,10 +139,10 @@ TEST(Batch, BulkLayoutsMatchTheReferenceAtEveryGeneratedOrder) {
 template <int N, class T>
 void check_soa(double tolerance) {
   std::mt19937_64 rng(200 + N);
-  std::vector<sh::Matrix3> rotations = {sh::Matrix3::Identity(), sh::Matrix3(Eigen::AngleAxisd(runtime::kPi, Eigen::Vector3d::UnitX())),
-                                        sh::Matrix3(Eigen::AngleAxisd(runtime::kPi, Eigen::Vector3d(1, 1, 1).normalized())),
-                                        sh::Matrix3(Eigen::AngleAxisd(1e-7, Eigen::Vector3d::UnitZ())),
-                                        sh::Matrix3(Eigen::AngleAxisd(runtime::kPi / 2, Eigen::Vector3d::UnitY()))};
+  std::vector<sh::RotationMatrix> rotations = {sh::RotationMatrix::Identity(), sh::RotationMatrix(Eigen::AngleAxisd(runtime::kPi, Eigen::Vector3d::UnitX())),
+                                        sh::RotationMatrix(Eigen::AngleAxisd(runtime::kPi, Eigen::Vector3d(1, 1, 1).normalized())),
+                                        sh::RotationMatrix(Eigen::AngleAxisd(1e-7, Eigen::Vector3d::UnitZ())),
+                                        sh::RotationMatrix(Eigen::AngleAxisd(runtime::kPi / 2, Eigen::Vector3d::UnitY()))};
   // Past the threshold, so the two-thread run splits the batch; 5 past a multiple of 8 lanes.
   while (rotations.size() < runtime::kParallelBatchThreshold + 5) rotations.push_back(sh::random_rotation(rng));
   const std::size_t count = rotations.size(), n = N * N;
@@ -161,7 +161,7 @@ void check_soa(double tolerance) {
     gen::Kernels<N>::template rotate<T>(rv, &vectors[v * n], single);
     Eigen::VectorXd f(n);
     for (std::size_t i = 0; i < n; ++i) f[i] = double(vectors[v * n + i]);
-    sh::Matrix3 exact_r;
+    sh::RotationMatrix exact_r;
     for (int k = 0; k < 9; ++k) exact_r(k / 3, k % 3) = double(rv[k]);
     const Eigen::VectorXd g = sh::apply_band_matrices(sh::ivanic_ruedenberg(exact_r, N), f);
     for (std::size_t i = 0; i < n; ++i) {
@@ -188,7 +188,7 @@ TEST(Batch, PerVectorRotationsDoNotDependOnTheThreadCount) {
   const std::size_t count = runtime::kParallelBatchThreshold * 2 + 3, n = kOrder * kOrder;
   std::vector<float> r(9 * count);
   for (std::size_t v = 0; v < count; ++v) {
-    const sh::Matrix3 m = sh::random_rotation(rng);
+    const sh::RotationMatrix m = sh::random_rotation(rng);
     for (int i = 0; i < 9; ++i) r[9 * v + i] = float(m(i / 3, i % 3));
   }
   const std::vector<float> in = unit_vectors<float>(count, kOrder, rng);
@@ -207,7 +207,7 @@ TEST(Batch, QuaternionsGiveEigensRotation) {
   for (int k = 0; k < 200; ++k) {
     const double scale = std::pow(10.0, 100 * (k % 7 - 3));  // lengths from 1e-300 to 1e300
     const Eigen::Quaterniond q(normal(rng), normal(rng), normal(rng), normal(rng));
-    const sh::Matrix3 expected = q.normalized().toRotationMatrix();
+    const sh::RotationMatrix expected = q.normalized().toRotationMatrix();
     const Eigen::Vector4d s = q.coeffs() * scale;  // x, y, z, w
     runtime::Matrix3 r, negated;
     ASSERT_TRUE(runtime::rotation_from_quaternion(s[3], s[0], s[1], s[2], r));

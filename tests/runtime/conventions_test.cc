@@ -121,7 +121,7 @@ TEST(Orthogonal, ReflectionsAreTheReflectedFunction) {
   for (int order = 2; order <= runtime::kMaxGeneratedOrder; ++order) {
     const auto rotator = rotator_of(order);
     for (int k = 0; k < 10; ++k) {
-      const sh::Matrix3 r = sh::random_rotation(rng);
+      const sh::RotationMatrix r = sh::random_rotation(rng);
       Matrix3 q = sh::to_array(r);
       if (k % 2) {
         for (double& x : q) x = -x;  // a rotation times the inversion

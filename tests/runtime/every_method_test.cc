@@ -31,7 +31,7 @@ using namespace runtime::tolerance;
 
 struct Extreme {
   std::string name;
-  sh::Matrix3 r;
+  sh::RotationMatrix r;
 };
 
 // The shared extreme set (sh::extreme_rotations), with the lobes of the order at hand.
@@ -50,11 +50,11 @@ typename runtime::KernelSet<T>::Kernel lanes_kernel(int order) {
   });
 }
 
-using Method = std::function<void(const sh::Matrix3&, const Eigen::VectorXd&, Eigen::VectorXd&)>;
+using Method = std::function<void(const sh::RotationMatrix&, const Eigen::VectorXd&, Eigen::VectorXd&)>;
 
 template <class T>
 Method through(std::function<void(const T*, const T*, T*)> rotate, int channels = 1) {
-  return [rotate, channels](const sh::Matrix3& m, const Eigen::VectorXd& f, Eigen::VectorXd& g) {
+  return [rotate, channels](const sh::RotationMatrix& m, const Eigen::VectorXd& f, Eigen::VectorXd& g) {
     std::vector<T> r(9), in(channels * f.size()), out(channels * f.size());
     for (int i = 0; i < 9; ++i) r[i] = static_cast<T>(m(i / 3, i % 3));
     // Channel c holds (c + 1) / channels f: the last is f, and a channel mixed up shows.

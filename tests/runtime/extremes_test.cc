@@ -15,7 +15,7 @@
 namespace zhf {
 namespace {
 
-std::vector<float> to_float(const sh::Matrix3& m) {
+std::vector<float> to_float(const sh::RotationMatrix& m) {
   std::vector<float> r(9);
   for (int i = 0; i < 9; ++i) r[i] = static_cast<float>(m(i / 3, i % 3));
   return r;
@@ -35,9 +35,9 @@ TEST(Extremes, LongChainOfSmallRotationsInFloat) {
   for (int i = 0; i < f.size(); ++i) f[i] = normal(rng);
   f.normalize();
   std::vector<float> v(f.data(), f.data() + f.size()), next(v.size());
-  sh::Matrix3 total = sh::Matrix3::Identity();
+  sh::RotationMatrix total = sh::RotationMatrix::Identity();
   for (int k = 0; k < kSteps; ++k) {
-    const sh::Matrix3 step = sh::rotation_about_axis(sh::random_direction(rng), 0.01);
+    const sh::RotationMatrix step = sh::rotation_about_axis(sh::random_direction(rng), 0.01);
     total = step * total;
     rotator.rotate(to_float(step).data(), v.data(), next.data());
     v.swap(next);
@@ -72,7 +72,7 @@ TEST(Extremes, NonFiniteCoefficientsPropagateAndNeverCrash) {
 TEST(Extremes, HugeTinyAndZeroMagnitudesInFloat) {
   for (int order = 2; order <= 8; ++order) {
     const auto rotator = runtime::Rotator<float>::with(gen::fastest_kernels<float>(order));
-    const sh::Matrix3 m = sh::rotation_about_axis(Eigen::Vector3d(-1, 0.5, 2), 2.2);
+    const sh::RotationMatrix m = sh::rotation_about_axis(Eigen::Vector3d(-1, 0.5, 2), 2.2);
     const std::vector<float> r = to_float(m);
     std::mt19937_64 rng(order);
     sh::Normal<> normal;
@@ -96,7 +96,7 @@ TEST(Extremes, HugeTinyAndZeroMagnitudesInFloat) {
 }
 
 TEST(Extremes, ValidateMeasuresTheDefectAndNearestRotationRepairs) {
-  const sh::Matrix3 good = sh::rotation_about_axis(Eigen::Vector3d(0.3, -1, 0.2), 1.1);
+  const sh::RotationMatrix good = sh::rotation_about_axis(Eigen::Vector3d(0.3, -1, 0.2), 1.1);
   double r[9];
   for (int i = 0; i < 9; ++i) r[i] = good(i / 3, i % 3);
   EXPECT_TRUE(runtime::validate_rotation(r).ok);
@@ -132,7 +132,7 @@ TEST(Extremes, ValidateMeasuresTheDefectAndNearestRotationRepairs) {
 
 TEST(Extremes, OrdersOneAndTwoNeedNoLobes) {
   const auto rotator = runtime::Rotator<double>::of<2>();
-  const sh::Matrix3 m = sh::rotation_about_axis(Eigen::Vector3d(1, 1, 0), 3.14159265358979323846);
+  const sh::RotationMatrix m = sh::rotation_about_axis(Eigen::Vector3d(1, 1, 0), 3.14159265358979323846);
   double r[9], in[4] = {0.5, 0.1, -0.7, 0.3}, out[4];
   for (int i = 0; i < 9; ++i) r[i] = m(i / 3, i % 3);
   rotator.rotate(r, in, out);

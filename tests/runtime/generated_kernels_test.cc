@@ -34,7 +34,7 @@ constexpr double kFloatLobeStageWorstUnitVector = runtime::tolerance::kFloatLobe
 constexpr double kSameArithmetic = 0.0;
 
 struct Case {
-  sh::Matrix3 r;
+  sh::RotationMatrix r;
   Eigen::VectorXd f;
   Eigen::VectorXd reference;
 };
@@ -60,7 +60,7 @@ std::vector<T> to(const Eigen::VectorXd& v) {
   return std::vector<T>(v.data(), v.data() + v.size());
 }
 template <class T>
-std::vector<T> to(const sh::Matrix3& r) {
+std::vector<T> to(const sh::RotationMatrix& r) {
   std::vector<T> out(9);
   for (int i = 0; i < 9; ++i) out[i] = static_cast<T>(r(i / 3, i % 3));
   return out;
@@ -181,12 +181,12 @@ void check_composition() {
   using T = double;
   std::mt19937_64 rng(300 + N);
   for (int k = 0; k < 100; ++k) {
-    const sh::Matrix3 r1 = sh::random_rotation(rng), r2 = sh::random_rotation(rng);
+    const sh::RotationMatrix r1 = sh::random_rotation(rng), r2 = sh::random_rotation(rng);
     const auto f = to<T>(cases(N, 1, 400 + k)[0].f);
     std::vector<T> step(N * N), twice(N * N), once(N * N);
     Kernels<N>::template rotate<T>(to<T>(r2).data(), f.data(), step.data());
     Kernels<N>::template rotate<T>(to<T>(r1).data(), step.data(), twice.data());
-    Kernels<N>::template rotate<T>(to<T>(sh::Matrix3(r1 * r2)).data(), f.data(), once.data());
+    Kernels<N>::template rotate<T>(to<T>(sh::RotationMatrix(r1 * r2)).data(), f.data(), once.data());
     for (int i = 0; i < N * N; ++i) EXPECT_NEAR(twice[i], once[i], kDoubleTolerance) << "order " << N << " index " << i;
   }
 }
@@ -212,7 +212,7 @@ void check_worst_unit_vector(Rotate rotate, double tolerance, const char* path, 
   double worst = 0;
   int worst_index = 0, worst_trial = 0;
   for (int k = 0; k < kRotations; ++k) {
-    const sh::Matrix3 r = sh::random_rotation(rng);
+    const sh::RotationMatrix r = sh::random_rotation(rng);
     const auto rf = to<float>(r);
     int row = 0;
     const double e = sh::worst_unit_input_error<float>(

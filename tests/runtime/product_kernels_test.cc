@@ -91,7 +91,7 @@ void check_shading() {
   std::mt19937_64 rng(90 + N);
   const double tolerance = N * runtime::tolerance::kFloatLobeStageWorstUnitInput;
   for (size_t k = 0; k + 1 < inputs.size(); ++k) {
-    const sh::Matrix3 r = sh::random_rotation(rng);
+    const sh::RotationMatrix r = sh::random_rotation(rng);
     const Eigen::VectorXd light = Eigen::Map<const Eigen::VectorXd>(inputs[k].data(), n);
     const Eigen::VectorXd rotated = sh::apply_band_matrices(sh::ivanic_ruedenberg(r, N), light);
     const double* t = inputs[k + 1].data();

@@ -93,7 +93,7 @@ class ProductMixes : public ::testing::TestWithParam<int> {
     for (int i = 0; i < order_ * order_; ++i) t.values.push_back(normal(rng) / order_);
     if (zhf) t.table = &table_;
     if (rotated) {
-      const sh::Matrix3 r = sh::random_rotation(rng);
+      const sh::RotationMatrix r = sh::random_rotation(rng);
       for (int i = 0; i < 9; ++i) t.r[i] = r(i / 3, i % 3);
     }
     return t;

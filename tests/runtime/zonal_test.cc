@@ -29,7 +29,7 @@ TEST(Zonal, RuntimeFastPathMatchesTheReferenceRotation) {
       for (double& w : weights) w = normal(rng);
       std::vector<double> f(n), got(n);
       zonal.project(axis.data(), weights.data(), f.data());
-      const sh::Matrix3 r = sh::random_rotation(rng);
+      const sh::RotationMatrix r = sh::random_rotation(rng);
       const Eigen::VectorXd expected =
           sh::apply_band_matrices(sh::ivanic_ruedenberg(r, order), Eigen::Map<Eigen::VectorXd>(f.data(), n));
       zonal.rotate(r.data(), axis.data(), weights.data(), got.data());

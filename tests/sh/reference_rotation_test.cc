@@ -33,7 +33,7 @@ double evaluate(const Eigen::VectorXd& f, int order, const Eigen::Vector3d& w) {
 }
 
 // The shared extreme set, and axes next to the poles, where Euler-angle methods break.
-std::vector<std::pair<std::string, Matrix3>> special_rotations() {
+std::vector<std::pair<std::string, RotationMatrix>> special_rotations() {
   auto out = extreme_rotations({});
   out.push_back({"axis near north pole", rotation_about_axis(Eigen::Vector3d(1e-9, 0, 1), 0.7)});
   out.push_back({"axis near south pole", rotation_about_axis(Eigen::Vector3d(0, -1e-9, -1), 2.1)});
@@ -54,7 +54,7 @@ TEST(ReferenceRotation, MethodsAgreeAtOrder8) {
   for (const auto& [name, r] : special_rotations())
     expect_bands_near(ivanic_ruedenberg(r, 8), quadrature_rotation(r, 8), kReferenceAgreement, name);
   for (int i = 0; i < 20; ++i) {
-    const Matrix3 r = random_rotation(rng);
+    const RotationMatrix r = random_rotation(rng);
     expect_bands_near(ivanic_ruedenberg(r, 8), quadrature_rotation(r, 8), kReferenceAgreement,
                       "random " + std::to_string(i));
   }
@@ -63,7 +63,7 @@ TEST(ReferenceRotation, MethodsAgreeAtOrder8) {
 TEST(ReferenceRotation, MethodsAgreeAtOrder32) {
   std::mt19937_64 rng(2);
   for (int i = 0; i < 3; ++i) {
-    const Matrix3 r = random_rotation(rng);
+    const RotationMatrix r = random_rotation(rng);
     expect_bands_near(ivanic_ruedenberg(r, 32), quadrature_rotation(r, 32), kReferenceAgreement,
                       "random " + std::to_string(i));
   }
@@ -89,7 +89,7 @@ TEST(ReferenceRotation, ComposesAsAGroupAction) {
   constexpr int kOrder = 10;
   std::mt19937_64 rng(4);
   for (int i = 0; i < 10; ++i) {
-    const Matrix3 r1 = random_rotation(rng), r2 = random_rotation(rng);
+    const RotationMatrix r1 = random_rotation(rng), r2 = random_rotation(rng);
     const Eigen::VectorXd f = random_coefficients(kOrder, rng);
     const Eigen::VectorXd step = apply_band_matrices(ivanic_ruedenberg(r1, kOrder),
                                                      apply_band_matrices(ivanic_ruedenberg(r2, kOrder), f));
@@ -99,7 +99,7 @@ TEST(ReferenceRotation, ComposesAsAGroupAction) {
 }
 
 TEST(ReferenceRotation, IdentityIsExact) {
-  const BandMatrices bands = ivanic_ruedenberg(Matrix3::Identity(), 12);
+  const BandMatrices bands = ivanic_ruedenberg(RotationMatrix::Identity(), 12);
   for (size_t l = 0; l < bands.size(); ++l)
     EXPECT_LT((bands[l] - Eigen::MatrixXd::Identity(2 * l + 1, 2 * l + 1)).cwiseAbs().maxCoeff(), kExactToRounding)
         << "band " << l;

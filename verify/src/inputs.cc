@@ -34,7 +34,7 @@ Inputs make_inputs(int order, int random_count, const runtime::LobeTable& table,
     if (l >= 0 && l < order) in.live[l] = false;
   std::vector<Eigen::Vector3d> lobes;
   for (const runtime::TableLobe& lobe : table.lobes) lobes.emplace_back(lobe.xyz[0], lobe.xyz[1], lobe.xyz[2]);
-  std::vector<std::pair<std::string, sh::Matrix3>> rotations = sh::extreme_rotations(lobes);
+  std::vector<std::pair<std::string, sh::RotationMatrix>> rotations = sh::extreme_rotations(lobes);
   std::mt19937_64 rng(20261122 + order);
   for (int k = 0; k < random_count; ++k) rotations.push_back({"random", sh::random_rotation(rng)});
   sh::Normal<> normal;
@@ -73,7 +73,7 @@ std::vector<std::vector<double>> reference_outputs(const Inputs& in, const runti
   });
   const runtime::ShProduct product(products ? in.order : 1);
   for (int v = 0; v < in.count; ++v) {
-    sh::Matrix3 r;
+    sh::RotationMatrix r;
     for (int i = 0; i < 9; ++i) r(i / 3, i % 3) = in.rotations[9 * v + i];
     const sh::BandMatrices bands = sh::ivanic_ruedenberg(r, in.order);
     std::vector<Eigen::VectorXd> rotated(kMaxChannels), zonal(kMaxChannels);

@@ -15,12 +15,12 @@ using BandMatrices = std::vector<Eigen::MatrixXd>;  // entry l is (2l+1)^2, rows
 
 // Ivanic & Ruedenberg's recurrence (J. Phys. Chem. 1996, with the 1998 errata): each band
 // from band 1 and the previous band.
-BandMatrices ivanic_ruedenberg(const Matrix3& r, int order);
+BandMatrices ivanic_ruedenberg(const RotationMatrix& r, int order);
 
 // Projection of f(R^T w) back onto the SH basis with a product quadrature that is exact for
 // the band-limited integrands (Gauss-Legendre in z x uniform phi): D_l[m'][m] =
 // sum_k w_k y_l^m'(w_k) y_l^m(R^T w_k). Slow, but shares nothing with the recurrence.
-BandMatrices quadrature_rotation(const Matrix3& r, int order);
+BandMatrices quadrature_rotation(const RotationMatrix& r, int order);
 
 // Applies band matrices to a coefficient vector of order matrices.size().
 Eigen::VectorXd apply_band_matrices(const BandMatrices& bands, const Eigen::VectorXd& f);

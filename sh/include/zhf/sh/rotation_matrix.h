@@ -16,29 +16,29 @@
 
 namespace zhf::sh {
 
-using Matrix3 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
+using RotationMatrix = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
 
-inline Matrix3 to_eigen(const runtime::Matrix3& r) { return Eigen::Map<const Matrix3>(r.data()); }
-inline runtime::Matrix3 to_array(const Matrix3& r) {
+inline RotationMatrix to_eigen(const runtime::Matrix3& r) { return Eigen::Map<const RotationMatrix>(r.data()); }
+inline runtime::Matrix3 to_array(const RotationMatrix& r) {
   runtime::Matrix3 out;
-  Eigen::Map<Matrix3>(out.data()) = r;
+  Eigen::Map<RotationMatrix>(out.data()) = r;
   return out;
 }
 
 // A right-handed turn by angle (radians) about axis (any length but zero).
-Matrix3 rotation_about_axis(const Eigen::Vector3d& axis, double angle);
+RotationMatrix rotation_about_axis(const Eigen::Vector3d& axis, double angle);
 // R = Rz(alpha) Ry(beta) Rz(gamma).
-inline Matrix3 rotation_from_zyz(double alpha, double beta, double gamma) {
+inline RotationMatrix rotation_from_zyz(double alpha, double beta, double gamma) {
   return to_eigen(runtime::rotation_from_zyz(alpha, beta, gamma));
 }
 // Uniform (Haar) random rotation from a unit quaternion.
-Matrix3 random_rotation(std::mt19937_64& rng);
+RotationMatrix random_rotation(std::mt19937_64& rng);
 // Uniform random unit vector.
 Eigen::Vector3d random_direction(std::mt19937_64& rng);
 
 // The rotations where methods break if they break: identity, half turns about the axes and
 // diagonals, Euler gimbal lock (beta = 0, pi, 1e-9), turns of 1e-7 and 1e-8 rad, and, for the
 // lobes given, rotations carrying lobes 0..2 onto the pole and lobe 0 onto lobe 1. Named.
-std::vector<std::pair<std::string, Matrix3>> extreme_rotations(const std::vector<Eigen::Vector3d>& lobes);
+std::vector<std::pair<std::string, RotationMatrix>> extreme_rotations(const std::vector<Eigen::Vector3d>& lobes);
 
 }  // namespace zhf::sh
