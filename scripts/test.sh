@@ -4,14 +4,17 @@
 #      module's pytest suite among them);
 #   2. every test again under AddressSanitizer + UndefinedBehaviorSanitizer (the Python module
 #      aside: an instrumented extension cannot load into an uninstrumented interpreter);
-#   3. each libFuzzer target for ZHF_FUZZ_SECONDS (default 60) on its seed corpus.
+#   3. each libFuzzer target for ZHF_FUZZ_SECONDS (default 60) on its seed corpus, one per core at a time.
 # Non-zero exit on any failure. ZHF_QUICK=1 runs stage 1 only.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
+started=$SECONDS
+elapsed() { echo "$(((SECONDS - started) / 60)) min $(((SECONDS - started) % 60)) s"; }
 cmake --build "$ZHF_BUILD" -j "$ZHF_JOBS"
 
 echo "== stage 1: tests (Release)"
 ctest --test-dir "$ZHF_BUILD" --output-on-failure -j "$ZHF_JOBS"
+echo "== stage 1 done at $(elapsed)"
 [ "${ZHF_QUICK:-0}" = 1 ] && exit 0
 
 echo "== stage 2: tests under ASan + UBSan"
@@ -23,23 +26,38 @@ cmake -S "$ZHF_ROOT" -B "$asan_build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo
 cmake --build "$asan_build" -j "$ZHF_JOBS"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 ctest --test-dir "$asan_build" --output-on-failure -j "$ZHF_JOBS"
+echo "== stage 2 done at $(elapsed)"
 
 echo "== stage 3: fuzzing"
 fuzz_build="${ZHF_BUILD}-fuzz"
 CC=clang CXX=clang++ cmake -S "$ZHF_ROOT" -B "$fuzz_build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "$debug_flags" -DZHF_FUZZ=ON >/dev/null
 cmake --build "$fuzz_build" -j "$ZHF_JOBS"
-for corpus in json lobe_table coefficients scene manifest rotation_text ply hdr; do
-  target="fuzz_$corpus"
+# One fuzzer per core at a time: each for ZHF_FUZZ_SECONDS on a private copy of its corpus.
+fuzz_one() {
+  local corpus=$1 target="fuzz_$1" work
   work=$(mktemp -d)
   cp "$ZHF_ROOT"/tests/fuzz_corpus/$corpus/* "$work/"
-  echo "-- $target for ${ZHF_FUZZ_SECONDS:-60} s"
   "$fuzz_build/fuzz/$target" -max_total_time="${ZHF_FUZZ_SECONDS:-60}" -dict="$ZHF_ROOT/tests/fuzz_corpus/json.dict" \
-    -max_len=200000 -artifact_prefix="$work/" -print_final_stats=1 "$work" 2>&1 \
-    | grep -E "^(Done|stat::number_of_executed_units)|ERROR|SUMMARY" || true
+    -max_len=200000 -artifact_prefix="$work/" -print_final_stats=1 "$work" >"$work/log" 2>&1 || true
+  echo "-- $target: $(grep -E '^stat::number_of_executed_units' "$work/log" | tr -s ' ' | cut -d' ' -f2) runs"
+  grep -E "ERROR|SUMMARY" "$work/log" || true
   if ls "$work"/crash-* "$work"/leak-* "$work"/timeout-* "$work"/oom-* >/dev/null 2>&1; then
     echo "$target found a failing input: $(ls "$work"/crash-* "$work"/leak-* "$work"/timeout-* "$work"/oom-* 2>/dev/null | head -1)" >&2
-    exit 1
+    return 1
   fi
   rm -rf "$work"
+}
+pids=()
+failed=0
+for corpus in json lobe_table coefficients scene manifest rotation_text ply hdr; do
+  fuzz_one "$corpus" &
+  pids+=($!)
+  if [ ${#pids[@]} -ge "$ZHF_JOBS" ]; then
+    wait "${pids[0]}" || failed=1
+    pids=("${pids[@]:1}")
+  fi
 done
+for pid in "${pids[@]}"; do wait "$pid" || failed=1; done
+[ "$failed" = 0 ] || exit 1
+echo "== stage 3 done at $(elapsed)"
 echo "all stages passed"
