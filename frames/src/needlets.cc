@@ -41,12 +41,21 @@ void kronrod(double a, double b, double& estimate, double& error) {
   error = std::abs((k - g) * h);
 }
 
-double integrate(double a, double b, int depth = 0) {
+// Adaptive halving to an absolute tolerance, split evenly between the halves; a panel whose
+// error estimate is down to the rounding of its own value is done.
+double integrate_to(double a, double b, double tolerance, int depth) {
   double whole = 0, error = 0;
   kronrod(a, b, whole, error);
-  if (error <= runtime::tolerance::kKronrodError || depth >= 40) return whole;
+  if (error <= tolerance || error <= runtime::tolerance::kKronrodRounding * std::abs(whole) || depth >= 40) return whole;
   const double m = (a + b) / 2;
-  return integrate(a, m, depth + 1) + integrate(m, b, depth + 1);
+  return integrate_to(a, m, tolerance / 2, depth + 1) + integrate_to(m, b, tolerance / 2, depth + 1);
+}
+
+// int_a^b bump to kKronrodRelative of its own value, however small it is (a window's tail).
+double integrate(double a, double b) {
+  double whole = 0, error = 0;
+  kronrod(a, b, whole, error);
+  return integrate_to(a, b, runtime::tolerance::kKronrodRelative * std::abs(whole), 0);
 }
 
 void check_dilation(double dilation) {
@@ -70,16 +79,30 @@ double needlet_psi(double u) {
   return integrate(-1, u) / bump_integral();
 }
 
+namespace {
+
+// phi(t) = psi(u(t)): u = 1 up to t = 1/B (phi = 1), -1 beyond t = 1 (phi = 0), linear between.
+double phi_argument(double t, double dilation) {
+  if (t <= 1 / dilation) return 1;
+  if (t > 1) return -1;
+  return 1 - 2 * dilation / (dilation - 1) * (t - 1 / dilation);
+}
+
+}  // namespace
+
 double needlet_phi(double t, double dilation) {
   check_dilation(dilation);
-  if (t <= 1 / dilation) return 1;
-  if (t > 1) return 0;
-  return needlet_psi(1 - 2 * dilation / (dilation - 1) * (t - 1 / dilation));
+  return needlet_psi(phi_argument(t, dilation));
 }
 
 double needlet_window(double x, double dilation) {
-  const double square = needlet_phi(x / dilation, dilation) - needlet_phi(x, dilation);
-  return square > 0 ? std::sqrt(square) : 0.0;
+  check_dilation(dilation);
+  // b^2 = phi(x / B) - phi(x) = psi(u(x / B)) - psi(u(x)): one integral of the bump between the
+  // two arguments, so a small weight keeps its relative precision (the difference of two values
+  // near 1 would keep only its absolute precision, ~1e-16, and lose a small b^2's digits).
+  const double lo = phi_argument(x, dilation), hi = phi_argument(x / dilation, dilation);
+  if (!(hi > lo)) return 0.0;
+  return std::sqrt(integrate(lo, hi) / bump_integral());
 }
 
 std::vector<WindowValue> needlet_windows(double dilation, int lmax) {
