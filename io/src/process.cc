@@ -51,9 +51,56 @@ void stop_group(pid_t pid) {
 
 }  // namespace
 
-ProcessResult run_process(const std::vector<std::string>& argv, const ProcessOptions& output) {
+Process::Process(Process&& other) noexcept : pid_(other.pid_), reaped_(other.reaped_) { other.reaped_ = true; }
+
+Process::~Process() {
+  if (pid_ > 0 && !reaped_) stop_group(pid_);
+}
+
+void Process::signal(int sig) const {
+  if (pid_ > 0 && !reaped_) kill(pid_, sig);
+}
+
+ProcessResult Process::wait(double time_limit_seconds, bool stop_on_interrupt) {
+  ProcessResult result;
+  if (pid_ <= 0) {
+    result.exit_code = 127;  // as a shell reports a program it cannot start
+    return result;
+  }
+  const auto started = std::chrono::steady_clock::now();
+  while (!reaped_) {
+    int status = 0;
+    const pid_t done = waitpid(pid_, &status, WNOHANG);
+    if (done == pid_) {
+      reaped_ = true;
+      if (WIFEXITED(status)) result.exit_code = WEXITSTATUS(status);
+      if (WIFSIGNALED(status)) result.signal = WTERMSIG(status);
+      return result;
+    }
+    if (done < 0 && errno != EINTR) {
+      reaped_ = true;
+      return result;
+    }
+    if (stop_on_interrupt && interrupt_requested().load()) {
+      stop_group(pid_);
+      reaped_ = true;
+      throw Interrupted();
+    }
+    if (time_limit_seconds > 0 &&
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() > time_limit_seconds) {
+      stop_group(pid_);
+      reaped_ = true;
+      result.timed_out = true;
+      result.signal = SIGTERM;
+      return result;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return result;
+}
+
+Process start_process(const std::vector<std::string>& argv, const ProcessOptions& output) {
   // Paths in output are opened after the chdir: callers pass absolute ones with a working_dir.
-  throw_if_interrupted();
   SpawnSetup setup;
   posix_spawn_file_actions_addopen(&setup.actions, 0, "/dev/null", O_RDONLY, 0);
   if (!output.stdout_path.empty()) {
@@ -88,35 +135,14 @@ ProcessResult run_process(const std::vector<std::string>& argv, const ProcessOpt
   for (const std::string& o : output.environment) env.push_back(const_cast<char*>(o.c_str()));
   env.push_back(nullptr);
   pid_t pid = 0;
-  const int spawned = posix_spawnp(&pid, args[0], &setup.actions, &setup.attributes, args.data(), env.data());
-  ProcessResult result;
-  if (spawned != 0) {
-    result.exit_code = 127;  // as a shell reports a program it cannot start
-    return result;
-  }
-  const auto started = std::chrono::steady_clock::now();
-  while (true) {
-    int status = 0;
-    const pid_t done = waitpid(pid, &status, WNOHANG);
-    if (done == pid) {
-      if (WIFEXITED(status)) result.exit_code = WEXITSTATUS(status);
-      if (WIFSIGNALED(status)) result.signal = WTERMSIG(status);
-      return result;
-    }
-    if (done < 0 && errno != EINTR) return result;
-    if (interrupt_requested().load()) {
-      stop_group(pid);
-      throw Interrupted();
-    }
-    if (output.time_limit_seconds > 0 &&
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() > output.time_limit_seconds) {
-      stop_group(pid);
-      result.timed_out = true;
-      result.signal = SIGTERM;
-      return result;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
+  if (posix_spawnp(&pid, args[0], &setup.actions, &setup.attributes, args.data(), env.data()) != 0) pid = -1;
+  return Process(pid);
+}
+
+ProcessResult run_process(const std::vector<std::string>& argv, const ProcessOptions& options) {
+  throw_if_interrupted();
+  Process child = start_process(argv, options);
+  return child.wait(options.time_limit_seconds);
 }
 
 bool program_available(const std::string& name) {

@@ -34,7 +34,7 @@ double lobe_float_tolerance(int order, const fs::path& table_path, bool runtime_
 }
 
 TEST(Bench, QuickRunMeasuresEveryMethodWithinItsTolerance) {
-  const fs::path dir = test::make_temp_dir();
+  const test::TempDir dir;
   const std::string json = (dir / "bench.json").string();
   const test::RunResult r = test::run_zhf("bench --quick --quiet --out '" + json + "' --plot '" + (dir / "bench.svg").string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -149,18 +149,16 @@ TEST(Bench, QuickRunMeasuresEveryMethodWithinItsTolerance) {
   EXPECT_EQ(test::read_text((dir / "again.csv").string()), test::read_text((dir / "bench.csv").string()));
   for (const auto& entry : fs::directory_iterator(dir))
     EXPECT_EQ(entry.path().string().find(".tmp."), std::string::npos) << "left behind: " << entry.path();
-  fs::remove_all(dir);
 }
 
 // HEALPix's rows need the library at build time (scripts/setup.sh installs it); without it the
 // bench says so in its notes, and this test is skipped rather than passed.
 TEST(Bench, HealpixRowsWhenBuiltWithIt) {
-  const fs::path dir = test::make_temp_dir();
+  const test::TempDir dir;
   const std::string json = (dir / "bench.json").string();
   const test::RunResult r = test::run_zhf("bench --quick --quiet --orders 2 --out '" + json + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json report = test::read_json(json);
-  fs::remove_all(dir);
   if (!report["notes"].empty()) GTEST_SKIP() << report["notes"][0];
   bool healpix = false;
   for (const auto& row : report["rows"]) healpix = healpix || row["method"] == "healpix";

@@ -67,7 +67,7 @@ double axis_error(const nlohmann::json& axis, const Eigen::Vector3d& expected) {
 }
 
 TEST(Analyze, BandLimitedSignalWithNoiseBelowToleranceGivesItsOrder) {
-  const fs::path dir = test::make_temp_dir();
+  const test::TempDir dir;
   std::mt19937_64 rng(5);
   sh::Normal<> normal;
   nlohmann::json vectors = nlohmann::json::array();
@@ -80,11 +80,10 @@ TEST(Analyze, BandLimitedSignalWithNoiseBelowToleranceGivesItsOrder) {
   EXPECT_EQ(a["order"], 8);
   EXPECT_EQ(a["smallest_order"], 5);
   EXPECT_EQ(a["zonal"], false);
-  fs::remove_all(dir);
 }
 
 TEST(Analyze, ClampedCosineLobeIsZonalWithItsOrderAndZeroOddBands) {
-  const fs::path dir = test::make_temp_dir();
+  const test::TempDir dir;
   const Eigen::Vector3d axis = Eigen::Vector3d(0.2, -0.7, 0.4).normalized();
   const std::vector<double> w = clamped_cosine_weights(8);
   EXPECT_NEAR(w[0], std::sqrt(kPi) / 2, runtime::tolerance::kSlowPathsAgreement);
@@ -108,11 +107,10 @@ TEST(Analyze, ClampedCosineLobeIsZonalWithItsOrderAndZeroOddBands) {
   EXPECT_EQ(a["smallest_order"], expected);
   EXPECT_EQ(a["zonal"], true);
   EXPECT_LE(axis_error(a["axis"], axis), kAxis);
-  fs::remove_all(dir);
 }
 
 TEST(Analyze, RotatedZonalFunctionRevealsItsAxis) {
-  const fs::path dir = test::make_temp_dir();
+  const test::TempDir dir;
   std::mt19937_64 rng(11);
   sh::Normal<> normal;
   std::vector<double> weights(6);
@@ -139,11 +137,10 @@ TEST(Analyze, RotatedZonalFunctionRevealsItsAxis) {
   for (int i = 0; i < 36; ++i) g[i] = normal(rng);
   const nlohmann::json b = analyze(dir, nlohmann::json::array({std::vector<double>(g.data(), g.data() + g.size())}).dump(), 1e-6);
   EXPECT_EQ(b["zonal"], false);
-  fs::remove_all(dir);
 }
 
 TEST(Analyze, EvenOnlyDataIsBandSparseAndWritesAScene) {
-  const fs::path dir = test::make_temp_dir();
+  const test::TempDir dir;
   std::mt19937_64 rng(3);
   sh::Normal<> normal;
   std::string text = "# even bands only, 3 channels per line\n";
@@ -164,11 +161,10 @@ TEST(Analyze, EvenOnlyDataIsBandSparseAndWritesAScene) {
   // The scene it wrote is one zhf generate accepts.
   const test::RunResult g = test::run_zhf("generate --scene '" + scene + "' --out '" + (dir / "out").string() + "'");
   EXPECT_EQ(g.exit_code, 0) << g.err;
-  fs::remove_all(dir);
 }
 
 TEST(Analyze, BadCoefficientFilesGetOneLine) {
-  const fs::path dir = test::make_temp_dir();
+  const test::TempDir dir;
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"", "file is empty"},
       {"[[1, 2, 3]]", "vector 0: 3 coefficients per channel is not N^2"},
@@ -191,7 +187,6 @@ TEST(Analyze, BadCoefficientFilesGetOneLine) {
     EXPECT_NE(r.err.find(in + ": " + message), std::string::npos) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   }
-  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -1,9 +1,6 @@
 // Bad input to every subcommand through the real binary: one line on stderr naming the file,
 // field or option, the documented exit code, and nothing written or replaced.
-#include <fcntl.h>
 #include <signal.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -111,21 +108,10 @@ TEST_F(BadInput, OutputsThatAreUserFilesOrUnwritable) {
 
 TEST_F(BadInput, InterruptedOptimizeKeepsTheOldTableAndSavesTheBestSoFar) {
   const std::string out = write("order_8.json", "previous contents\n");
-  const pid_t pid = fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    const int null = open("/dev/null", O_WRONLY);
-    dup2(null, 1);
-    dup2(null, 2);
-    execl(ZHF_BINARY, ZHF_BINARY, "optimize", "--order", "8", "--quiet", "--out", out.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
+  io::Process zhf = start_zhf({"optimize", "--order", "8", "--quiet", "--out", out});
   std::this_thread::sleep_for(std::chrono::milliseconds(1500));
-  kill(pid, SIGINT);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 130);
+  zhf.signal(SIGINT);
+  EXPECT_EQ(exit_code_of(zhf), 130);
   EXPECT_EQ(read_text(out), "previous contents\n");
   const nlohmann::json saved = read_json(out + ".interrupted.json");
   EXPECT_EQ(saved.at("order"), 8);

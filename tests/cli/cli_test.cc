@@ -11,14 +11,14 @@ namespace {
 
 
 TEST(CliCandidates, PrintsSummaryAndWritesJson) {
-  const std::string dir = make_temp_dir();
+  const test::TempDir temp;
+  const std::string dir = temp.string();
   const RunResult r = run_zhf("candidates --order 4 --json " + dir + "/c.json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("order 4: 9 theta values, 16 phi values, 114 candidate directions"), std::string::npos) << r.out;
   const nlohmann::json j = read_json(dir + "/c.json");
   EXPECT_EQ(j.at("format"), "zhf-candidates-1");
   EXPECT_EQ(j.at("directions").size(), 114u);
-  std::filesystem::remove_all(dir);
 }
 
 TEST(CliCandidates, RejectsOrderOutOfRangeWithOneLine) {
@@ -31,13 +31,13 @@ TEST(CliCandidates, RejectsOrderOutOfRangeWithOneLine) {
 }
 
 TEST(CliCandidates, UnwritablePathLeavesNothing) {
-  const std::string dir = make_temp_dir();
+  const test::TempDir temp;
+  const std::string dir = temp.string();
   const RunResult r = run_zhf("candidates --order 3 --json " + dir + "/missing/c.json");
   EXPECT_EQ(r.exit_code, 4);
   EXPECT_EQ(line_count(r.err), 1) << r.err;
   EXPECT_NE(r.err.find(dir + "/missing/c.json"), std::string::npos) << r.err;
   EXPECT_TRUE(std::filesystem::is_empty(dir));
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
@@ -55,7 +55,8 @@ TEST(CliOptimize, RecordedCommandsReproduceTheTablesByteForByte) {
     const nlohmann::json checked_in = read_json(table.string());
     std::string command = checked_in.at("provenance").at("command");
     ASSERT_EQ(command.rfind("zhf ", 0), 0u) << command;
-    const std::string dir = make_temp_dir();
+    const test::TempDir temp;
+  const std::string dir = temp.string();
     fs::create_directories(fs::path(dir) / "generated/lobes");
     std::vector<std::string> args = split_arguments(command.substr(4));
     args.push_back("--quiet");
@@ -63,19 +64,18 @@ TEST(CliOptimize, RecordedCommandsReproduceTheTablesByteForByte) {
     ASSERT_EQ(r.exit_code, 0) << command << ": " << r.err;
     EXPECT_EQ(read_text((fs::path(dir) / "generated/lobes" / table.filename()).string()), read_text(table.string()))
         << "order " << order << ": `" << command << "` made different bytes";
-    fs::remove_all(dir);
   }
 }
 
 TEST(CliOptimize, WithoutSharingEachBandHasItsOwnLobes) {
-  const std::string dir = make_temp_dir();
+  const test::TempDir temp;
+  const std::string dir = temp.string();
   const RunResult r = run_zhf("optimize --order 4 --no-sharing --quiet --stall 5 --local-search-stall 2 --out " + dir + "/t.json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json t = read_json(dir + "/t.json");
   EXPECT_FALSE(t.at("lobe_sharing").get<bool>());
   EXPECT_EQ(t.at("lobes").size(), 12u);  // 5 + 7
   EXPECT_EQ(t.at("bands")[1].at("lobes")[0], 5);
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -13,7 +13,7 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(DesignsCli, SameFileWhateverTheThreadsAndAsCheckedIn) {
-  const fs::path dir = test::make_temp_dir();
+  const test::TempDir dir;
   for (int t : {4, 9, 13}) {
     const std::string one = (dir / "one.json").string(), two = (dir / "two.json").string();
     const std::string base = "designs --t " + std::to_string(t) + " --json ";
@@ -25,7 +25,6 @@ TEST(DesignsCli, SameFileWhateverTheThreadsAndAsCheckedIn) {
     EXPECT_EQ(test::read_text(one), test::read_text(test::source_path("generated/designs/t_" + std::to_string(t) + ".json")))
         << "t " << t << ": the checked-in design is stale (bash scripts/make_designs.sh)";
   }
-  fs::remove_all(dir);
 }
 
 TEST(FrameCli, DesignsAreTightAndTablesReportTheirBands) {
@@ -43,7 +42,7 @@ TEST(FrameCli, DesignsAreTightAndTablesReportTheirBands) {
 }
 
 TEST(FramesCli, BadInputGetsOneLineAndNoOutput) {
-  const fs::path dir = test::make_temp_dir();
+  const test::TempDir dir;
   const std::string zero = (dir / "zero.json").string(), out = (dir / "out.json").string();
   test::write_text(zero, "[[0, 0, 1], [0, 0, 0]]");
   struct Case {
@@ -64,7 +63,6 @@ TEST(FramesCli, BadInputGetsOneLineAndNoOutput) {
     EXPECT_NE(r.err.find(c.says), std::string::npos) << c.args << ": " << r.err;
     EXPECT_FALSE(fs::exists(out)) << c.args;
   }
-  fs::remove_all(dir);
 }
 
 }  // namespace

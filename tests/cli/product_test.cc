@@ -19,7 +19,7 @@ constexpr double kTolerance = runtime::tolerance::kProductAgainstIntegration;
 constexpr double kPi = 3.14159265358979323846;
 
 TEST(ProductCli, ClosedFormsChannelsBroadcastAndOrders) {
-  const fs::path dir = test::make_temp_dir();
+  const test::TempDir dir;
   const std::string one = (dir / "one.json").string(), g = (dir / "g.json").string(), z = (dir / "z.json").string();
   const std::string out = (dir / "out.json").string();
   // The function 1 (f_0 = sqrt(4 pi)) times g is g: one vector used with each of g's, per channel.
@@ -60,11 +60,10 @@ TEST(ProductCli, ClosedFormsChannelsBroadcastAndOrders) {
       EXPECT_NEAR(got[0][i].get<double>(), expected, kTolerance) << "order " << order << ", index " << i;
     }
   }
-  fs::remove_all(dir);
 }
 
 TEST(ProductCli, MismatchedInputsGetOneLineAndNoOutput) {
-  const fs::path dir = test::make_temp_dir();
+  const test::TempDir dir;
   const std::string a = (dir / "a.json").string(), b = (dir / "b.json").string(), big = (dir / "big.txt").string();
   const std::string out = (dir / "out.json").string();
   test::write_text(a, "[[1, 0, 0, 0], [0, 1, 0, 0]]");
@@ -87,7 +86,6 @@ TEST(ProductCli, MismatchedInputsGetOneLineAndNoOutput) {
     EXPECT_NE(r.err.find(c.says), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(out)) << c.args;
   }
-  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -22,7 +22,7 @@ namespace fs = std::filesystem;
 constexpr double kDoubleTolerance = runtime::tolerance::kDouble;
 
 TEST(RotateCli, RotatesAFileLikeTheReference) {
-  const fs::path dir = test::make_temp_dir();
+  const test::TempDir dir;
   std::mt19937_64 rng(4);
   sh::Normal<> normal;
   for (int order : {3, 8, 10}) {
@@ -38,11 +38,10 @@ TEST(RotateCli, RotatesAFileLikeTheReference) {
     for (int i = 0; i < order * order; ++i)
       EXPECT_NEAR(got[0][i].get<double>(), expected[i], kDoubleTolerance) << "order " << order << ", index " << i;
   }
-  fs::remove_all(dir);
 }
 
 TEST(RotateCli, NonRotationsAreRejectedWithTheDefectOrRepairedOnRequest) {
-  const fs::path dir = test::make_temp_dir();
+  const test::TempDir dir;
   const std::string in = (dir / "in.json").string(), out = (dir / "out.json").string();
   test::write_text(in, "[[1, 0.1, 0.2, 0.3]]");
   const std::string base = "rotate --coeffs '" + in + "' --out '" + out + "' ";
@@ -90,13 +89,12 @@ TEST(RotateCli, NonRotationsAreRejectedWithTheDefectOrRepairedOnRequest) {
     EXPECT_NE(bad.err.find(message), std::string::npos) << options << ": " << bad.err;
     EXPECT_FALSE(fs::exists(out)) << options;
   }
-  fs::remove_all(dir);
 }
 
 // The same transform in every form the command takes gives the same file; a reflection and a
 // convention are applied as stated.
 TEST(RotateCli, EveryRotationFormReflectionsAndConventions) {
-  const fs::path dir = test::make_temp_dir();
+  const test::TempDir dir;
   const std::string in = (dir / "in.json").string();
   std::mt19937_64 rng(5);
   sh::Normal<> normal;
@@ -145,7 +143,6 @@ TEST(RotateCli, EveryRotationFormReflectionsAndConventions) {
   expect_near(rotate("--axis-angle '1 2 3 0.7' --convention 3dgs"), zhf_quarter, "--convention 3dgs");
   expect_near(rotate("--axis-angle '1 2 3 0.7' --convention y-up-rh"), rotate("--axis-angle '1 2 3 0.7'"),
               "--convention y-up-rh (rotation and data in the same axes)");
-  fs::remove_all(dir);
 }
 
 }  // namespace

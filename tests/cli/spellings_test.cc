@@ -29,7 +29,7 @@ std::vector<std::string> with(const std::vector<std::string>& args, const std::s
 }
 
 TEST(Spellings, OldAndNewSpellingsDoTheSame) {
-  const fs::path dir = test::make_temp_dir();
+  const test::TempDir dir;
   const std::string coeffs = (dir / "f.json").string();
   test::write_text(coeffs, "[[1, 0.5, -0.25, 0.125]]");
   const std::string design = test::source_path("generated/designs/t_4.json");
@@ -76,7 +76,6 @@ TEST(Spellings, OldAndNewSpellingsDoTheSame) {
     EXPECT_NE(r.err.find("give one of them"), std::string::npos) << c.what << ": " << r.err;
     EXPECT_FALSE(fs::exists(new_out + ".both")) << c.what;
   }
-  fs::remove_all(dir);
 }
 
 // Usage errors point at the help of the command that was given.

@@ -126,7 +126,8 @@ TEST(GeneratedFiles, ProductKernelsNeedFewerMultipliesThanSnyderAndShadingNoMore
 // ZHF_UPDATE_GENERATED=1) and commit the result.
 TEST(GeneratedFiles, MatchWhatTheGeneratorMakes) {
   const bool update = std::getenv("ZHF_UPDATE_GENERATED") != nullptr;
-  const fs::path out = update ? kGenerated : fs::path(test::make_temp_dir());
+  const test::TempDir temp;
+  const fs::path out = update ? kGenerated : fs::path(temp);
   GenerateOptions options;
   options.tables_dir = (kGenerated / "lobes").string();
   options.out_dir = out.string();
@@ -143,12 +144,11 @@ TEST(GeneratedFiles, MatchWhatTheGeneratorMakes) {
              << slurp(log).substr(0, 3000);
     }
   }
-  fs::remove_all(out);
 }
 
 // An interrupt before the commit leaves the previous tree exactly as it was.
 TEST(Generate, InterruptedRunLeavesThePreviousOutputs) {
-  const fs::path out = test::make_temp_dir();
+  const test::TempDir out;
   GenerateOptions options;
   options.tables_dir = (kGenerated / "lobes").string();
   options.out_dir = out.string();
@@ -163,7 +163,6 @@ TEST(Generate, InterruptedRunLeavesThePreviousOutputs) {
   EXPECT_EQ(slurp(out / "cpp/zhf_order3.h"), before + "// previous run\n");
   for (const auto& entry : fs::directory_iterator(out))
     EXPECT_EQ(entry.path().filename().string().find(".zhf-staging"), std::string::npos) << entry.path();
-  fs::remove_all(out);
 }
 
 }  // namespace

@@ -53,7 +53,7 @@ int manifest_multiplies(const fs::path& manifest, const std::string& path, const
 }
 
 TEST(Scene, Order3RgbGlslStandardEmitsOnlyThatAndVerifies) {
-  const fs::path dir = test::make_temp_dir();
+  const test::TempDir dir;
   const std::string scene = write_scene(dir, R"({"format": "zhf-scene-1", "targets": ["glsl"], "precision": "float",
     "signals": [{"name": "lighting", "order": 3, "channels": 3, "variants": ["standard"]}]})");
   const test::RunResult r = test::run_zhf("generate --scene '" + scene + "' --out '" + (dir / "out").string() + "'");
@@ -65,11 +65,10 @@ TEST(Scene, Order3RgbGlslStandardEmitsOnlyThatAndVerifies) {
   EXPECT_EQ(defined_functions(glsl), std::vector<std::string>{"rotate_rgb_order3"}) << glsl.substr(0, 600);
   const verify::VerifyReport report = verify_dir(dir / "out", {Language::kGlsl});
   EXPECT_TRUE(report.pass()) << report.table();
-  fs::remove_all(dir);
 }
 
 TEST(Scene, KnownZeroBandsCostLessAndVerify) {
-  const fs::path dir = test::make_temp_dir();
+  const test::TempDir dir;
   const std::string scene = write_scene(dir, R"({"format": "zhf-scene-1", "targets": ["cpp", "glsl", "hlsl"],
     "signals": [{"name": "even", "order": 5, "variants": ["standard", "signal-tailored", "dense-matrix", "zonal"],
                  "zero_bands": [1, 3]},
@@ -88,7 +87,6 @@ TEST(Scene, KnownZeroBandsCostLessAndVerify) {
   EXPECT_TRUE(report.pass()) << report.table();
   // rotate, tailored, dense, zonal per order, per language run (C++ float and double).
   EXPECT_GE(report.results.size(), 2u * 4u * 2u) << report.table();
-  fs::remove_all(dir);
 }
 
 std::string lobe_stage(const fs::path& manifest, const std::string& path) {
@@ -106,7 +104,7 @@ TEST(Scene, TheLobeStageSaysWhereItRuns) {
   for (const auto& band : table["bands"])
     worst_condition = std::max(worst_condition, band["condition"].get<double>());
   for (const std::string precision : {"auto", "float"}) {
-    const fs::path dir = test::make_temp_dir();
+    const test::TempDir dir;
     const std::string scene = write_scene(dir, R"({"format": "zhf-scene-1", "targets": ["cpp", "glsl"], "lobe_stage": ")" +
                                                    precision + R"(", "signals": [{"order": 7, "variants": ["standard"]}]})");
     const test::RunResult r = test::run_zhf("generate --scene '" + scene + "' --out '" + (dir / "out").string() + "'");
@@ -125,12 +123,11 @@ TEST(Scene, TheLobeStageSaysWhereItRuns) {
         EXPECT_EQ(f.tolerance, wide ? runtime::tolerance::kFloatRotation : runtime::tolerance::float_rotation(7, worst_condition, false))
             << f.language << " " << precision;
       }
-    fs::remove_all(dir);
   }
 }
 
 TEST(Scene, BadSpecsGetOneLineNamingTheField) {
-  const fs::path dir = test::make_temp_dir();
+  const test::TempDir dir;
   const std::vector<std::pair<std::string, std::string>> cases = {
       {R"({"format": "zhf-scene-2", "targets": ["glsl"], "signals": []})", "format: 'zhf-scene-2' is not zhf-scene-1"},
       {R"({"format": "zhf-scene-1", "targets": ["metal"], "signals": []})", "targets[0]: 'metal' is not one of"},
@@ -168,7 +165,6 @@ TEST(Scene, BadSpecsGetOneLineNamingTheField) {
   const test::RunResult no_out = test::run_zhf("generate --scene '" + write_scene(dir, "{}") + "'");
   EXPECT_EQ(no_out.exit_code, 2);
   EXPECT_NE(no_out.err.find("--out: is required with --scene"), std::string::npos) << no_out.err;
-  fs::remove_all(dir);
 }
 
 }  // namespace

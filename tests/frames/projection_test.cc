@@ -60,7 +60,7 @@ TEST(Projection, EqualAngleGridsHaveExactSolidAnglesAndConverge) {
 }
 
 TEST(Projection, ARadianceImageBecomesRgbCoefficients) {
-  const std::filesystem::path dir = test::make_temp_dir();
+  const test::TempDir dir;
   io::HdrImage image;
   image.width = 64;
   image.height = 32;

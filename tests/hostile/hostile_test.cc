@@ -6,10 +6,8 @@
 // table). ZHF_TEST_BINARY runs it against another build of zhf.
 #include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/stat.h>
 #include <sys/sysmacros.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -30,7 +28,6 @@
 #include "zhf/runtime/rotator.h"
 #include "zhf/runtime/zonal.h"
 
-extern char** environ;
 
 namespace zhf::test {
 namespace {
@@ -392,28 +389,13 @@ TEST(Hostile, ConcurrentGeneratesIntoOneNewDirectoryLeaveOneWinner) {
   for (int trial = 0; trial < 4; ++trial) {
     Sandbox box;
     const std::string out = box.path("new");
-    std::vector<pid_t> pids;
-    for (int k = 0; k < 2; ++k) {
-      const std::string err = box.path("err" + std::to_string(k));
-      std::vector<std::string> argv = {zhf_binary(), "generate", "--tables", source_path("generated/lobes"), "--out", out};
-      std::vector<char*> args;
-      for (std::string& a : argv) args.push_back(a.data());
-      args.push_back(nullptr);
-      posix_spawn_file_actions_t actions;
-      posix_spawn_file_actions_init(&actions);
-      posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-      posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT, 0600);
-      pid_t pid = 0;
-      ASSERT_EQ(posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ), 0);
-      posix_spawn_file_actions_destroy(&actions);
-      pids.push_back(pid);
-    }
+    std::vector<io::Process> runs;
+    for (int k = 0; k < 2; ++k)
+      runs.push_back(start_zhf({"generate", "--tables", source_path("generated/lobes"), "--out", out}, box.path("err" + std::to_string(k))));
     int winners = 0;
     bool clean = true;
-    for (size_t k = 0; k < pids.size(); ++k) {
-      int status = 0;
-      waitpid(pids[k], &status, 0);
-      const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    for (size_t k = 0; k < runs.size(); ++k) {
+      const int code = exit_code_of(runs[k]);
       const std::string err = read_text(box.path("err" + std::to_string(k)));
       if (code == 0) {
         ++winners;
@@ -435,37 +417,12 @@ TEST(Hostile, ConcurrentGeneratesIntoOneNewDirectoryLeaveOneWinner) {
 
 // Starts zhf in the sandbox, sends it `sig` after `delay_ms`, and returns its exit code; its
 // stderr goes to stderr_path when given.
-int interrupted_exit(const Sandbox& box, std::vector<std::string> argv, int sig, int delay_ms, const std::string& stderr_path = "") {
-  argv.insert(argv.begin(), zhf_binary());
-  std::vector<char*> args;
-  for (std::string& a : argv) args.push_back(a.data());
-  args.push_back(nullptr);
-  std::vector<std::string> env_text;
-  for (char** e = environ; *e; ++e)
-    if (std::string(*e).rfind("TMPDIR=", 0) != 0) env_text.push_back(*e);
-  env_text.push_back("TMPDIR=" + box.tmp());
-  std::vector<char*> env;
-  for (std::string& e : env_text) env.push_back(e.data());
-  env.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, stderr_path.empty() ? "/dev/null" : stderr_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-  pid_t pid = 0;
-  posix_spawn(&pid, args[0], &actions, nullptr, args.data(), env.data());
-  posix_spawn_file_actions_destroy(&actions);
+int interrupted_exit(const Sandbox& box, const std::vector<std::string>& args, int sig, int delay_ms,
+                     const std::string& stderr_path = "") {
+  io::Process zhf = start_zhf(args, stderr_path, {"TMPDIR=" + box.tmp()});
   std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
-  kill(pid, sig);
-  int status = 0;
-  for (int waited_ms = 0; waitpid(pid, &status, WNOHANG) != pid; waited_ms += 10) {
-    if (waited_ms > 1000 * kRunTimeLimitSeconds) {
-      kill(pid, SIGKILL);
-      waitpid(pid, &status, 0);
-      break;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  zhf.signal(sig);
+  return exit_code_of(zhf);
 }
 
 TEST(Hostile, InterruptsStopChildrenAndLeaveThePreviousOutputs) {
@@ -499,13 +456,13 @@ TEST(Hostile, WorkThatCannotPollIsEndedByTheWatchdog) {
   Sandbox box;
   box.write("design.json", "previous design\n");
   const Snapshot before = snapshot(box.dir());
-  const std::string errors = test::make_temp_dir() + "/stderr.txt";
+  const test::TempDir errors_dir;
+  const std::string errors = errors_dir.string() + "/stderr.txt";
   const int exit = interrupted_exit(box, {"designs", "--t", "40", "--starts", "1", "--quiet", "--out", box.path("design.json")},
                                     SIGTERM, 1500, errors);
   EXPECT_EQ(exit, 143);
   // The watchdog's own line: the search did not poll, so the watchdog ended it (not the search's end).
   EXPECT_NE(read_text(errors).find("did not stop, ended it"), std::string::npos) << read_text(errors);
-  fs::remove_all(fs::path(errors).parent_path());
   EXPECT_TRUE(snapshot(box.dir()) == before) << "the sandbox changed";
   EXPECT_EQ(leftovers(box), "");
   ++tally()["WorkThatCannotPollIsEndedByTheWatchdog"].first;

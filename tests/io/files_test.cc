@@ -17,7 +17,7 @@ namespace fs = std::filesystem;
 void write_by_name(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::trunc) << text; }
 
 TEST(PendingFile, BecomesTheDestinationOnlyOnCommit) {
-  const fs::path dir = test::make_temp_dir();
+  const test::TempDir dir;
   const std::string destination = (dir / "plot.svg").string();
   io::write_file_atomically(destination, "old");
   {
@@ -37,11 +37,10 @@ TEST(PendingFile, BecomesTheDestinationOnlyOnCommit) {
     EXPECT_EQ(entry.path().string().find(".tmp."), std::string::npos) << "left behind: " << entry.path();
   }
   EXPECT_EQ(entries, 1);
-  fs::remove_all(dir);
 }
 
 TEST(PendingFile, TwoWritersOfOneDestinationNeverShareATemporary) {
-  const fs::path dir = test::make_temp_dir();
+  const test::TempDir dir;
   const std::string destination = (dir / "plot.svg").string();
   io::PendingFile first(destination), second(destination);
   EXPECT_NE(first.path(), second.path());
@@ -50,11 +49,11 @@ TEST(PendingFile, TwoWritersOfOneDestinationNeverShareATemporary) {
   first.commit();
   second.commit();
   EXPECT_EQ(test::read_text(destination), "second");
-  fs::remove_all(dir);
 }
 
 TEST(PendingFile, MissingDirectoryIsAnOutputErrorNamingTheDestination) {
-  const std::string destination = test::make_temp_dir() + "/no/such/dir/plot.svg";
+  const test::TempDir dir;
+  const std::string destination = dir.string() + "/no/such/dir/plot.svg";
   try {
     io::PendingFile file(destination);
     FAIL() << "no error for " << destination;

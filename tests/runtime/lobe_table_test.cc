@@ -105,7 +105,8 @@ TEST(LobeTable, RefusesBadTablesNamingTheField) {
 }
 
 TEST(LobeTable, TheFileNameStatesTheOrder) {
-  const std::string dir = test::make_temp_dir();
+  const test::TempDir temp;
+  const std::string dir = temp.string();
   test::write_text(dir + "/order_9.json", test::read_text(test::source_path("generated/lobes/order_3.json")));
   try {
     read_lobe_table(dir + "/order_9.json");
@@ -113,13 +114,13 @@ TEST(LobeTable, TheFileNameStatesTheOrder) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("order_9.json: order: is 3, but order 9 was expected"), std::string::npos) << e.what();
   }
-  test::remove_dir(dir);
 }
 
 // The runtime's table loading and the CLI read tables with the same code: the same malformed
 // table gets the same verdict, word for word, from both.
 TEST(LobeTable, TheRuntimeAndTheCliGiveTheSameVerdict) {
-  const std::string dir = test::make_temp_dir();
+  const test::TempDir temp;
+  const std::string dir = temp.string();
   for (const BadTable& bad : bad_tables()) {
     const std::string path = dir + "/t.json";
     test::write_text(path, bad.text);
@@ -133,7 +134,6 @@ TEST(LobeTable, TheRuntimeAndTheCliGiveTheSameVerdict) {
     EXPECT_EQ(cli.exit_code, 3) << bad.name << ": " << cli.err;
     EXPECT_EQ(cli.err, "zhf: " + runtime_verdict + "\n") << bad.name;
   }
-  test::remove_dir(dir);
 }
 
 TEST(LobeTable, FromTableChecksTheShapeOfAHandMadeTable) {

@@ -131,7 +131,7 @@ struct Case {
 };
 
 TEST(Splat, TransformsEveryPartOfTheSceneAsStated) {
-  const fs::path dir = test::make_temp_dir();
+  const test::TempDir dir;
   std::mt19937_64 rng(21);
   const Matrix3 turn = runtime::rotation_from_zyz(0.4, 1.1, -2.3);
   Matrix3 mirror_turn = turn;
@@ -189,22 +189,20 @@ TEST(Splat, TransformsEveryPartOfTheSceneAsStated) {
           }
         }
       }
-  fs::remove_all(dir);
 }
 
 TEST(Splat, TheIdentityRewritesABinaryFileByteForByte) {
-  const fs::path dir = test::make_temp_dir();
+  const test::TempDir dir;
   std::mt19937_64 rng(22);
   const std::string in = (dir / "in.ply").string(), out = (dir / "out.ply").string();
   write_scene(random_scene(3, 70000, rng), in, false);  // more than one chunk
   const test::RunResult run = test::run_zhf("splat --in '" + in + "' --out '" + out + "' --identity --quiet --threads 2");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(test::read_text(in), test::read_text(out));
-  fs::remove_all(dir);
 }
 
 TEST(Splat, MalformedScenesAreRefusedAndNothingIsWritten) {
-  const fs::path dir = test::make_temp_dir();
+  const test::TempDir dir;
   std::mt19937_64 rng(23);
   const std::string good = (dir / "good.ply").string();
   write_scene(random_scene(1, 5, rng), good, false);
@@ -253,7 +251,6 @@ TEST(Splat, MalformedScenesAreRefusedAndNothingIsWritten) {
     EXPECT_EQ(run.exit_code, 2) << options << ": " << run.err;
     EXPECT_NE(run.err.find(message), std::string::npos) << options << ": " << run.err;
   }
-  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -62,6 +62,18 @@ RunResult run_zhf(const std::vector<std::string>& args, const std::string& worki
   return result;
 }
 
+io::Process start_zhf(const std::vector<std::string>& args, const std::string& stderr_path,
+                      const std::vector<std::string>& environment) {
+  std::vector<std::string> argv = {zhf_binary()};
+  argv.insert(argv.end(), args.begin(), args.end());
+  return io::start_process(argv, io::ProcessOptions{"/dev/null", stderr_path.empty() ? "/dev/null" : stderr_path, "", environment, 0});
+}
+
+int exit_code_of(io::Process& zhf) {
+  const io::ProcessResult r = zhf.wait(kRunTimeLimitSeconds, false);
+  return r.signal ? 128 + r.signal : r.exit_code;
+}
+
 std::string make_temp_dir() { return io::make_private_dir("zhf-test"); }
 
 void remove_dir(const std::string& dir) {

@@ -3,10 +3,13 @@
 // for outputs, and where the project's data is.
 #pragma once
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
+
+#include "zhf/io/process.h"
 
 namespace zhf::test {
 
@@ -37,9 +40,32 @@ RunResult run_zhf(const std::vector<std::string>& args, const std::string& worki
                   const std::vector<std::string>& environment = {});
 std::string zhf_binary();
 
+// zhf started and left running (to interrupt it, or two at once): stdout to /dev/null, stderr to
+// stderr_path (/dev/null when empty), the environment entries NAME=value on top of the test's.
+io::Process start_zhf(const std::vector<std::string>& args, const std::string& stderr_path = "",
+                      const std::vector<std::string>& environment = {});
+// Its exit code, or 128 + the signal that ended it, waiting at most kRunTimeLimitSeconds.
+int exit_code_of(io::Process& zhf);
+
 // A fresh private directory; remove it with remove_dir.
 std::string make_temp_dir();
 void remove_dir(const std::string& dir);
+
+// A fresh private directory removed with everything in it when it leaves scope, whether the test
+// passed or failed.
+class TempDir {
+ public:
+  TempDir() : path_(make_temp_dir()) {}
+  ~TempDir() { remove_dir(path_.string()); }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  operator const std::filesystem::path&() const { return path_; }
+  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+  std::string string() const { return path_.string(); }
+
+ private:
+  std::filesystem::path path_;
+};
 
 // The project's files, e.g. source_path("generated/lobes/order_3.json").
 std::string source_path(const std::string& relative);

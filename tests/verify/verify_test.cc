@@ -23,15 +23,13 @@ VerifyOptions options_for(const fs::path& tree) {
   return options;
 }
 
-// A tree like generated/ holding order 3 only.
-fs::path tree_of_order3() {
-  const fs::path dir = test::make_temp_dir();
+// A tree like generated/ holding order 3 only, made in dir.
+void make_tree_of_order3(const fs::path& dir) {
   codegen::GenerateOptions options;
   options.tables_dir = (kGenerated / "lobes").string();
   options.out_dir = (dir / "tree").string();
   options.orders = {3};
   codegen::generate(options);
-  return dir;
 }
 
 // Scales the first constant inside rotate_order3 by 1.01.
@@ -67,7 +65,8 @@ TEST_P(VerifyCorruption, OneWrongCoefficientFailsAndIsNamed) {
   const std::string language = GetParam();
   std::string why;
   if (language != "cpp" && !have_vulkan(why)) GTEST_SKIP() << "no Vulkan device: " << why;
-  const fs::path dir = tree_of_order3();
+  const test::TempDir dir;
+  make_tree_of_order3(dir);
   const char* file = language == "cpp" ? "cpp/zhf_order3.h" : language == "glsl" ? "glsl/zhf_order3.glsl" : "hlsl/zhf_order3.hlsli";
   corrupt_rotation_constant(dir / "tree" / file);
   VerifyOptions options = options_for(dir / "tree");
@@ -83,7 +82,6 @@ TEST_P(VerifyCorruption, OneWrongCoefficientFailsAndIsNamed) {
     if (!r.pass && r.function == "rotate_order3" && r.language == language) named = true;
   EXPECT_TRUE(named) << report.table();
   EXPECT_NE(report.table().find("FAIL: order 3, " + language), std::string::npos) << report.table();
-  fs::remove_all(dir);
 }
 
 INSTANTIATE_TEST_SUITE_P(EachLanguage, VerifyCorruption, ::testing::Values("cpp", "glsl", "hlsl"));

@@ -27,10 +27,32 @@ struct ProcessOptions {
   double time_limit_seconds = 0;
 };
 
-// Runs argv[0] (searched on PATH) with argv, stdin from /dev/null, in a process group of its
-// own; waits for it. When zhf is interrupted meanwhile (signals.h), the group gets SIGTERM
-// (SIGKILL a second later if it is still there), is reaped, and Interrupted is thrown. A program
-// that cannot be started exits 127, as from a shell.
+// A started child: argv[0] (searched on PATH) with argv, stdin from /dev/null, in a process group
+// of its own. Dropped while still running, its group is stopped (SIGTERM, SIGKILL a second later).
+class Process {
+ public:
+  Process(Process&& other) noexcept;
+  Process& operator=(Process&&) = delete;
+  ~Process();
+
+  int pid() const { return pid_; }  // -1: it could not be started
+  // Sends sig to the child alone (a user's Ctrl-C, a test's interrupt).
+  void signal(int sig) const;
+  // Waits until it ends. After time_limit_seconds (when above 0) its group is stopped and the
+  // result says timed_out. With stop_on_interrupt, zhf's own interrupt (signals.h) stops the group
+  // and throws Interrupted. A program that could not be started exits 127, as from a shell.
+  ProcessResult wait(double time_limit_seconds = 0, bool stop_on_interrupt = true);
+
+ private:
+  friend Process start_process(const std::vector<std::string>& argv, const ProcessOptions& options);
+  explicit Process(int pid) : pid_(pid) {}
+  int pid_;
+  bool reaped_ = false;
+};
+
+Process start_process(const std::vector<std::string>& argv, const ProcessOptions& options);
+
+// start_process, then wait with the options' time limit: what zhf does with every tool it runs.
 ProcessResult run_process(const std::vector<std::string>& argv, const ProcessOptions& options);
 // Both streams into one log (inherited when log_path is empty).
 inline ProcessResult run_process(const std::vector<std::string>& argv, const std::string& log_path = "") {
