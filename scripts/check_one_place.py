@@ -81,7 +81,7 @@ def check(path, findings):
             findings.append(f"{where}: a lobe table path built outside runtime::table_path ({TABLE_IO})")
         if cpp and not test and path not in (PARALLEL, WATCHDOG) and THREAD.search(line):
             findings.append(f"{where}: threads started outside {PARALLEL}")
-        if cpp and path != RANDOM and DISTRIBUTION.search(line):
+        if cpp and DISTRIBUTION.search(line):
             findings.append(f"{where}: {DISTRIBUTION.search(line).group(0)} is implementation-defined; use {RANDOM}")
         if cpp and JSON_VALUE.search(line) and not path.startswith(JSON_READERS):
             findings.append(f"{where}: a runtime::json::Value outside a reader")

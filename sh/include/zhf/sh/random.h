@@ -1,6 +1,6 @@
-// Random draws that every standard library makes alike. The engines (std::mt19937_64) are
-// specified to the bit, but std::*_distribution are implementation-defined: libstdc++ and libc++
-// turn the same raw bits into different numbers. zhf's outputs (designs, tables, verify inputs,
+// Random draws that every standard library makes alike. The engine (std::mt19937_64) is specified
+// to the bit; the standard library's distribution adaptors are not (libstdc++ and libc++ turn the
+// same raw bits into different numbers), so none is used. zhf's outputs (designs, tables, verify inputs,
 // the benchmarks' pools) must not change with the standard library, so every draw goes through
 // these functions, which use the generator's raw 64-bit output only.
 #pragma once
@@ -8,7 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <random>
+#include <random>  // std::mt19937_64 only: its raw output
 #include "zhf/sh/random.h"
 
 namespace zhf::sh {
@@ -30,7 +30,7 @@ inline int uniform_index(Rng& rng, int n) {
 }
 
 // Normal draws by Marsaglia's polar method (two uniforms in the unit disc, the second variate
-// kept for the next call), scaled to (mean, sigma). Called like std::normal_distribution.
+// kept for the next call), scaled to (mean, sigma); called as normal(rng).
 template <class T = double>
 class Normal {
  public:
