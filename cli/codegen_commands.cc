@@ -27,6 +27,17 @@ const std::string kLobeStageHelp =
     "float error model exceeds " + runtime::format_number(runtime::tolerance::kFloatRotation) +
     ", else float; float: fastest, and shaders need no shaderFloat64)";
 
+const std::string kMethodHelp =
+    "auto, zhf or zxzxz: how the rotation kernels rotate each band >= 2 (zhf: lobes; zxzxz: Euler turns about z "
+    "and two fixed quarter turns; auto: per band, whichever gives rotate_orderN the fewest operations)";
+const std::vector<std::string> kMethods = {"auto", "zhf", "zxzxz"};
+
+std::optional<codegen::BandMethod> band_method(const std::string& name) {
+  std::optional<codegen::BandMethod> method;
+  codegen::parse_band_method_choice(name, method);  // CLI11 has checked the name
+  return method;
+}
+
 std::optional<runtime::LobeStage> lobe_stage(const std::string& name) {
   std::optional<runtime::LobeStage> stage;
   codegen::parse_lobe_stage_choice(name, stage);  // CLI11 has checked the name
@@ -38,6 +49,7 @@ struct EmitCommandOptions {
   std::string language;
   std::string precision = "float";
   std::string lobe_stage = "auto";
+  std::string method = "auto";
   int channels = 0;  // 0: both
   std::string convention = "zhf";
   std::string out;
@@ -65,6 +77,7 @@ int run_emit(const EmitCommandOptions& o, const std::string& command) {
   codegen::Language language = codegen::Language::kCpp;
   codegen::parse_language(o.language, language);  // CLI11 has checked the name
   codegen::ModuleOptions module = channel_options(o.channels, o.lobe_stage);
+  module.band_method = band_method(o.method);
   // A frame alone changes nothing in a kernel (a rotation in the system's axes on its own
   // coefficients is zhf's); the sign pattern is folded in.
   module.condon_shortley = convention->condon_shortley;
@@ -84,7 +97,9 @@ int run_emit(const EmitCommandOptions& o, const std::string& command) {
   io::write_file_atomically(path.string(), file.text);
   std::printf("wrote %s\n", path.string().c_str());
   for (const codegen::EmittedFunction& f : file.functions)
-    std::printf("  %-36s %6d multiplies %6d adds\n", f.name.c_str(), f.ops.multiplies, f.ops.adds);
+    std::printf("  %-36s %6d multiplies %6d adds", f.name.c_str(), f.ops.multiplies, f.ops.adds);
+    if (f.ops.others) std::printf(" %6d others", f.ops.others);
+    std::printf("\n");
   return kExitOk;
 }
 
@@ -93,18 +108,22 @@ struct GenerateCommandOptions {
   std::string out;
   std::string scene;
   std::string lobe_stage = "auto";
+  std::string method = "auto";
 };
 
-int run_generate(const GenerateCommandOptions& o, bool lobe_stage_given) {
+int run_generate(const GenerateCommandOptions& o, bool lobe_stage_given, bool method_given) {
   codegen::GenerateOptions options;
   const pipeline::Project project = pipeline::project();
   options.tables_dir = o.tables.empty() ? project.lobes() : o.tables;
   options.out_dir = o.out.empty() ? project.generated() : o.out;
   options.stop = &io::interrupt_requested();
   options.module.lobe_stage = lobe_stage(o.lobe_stage);
+  options.module.band_method = band_method(o.method);
+  if (method_given) options.command += " --method " + o.method;
   if (!o.scene.empty()) {
     if (o.out.empty()) throw UsageError("--out: is required with --scene (generated/ holds the full set)");
     if (lobe_stage_given) throw UsageError("--lobe-stage: a scene sets it with its lobe_stage field");
+    if (method_given) throw UsageError("--method: a scene sets it with its method field");
     const codegen::Scene scene = codegen::read_scene(o.scene);
     options.orders = scene.orders();
     options.languages = scene.targets;
@@ -143,6 +162,7 @@ void add_codegen_commands(CLI::App& app, Action& action, const std::string& comm
       ->check(CLI::IsMember({"float", "double"}));
   emit->add_option("--lobe-stage", e->lobe_stage, kLobeStageHelp)
       ->check(CLI::IsMember({"auto", "float", "double-rotation", "double"}));
+  emit->add_option("--method", e->method, kMethodHelp)->check(CLI::IsMember(kMethods));
   emit->add_option("--channels", e->channels, "1, 3 or 4 (default: 1 and 3)")->check(CLI::IsMember({1, 3, 4}));
   emit->add_option("--convention", e->convention,
                    "The kernels' convention, folded in: " + runtime::convention_names() + " (docs/conventions.md)");
@@ -156,9 +176,11 @@ void add_codegen_commands(CLI::App& app, Action& action, const std::string& comm
   generate->add_option("--scene", g->scene, "Scene spec (zhf-scene-1 JSON): emit only what it lists (needs --out)");
   CLI::Option* stage = generate->add_option("--lobe-stage", g->lobe_stage, kLobeStageHelp + "; a scene sets it itself")
                            ->check(CLI::IsMember({"auto", "float", "double-rotation", "double"}));
-  generate->callback([g, stage, &action] {
-    const bool stage_given = stage->count() > 0;
-    action = [g, stage_given] { return run_generate(*g, stage_given); };
+  CLI::Option* method = generate->add_option("--method", g->method, kMethodHelp + "; a scene sets it itself")
+                            ->check(CLI::IsMember(kMethods));
+  generate->callback([g, stage, method, &action] {
+    const bool stage_given = stage->count() > 0, method_given = method->count() > 0;
+    action = [g, stage_given, method_given] { return run_generate(*g, stage_given, method_given); };
   });
 }
 

@@ -59,6 +59,7 @@ class Printer {
         out << indent << c_.temp_qualifier << type_of(n, n.wide) << " " << temp(i, scalarized(n) ? lane : -1) << " = "
             << expression(n, scalarized(n) ? lane : -1) << ";\n";
         if (n.op == Op::kMul) ++ops.multiplies;
+        else if (n.op == Op::kRsqrt || n.op == Op::kSelect) ++ops.others;
         else ++ops.adds;
       }
     }
@@ -118,6 +119,13 @@ class Printer {
       case Op::kSub: return operand(n.a, lane, n.wide) + " - " + operand(n.b, lane, n.wide);
       case Op::kMul: return operand(n.a, lane, n.wide) + " * " + operand(n.b, lane, n.wide);
       case Op::kNeg: return "-" + operand(n.a, lane, n.wide);
+      case Op::kRsqrt: return c_.reciprocal_sqrt + "(" + operand(n.a, lane, n.wide) + ")";
+      case Op::kSelect:
+        if (!c_.select_positive.empty())
+          return c_.select_positive + "(" + operand(n.a, -1, n.wide) + ", " + operand(n.b, lane, n.wide) + ", " +
+                 operand(n.c, lane, n.wide) + ")";
+        return operand(n.a, -1, n.wide) + " > " + format_literal(0.0, n.wide ? wide_ : c_, n.wide ? Precision::kDouble : p_) +
+               " ? " + operand(n.b, lane, n.wide) + " : " + operand(n.c, lane, n.wide);
       default: return "";
     }
   }
@@ -231,7 +239,8 @@ std::string banner(const std::string& command, const std::vector<EmittedFunction
   out << "// Do not edit: change the generator or the lobe table and run `zhf generate`.\n";
   out << "// Operations per call (multiplies, adds; a vector operation counts once):\n";
   for (const EmittedFunction& f : functions)
-    out << "//   " << f.name << ": " << f.ops.multiplies << " multiplies, " << f.ops.adds << " adds\n";
+    out << "//   " << f.name << ": " << f.ops.multiplies << " multiplies, " << f.ops.adds << " adds"
+        << (f.ops.others ? ", " + std::to_string(f.ops.others) + " square roots and selections" : "") << "\n";
   return out.str();
 }
 
@@ -269,6 +278,11 @@ std::vector<std::string> lobe_derivation(const Module& module, const EmitOptions
   }
   for (size_t d = 0; d < module.lobes.size(); ++d)
     lines.push_back("  w_" + std::to_string(d) + ": " + module.lobes[d].source);
+  std::string methods = "Rotations (zhf emit --method): ";
+  for (int l = 2; l < module.order; ++l)
+    methods += (l > 2 ? ", " : "") + std::string("band ") + std::to_string(l) + " " + band_method_name(module.band_methods[l]);
+  lines.push_back(methods + ";");
+  lines.push_back(module.band_methods_reason + ".");
   return lines;
 }
 

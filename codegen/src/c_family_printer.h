@@ -24,6 +24,8 @@ struct LanguageConfig {
   std::string wide_vector_stem;
   std::string wide_literal_suffix;
   std::string wide_declaration;  // C++: the line defining W, printed in functions that use it
+  std::string reciprocal_sqrt; // "inversesqrt", "rsqrt", C++: "reciprocal_sqrt" (a helper the header defines)
+  std::string select_positive; // C++: "select_positive" (x > 0 ? a : b per lane); empty: the ?: operator
   bool batch = false;          // structure-of-arrays batch entry points
   bool planar_channels = false;  // C++: multi-channel parameters are [channels][n]
 };

@@ -9,7 +9,7 @@ namespace zhf::codegen {
 int Graph::intern(const Node& n) {
   Node node = n;
   node.wide = wide_;
-  const auto key = std::make_tuple(static_cast<int>(node.op), node.a, node.b, node.value, node.param, node.element, node.wide);
+  const auto key = std::make_tuple(static_cast<int>(node.op), node.a, node.b, node.c, node.value, node.param, node.element, node.wide);
   auto it = index_.find(key);
   if (it != index_.end()) return it->second;
   nodes_.push_back(node);
@@ -99,6 +99,27 @@ int Graph::mul(int a, int b) {
   return binary(Op::kMul, a, b);
 }
 
+int Graph::rsqrt(int a) {
+  if (nodes_[a].op == Op::kConst) return constant(1 / std::sqrt(nodes_[a].value));
+  Node n;
+  n.op = Op::kRsqrt;
+  n.a = a;
+  n.lanes = nodes_[a].lanes;
+  return intern(n);
+}
+
+int Graph::select_positive(int condition, int if_positive, int otherwise) {
+  if (nodes_[condition].op == Op::kConst) return nodes_[condition].value > 0 ? if_positive : otherwise;
+  if (if_positive == otherwise) return otherwise;
+  Node n;
+  n.op = Op::kSelect;
+  n.a = condition;
+  n.b = if_positive;
+  n.c = otherwise;
+  n.lanes = std::max(nodes_[if_positive].lanes, nodes_[otherwise].lanes);
+  return intern(n);
+}
+
 int Graph::linear(const std::vector<std::pair<double, int>>& terms) {
   // Groups in order of first appearance, so output is deterministic and reads like the matrix.
   std::vector<double> magnitudes;
@@ -137,6 +158,7 @@ std::vector<int> Graph::live(const std::vector<int>& outputs) const {
     seen[i] = 1;
     stack.push_back(nodes_[i].a);
     stack.push_back(nodes_[i].b);
+    stack.push_back(nodes_[i].c);
   }
   std::vector<int> order;
   for (int i = 0; i < size(); ++i)
@@ -152,6 +174,8 @@ OpCount Graph::count(const std::vector<int>& outputs) const {
       case Op::kAdd:
       case Op::kSub:
       case Op::kNeg: ++count.adds; break;
+      case Op::kRsqrt:
+      case Op::kSelect: ++count.others; break;
       default: break;
     }
   }

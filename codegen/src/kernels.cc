@@ -7,6 +7,7 @@
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/runtime/tolerances.h"
+#include "zhf/sh/zxzxz.h"
 
 namespace zhf::codegen {
 namespace {
@@ -150,11 +151,12 @@ std::vector<int> orthonormalized_rotation(Graph& g) {
 class Builder {
  public:
   Builder(const runtime::LobeTable& table, const std::vector<Lobe>& lobes, const std::vector<int>& zero_bands,
-          runtime::LobeStage stage, bool condon_shortley)
+          runtime::LobeStage stage, bool condon_shortley, const std::vector<BandMethod>& methods,
+          const sh::BandMatrices& quarter_turn)
       : table_(table), lobes_(lobes), order_(table.order), count_(runtime::coefficient_count(table.order)),
-        legendre_(std::max(table.order, 1)), live_(std::max(table.order, 1), true),
-        wide_rotation_(stage != runtime::LobeStage::kFloat), wide_lobes_(stage == runtime::LobeStage::kDouble),
-        condon_shortley_(condon_shortley) {
+        legendre_(std::max(table.order, 1)), live_(std::max(table.order, 1), true), methods_(methods),
+        quarter_turn_(quarter_turn), wide_rotation_(stage != runtime::LobeStage::kFloat),
+        wide_lobes_(stage == runtime::LobeStage::kDouble), condon_shortley_(condon_shortley) {
     for (int l : zero_bands)
       if (l >= 0 && l < order_) live_[l] = false;
   }
@@ -197,7 +199,7 @@ class Builder {
     return f;
   }
 
-  // The standard rotation; several channels share the per-rotation work.
+  // The standard rotation, each band by its method; several channels share the per-rotation work.
   Function rotation(int channels, bool batch) const {
     std::string doc = "rotated = coefficients of f(R^T w), R row-major mapping v to R v" + channel_doc(channels);
     if (batch) doc += ", for count vectors each with its own R (structure of arrays; the arrays must not overlap)";
@@ -207,11 +209,21 @@ class Builder {
     Graph& g = f.graph;
     const int in = 1, out = 2;
     copy_band0_rotate_band1(f, in, out, channels);
-    const std::vector<std::vector<int>> h = lobe_polynomials(g, /*transpose=*/false);
+    const std::vector<bool> by_lobes = live_by(BandMethod::kLobes), by_zxzxz = live_by(BandMethod::kZxzxz);
+    const std::vector<std::vector<int>> h = lobe_polynomials(g, /*transpose=*/false, by_lobes);
+    g.set_wide(false);
+    const EulerTurns turns = euler_turns(g, by_zxzxz);
     for (const runtime::TableBand& band : table_.bands) {
       const int l = band.l, base = l * l;
       if (!live_[l]) {
         put_zeros(f, out, l);
+        continue;
+      }
+      if (by_zxzxz[l]) {
+        std::vector<int> v(2 * l + 1);
+        for (int i = 0; i < 2 * l + 1; ++i) v[i] = g.input(in, base + i, channels);
+        v = zxzxz_band(g, l, turns, v);
+        for (int i = 0; i < 2 * l + 1; ++i) put(f, out, base + i, v[i]);
         continue;
       }
       std::vector<int> zhat(2 * l + 1);
@@ -228,6 +240,7 @@ class Builder {
         for (int d = 0; d < 2 * l + 1; ++d) terms.push_back({1.0, g.mul(h[band.lobes[d]][runtime::index(l, m)], zhat[d])});
         put(f, out, base + m + l, g.scale(legendre_.output_scale(l, m), g.linear(terms)));
       }
+      g.set_wide(false);
     }
     g.set_wide(false);
     return f;
@@ -241,7 +254,7 @@ class Builder {
                       {{"R", 9, false, 1}, {"coeffs", count_, false, channels}, {"rotated", count_, true, channels}});
     Graph& g = f.graph;
     copy_band0_rotate_band1(f, 1, 2, channels);
-    const std::vector<std::vector<int>> h = lobe_polynomials(g, /*transpose=*/true);
+    const std::vector<std::vector<int>> h = lobe_polynomials(g, /*transpose=*/true, live_);
     for (const runtime::TableBand& band : table_.bands) {
       const int l = band.l, base = l * l;
       if (!live_[l]) {
@@ -292,10 +305,23 @@ class Builder {
           terms.push_back({1.0, g.mul(g.input(0, 3 * kBand1Axis[m + 1] + kBand1Axis[n + 1]), g.input(light, runtime::index(1, n)))});
         total.push_back({1.0, g.mul(g.linear(terms), g.input(transfer, runtime::index(1, m)))});
       }
-    const std::vector<std::vector<int>> h = lobe_polynomials(g, /*transpose=*/false);
+    // From the light's coefficients, the bands the rotations take by zxzxz rotate the light and
+    // dot it with the transfer; from lobe weights, every band is by lobes.
+    const std::vector<bool> by_lobes = from_lobes ? live_ : live_by(BandMethod::kLobes);
+    const std::vector<bool> by_zxzxz = from_lobes ? std::vector<bool>(order_, false) : live_by(BandMethod::kZxzxz);
+    const std::vector<std::vector<int>> h = lobe_polynomials(g, /*transpose=*/false, by_lobes);
+    g.set_wide(false);
+    const EulerTurns turns = euler_turns(g, by_zxzxz);
     for (const runtime::TableBand& band : table_.bands) {
       const int l = band.l, base = l * l;
-      if (!live_[l]) continue;
+      if (by_zxzxz[l]) {
+        std::vector<int> v(2 * l + 1);
+        for (int i = 0; i < 2 * l + 1; ++i) v[i] = g.input(light, base + i);
+        v = zxzxz_band(g, l, turns, v);
+        for (int i = 0; i < 2 * l + 1; ++i) total.push_back({1.0, g.mul(v[i], g.input(transfer, base + i))});
+        continue;
+      }
+      if (!by_lobes[l]) continue;
       std::vector<int> scaled(2 * l + 1);
       for (int m = -l; m <= l; ++m) scaled[m + l] = g.scale(legendre_.output_scale(l, m), g.input(transfer, base + m + l));
       for (int d = 0; d < 2 * l + 1; ++d) {
@@ -336,7 +362,7 @@ class Builder {
           put(f, 1, dense_matrix_offset(l) + side * m + n, value);
         }
     }
-    const std::vector<std::vector<int>> h = lobe_polynomials(g, /*transpose=*/false);
+    const std::vector<std::vector<int>> h = lobe_polynomials(g, /*transpose=*/false, live_);
     for (const runtime::TableBand& band : table_.bands) {
       const int l = band.l, side = 2 * l + 1;
       for (int m = -l; m <= l; ++m)
@@ -498,18 +524,18 @@ class Builder {
     }
   }
 
-  // Per lobe, the homogeneous polynomials of every live band that uses it, at R u_d (or R^T u_d):
+  // Per lobe, the homogeneous polynomials of every band marked that uses it, at R u_d (or R^T u_d):
   // the lobes rotated in the wide type from LobeStage::kDoubleRotation on, R projected and the SH
   // wide too at kDouble. The graph is left at the SH's width: the caller narrows where float
   // suffices.
-  std::vector<std::vector<int>> lobe_polynomials(Graph& g, bool transpose) const {
+  std::vector<std::vector<int>> lobe_polynomials(Graph& g, bool transpose, const std::vector<bool>& bands) const {
     g.set_wide(wide_rotation_);
     std::vector<int> r(9);
     for (int i = 0; i < 9; ++i) r[i] = g.input(0, i);
     if (wide_lobes_) r = orthonormalized_rotation(g);
     std::vector<std::vector<bool>> bands_of_lobe(lobes_.size(), std::vector<bool>(order_, false));
     for (const runtime::TableBand& band : table_.bands)
-      if (live_[band.l])
+      if (bands[band.l])
         for (int d : band.lobes) bands_of_lobe[d][band.l] = true;
     std::vector<std::vector<int>> h;
     for (size_t d = 0; d < lobes_.size(); ++d) {
@@ -521,12 +547,99 @@ class Builder {
     return h;
   }
 
+  // cos and sin of m t for m <= the top band marked, t each zyz Euler angle of R (kernels.h says
+  // how they are found without the angles); empty when no band is marked.
+  struct EulerTurns {
+    std::vector<int> cos_a, sin_a, cos_b, sin_b, cos_g, sin_g;
+  };
+  EulerTurns euler_turns(Graph& g, const std::vector<bool>& bands) const {
+    EulerTurns t;
+    int top = 0;
+    for (int l = 0; l < order_; ++l)
+      if (bands[l]) top = l;
+    if (top == 0) return t;
+    auto r = [&](int i, int j) { return g.input(0, 3 * i + j); };
+    // (cos a, sin a) sin b = (R_02, R_12); below kGimbalLockSine2 any a works: a = 0.
+    const int column2 = g.add(g.mul(r(0, 2), r(0, 2)), g.mul(r(1, 2), r(1, 2)));
+    const int unlocked = g.sub(column2, g.constant(runtime::tolerance::kGimbalLockSine2));
+    const int inverse = g.rsqrt(g.select_positive(unlocked, column2, g.constant(1)));
+    const int cos_a = g.select_positive(unlocked, g.mul(r(0, 2), inverse), g.constant(1));
+    const int sin_a = g.select_positive(unlocked, g.mul(r(1, 2), inverse), g.constant(0));
+    const int sin_b = g.mul(column2, inverse);
+    // Rz(-a) R = Ry(b) Rz(g), whose middle row is (sin g, cos g, 0).
+    const int sin_g = g.sub(g.mul(cos_a, r(1, 0)), g.mul(sin_a, r(0, 0)));
+    const int cos_g = g.sub(g.mul(cos_a, r(1, 1)), g.mul(sin_a, r(0, 1)));
+    multiples(g, cos_a, sin_a, top, t.cos_a, t.sin_a);
+    multiples(g, r(2, 2), sin_b, top, t.cos_b, t.sin_b);
+    multiples(g, cos_g, sin_g, top, t.cos_g, t.sin_g);
+    return t;
+  }
+  // c[m] = cos(m t), s[m] = sin(m t), m <= top: even m by doubling m/2, (c - s)(c + s) and 2cs; odd
+  // m by adding t to m - 1. Error ~m eps however close t is to 0 or pi; the cheaper Chebyshev
+  // recurrence x_m = 2 cos t x_{m-1} - x_{m-2} amplifies cos t's rounding by m^2 there, past float's
+  // tolerance at order 5.
+  static void multiples(Graph& g, int cos_t, int sin_t, int top, std::vector<int>& c, std::vector<int>& s) {
+    c = {g.constant(1), cos_t};
+    s = {g.constant(0), sin_t};
+    for (int m = 2; m <= top; ++m) {
+      if (m % 2 == 0) {
+        const int ch = c[m / 2], sh = s[m / 2], cs = g.mul(ch, sh);
+        c.push_back(g.mul(g.sub(ch, sh), g.add(ch, sh)));
+        s.push_back(g.add(cs, cs));
+      } else {
+        c.push_back(g.sub(g.mul(c[m - 1], cos_t), g.mul(s[m - 1], sin_t)));
+        s.push_back(g.add(g.mul(s[m - 1], cos_t), g.mul(c[m - 1], sin_t)));
+      }
+    }
+  }
+  // Band l (v[m + l]) turned about z: g(phi) = f(phi - t) sends the (m, -m) weights (x, y) to
+  // (x cos mt - y sin mt, x sin mt + y cos mt).
+  static std::vector<int> turn(Graph& g, int l, const std::vector<int>& c, const std::vector<int>& s, std::vector<int> v) {
+    for (int m = 1; m <= l; ++m) {
+      const int x = v[l + m], y = v[l - m];
+      v[l + m] = g.sub(g.mul(c[m], x), g.mul(s[m], y));
+      v[l - m] = g.add(g.mul(s[m], x), g.mul(c[m], y));
+    }
+    return v;
+  }
+  // X_l v or X_l^T v, X_l = D_l(Rx(+90 deg)) with its zeros and units (to kExactEntry) folded away.
+  std::vector<int> quarter_turn(Graph& g, int l, const std::vector<int>& v, bool transpose) const {
+    const Eigen::MatrixXd& x = quarter_turn_[l];
+    std::vector<int> out(2 * l + 1);
+    for (int i = 0; i < 2 * l + 1; ++i) {
+      std::vector<std::pair<double, int>> terms;
+      for (int j = 0; j < 2 * l + 1; ++j) {
+        double entry = transpose ? x(j, i) : x(i, j);
+        if (std::abs(std::abs(entry) - 1) <= runtime::tolerance::kExactEntry) entry = entry > 0 ? 1 : -1;
+        if (std::abs(entry) > runtime::tolerance::kExactEntry) terms.push_back({entry, v[j]});
+      }
+      out[i] = g.linear(terms);
+    }
+    return out;
+  }
+
+  // The live bands >= 2 the rotations take by this method.
+  std::vector<bool> live_by(BandMethod method) const {
+    std::vector<bool> bands(order_, false);
+    for (const runtime::TableBand& band : table_.bands) bands[band.l] = live_[band.l] && methods_[band.l] == method;
+    return bands;
+  }
+  // Band l (v[m + l]) rotated by zxzxz: Z(a) X^T Z(b) X Z(g) v.
+  std::vector<int> zxzxz_band(Graph& g, int l, const EulerTurns& t, std::vector<int> v) const {
+    v = turn(g, l, t.cos_g, t.sin_g, v);
+    v = quarter_turn(g, l, v, /*transpose=*/false);
+    v = turn(g, l, t.cos_b, t.sin_b, v);
+    v = quarter_turn(g, l, v, /*transpose=*/true);
+    return turn(g, l, t.cos_a, t.sin_a, v);
+  }
   const runtime::LobeTable& table_;
   const std::vector<Lobe>& lobes_;
   int order_;
   int count_;
   Legendre legendre_;
   std::vector<bool> live_;  // bands not known to be zero
+  const std::vector<BandMethod>& methods_;  // [l] of the rotation kernels
+  const sh::BandMatrices& quarter_turn_;    // X_l = D_l(Rx(+90 deg))
   bool wide_rotation_;  // the lobes are rotated in the wide type
   bool wide_lobes_;     // ... and R projected, their SH and the sums over lobes too
   bool condon_shortley_;  // ModuleOptions::condon_shortley
@@ -606,6 +719,83 @@ std::string channel_suffix(int channels) { return channels == 3 ? "_rgb" : chann
 
 int dense_matrix_offset(int band) { return band * (2 * band - 1) * (2 * band + 1) / 3; }
 
+runtime::LobeStage Module::rotation_lobe_stage() const {
+  for (int l = 2; l < order && l < int(band_methods.size()); ++l)
+    if (band_methods[l] == BandMethod::kLobes) return lobe_stage;
+  return runtime::LobeStage::kFloat;
+}
+
+const char* band_method_name(BandMethod method) { return method == BandMethod::kLobes ? "zhf" : "zxzxz"; }
+
+bool parse_band_method_choice(const std::string& name, std::optional<BandMethod>& method) {
+  if (name == "auto") {
+    method.reset();
+    return true;
+  }
+  for (BandMethod m : {BandMethod::kLobes, BandMethod::kZxzxz})
+    if (name == band_method_name(m)) {
+      method = m;
+      return true;
+    }
+  return false;
+}
+
+std::string band_method_choice_name(const std::optional<BandMethod>& method) {
+  return method ? band_method_name(*method) : "auto";
+}
+
+namespace {
+
+int total(const OpCount& c) { return c.multiplies + c.adds + c.others; }
+
+// Every assignment of methods to bands 2..N-1 up to kMaxExhaustiveMethodBands of them, else
+// lobes below a band and zxzxz from it on; the one whose rotate_orderN has the fewest operations
+// (then multiplies; then the earlier, with more bands by lobes). reason says what was compared.
+std::vector<BandMethod> cheapest_band_methods(const Module& module, const ModuleOptions& options,
+                                              const sh::BandMatrices& quarter_turn, std::string& reason) {
+  const int n = module.order, free_bands = std::max(n - 2, 0);
+  std::vector<std::vector<BandMethod>> candidates;
+  if (free_bands <= runtime::kMaxExhaustiveMethodBands) {
+    for (int mask = 0; mask < (1 << free_bands); ++mask) {
+      std::vector<BandMethod> m(n, BandMethod::kLobes);
+      for (int l = 2; l < n; ++l)
+        if (mask >> (l - 2) & 1) m[l] = BandMethod::kZxzxz;
+      candidates.push_back(m);
+    }
+  } else {
+    for (int from = n; from >= 2; --from) {
+      std::vector<BandMethod> m(n, BandMethod::kLobes);
+      for (int l = from; l < n; ++l) m[l] = BandMethod::kZxzxz;
+      candidates.push_back(m);
+    }
+  }
+  std::vector<BandMethod> best;
+  OpCount best_count;
+  OpCount all_lobes, all_zxzxz;
+  for (const std::vector<BandMethod>& m : candidates) {
+    const Builder builder(module.table, module.lobes, options.zero_bands, module.lobe_stage, options.condon_shortley, m,
+                          quarter_turn);
+    const Function f = builder.rotation(1, false);
+    const OpCount c = f.graph.count(f.output_nodes());
+    if (std::count(m.begin() + std::min(n, 2), m.end(), BandMethod::kZxzxz) == 0) all_lobes = c;
+    if (std::count(m.begin() + std::min(n, 2), m.end(), BandMethod::kLobes) == 0) all_zxzxz = c;
+    if (best.empty() || total(c) < total(best_count) || (total(c) == total(best_count) && c.multiplies < best_count.multiplies)) {
+      best = m;
+      best_count = c;
+    }
+  }
+  auto describe = [](const OpCount& c) {
+    return std::to_string(c.multiplies) + " multiplies, " + std::to_string(c.adds) + " adds" +
+           (c.others ? ", " + std::to_string(c.others) + " others" : "");
+  };
+  reason = "fewest operations in rotate_order" + std::to_string(n) + " among " + std::to_string(candidates.size()) +
+           " assignments: " + describe(best_count) + " (every band by lobes: " + describe(all_lobes) +
+           "; every band by zxzxz: " + describe(all_zxzxz) + ")";
+  return best;
+}
+
+}  // namespace
+
 Module build_module(const runtime::LobeTable& table, const ModuleOptions& options) {
   Module module;
   module.order = table.order;
@@ -618,7 +808,15 @@ Module build_module(const runtime::LobeTable& table, const ModuleOptions& option
     module.lobes.push_back(lobe);
   }
   module.lobe_stage = lobe_stage_for(module.table, options);
-  const Builder builder(module.table, module.lobes, options.zero_bands, module.lobe_stage, options.condon_shortley);
+  const sh::BandMatrices quarter_turn = sh::quarter_turn_x(std::max(table.order, 1));
+  if (options.band_method) {
+    module.band_methods.assign(table.order, *options.band_method);
+    module.band_methods_reason = std::string("every band by ") + band_method_name(*options.band_method) + ", as asked";
+  } else {
+    module.band_methods = cheapest_band_methods(module, options, quarter_turn, module.band_methods_reason);
+  }
+  const Builder builder(module.table, module.lobes, options.zero_bands, module.lobe_stage, options.condon_shortley,
+                        module.band_methods, quarter_turn);
   auto wants = [](const std::vector<int>& list, int channels) {
     return std::find(list.begin(), list.end(), channels) != list.end();
   };

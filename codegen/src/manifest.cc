@@ -66,7 +66,8 @@ nlohmann::ordered_json manifest_json(const Manifest& manifest) {
                            {"kind", kernel_kind_name(fn.kind)},
                            {"channels", fn.channels},
                            {"multiplies", fn.ops.multiplies},
-                           {"adds", fn.ops.adds}});
+                           {"adds", fn.ops.adds},
+                           {"others", fn.ops.others}});
     nlohmann::ordered_json entry = {{"path", f.path}, {"kind", file_kind_name(f.kind)}};
     if (f.kind != FileKind::kLobeTable) entry["language"] = language_name(f.language);
     entry["order"] = f.order;
@@ -123,7 +124,7 @@ Manifest parse_manifest(const runtime::json::Value& root, const std::string& sou
     for (const Field& band : f.member("zero_bands").items(0, runtime::kMaxEmitOrder))
       file.zero_bands.push_back(band.integer(0, std::max(0, file.order - 1)));
     for (const Field& fn : f.member("functions").items(0, runtime::kMaxManifestFunctions)) {
-      fn.allow_only({"name", "kind", "channels", "multiplies", "adds"});
+      fn.allow_only({"name", "kind", "channels", "multiplies", "adds", "others"});
       EmittedFunction function;
       function.name = fn.member("name").string();
       if (!runtime::is_printable_text(function.name)) fn.member("name").fail("not a function name");
@@ -133,6 +134,7 @@ Manifest parse_manifest(const runtime::json::Value& root, const std::string& sou
       function.channels = fn.member("channels").integer(1, runtime::kMaxChannels);
       function.ops.multiplies = fn.member("multiplies").integer(0, 1 << 30);
       function.ops.adds = fn.member("adds").integer(0, 1 << 30);
+      if (const auto others = fn.find("others")) function.ops.others = others->integer(0, 1 << 30);  // absent: none
       file.functions.push_back(function);
     }
     file.fnv1a64 = f.member("fnv1a64").string();

@@ -34,6 +34,7 @@ std::map<int, ModuleOptions> Scene::module_options() const {
       none.tailored_channels.clear();
       none.zero_bands = signal.zero_bands;
       none.lobe_stage = lobe_stage;
+      none.band_method = method;
       out[signal.order] = none;
     }
     ModuleOptions& m = out[signal.order];
@@ -63,6 +64,7 @@ nlohmann::ordered_json Scene::to_json() const {
   j["targets"] = names;
   j["precision"] = precision == Precision::kDouble ? "double" : "float";
   j["lobe_stage"] = lobe_stage_choice_name(lobe_stage);
+  j["method"] = band_method_choice_name(method);
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
   for (const SceneSignal& s : signals)
     list.push_back({{"name", s.name}, {"order", s.order}, {"channels", s.channels}, {"variants", s.variants},
@@ -74,7 +76,7 @@ nlohmann::ordered_json Scene::to_json() const {
 Scene parse_scene(const runtime::json::Value& root, const std::string& source) {
   using runtime::json::Field;
   const Field top(root, source);
-  top.allow_only({"format", "targets", "precision", "lobe_stage", "signals"});
+  top.allow_only({"format", "targets", "precision", "lobe_stage", "method", "signals"});
   const Field format = top.member("format");
   if (format.string() != kSceneFormat) format.fail("'" + io::excerpt(format.string()) + "' is not " + kSceneFormat);
   Scene scene;
@@ -94,6 +96,7 @@ Scene parse_scene(const runtime::json::Value& root, const std::string& source) {
     scene.precision = precision->one_of({"float", "double"}) == "double" ? Precision::kDouble : Precision::kFloat;
   }
   if (const auto stage = top.find("lobe_stage")) parse_lobe_stage_choice(stage->one_of({"auto", "float", "double-rotation", "double"}), scene.lobe_stage);
+  if (const auto method = top.find("method")) parse_band_method_choice(method->one_of({"auto", "zhf", "zxzxz"}), scene.method);
   std::map<int, std::string> first_of_order;
   const std::vector<Field> signals = top.member("signals").items(1, runtime::kMaxSceneSignals);
   for (size_t i = 0; i < signals.size(); ++i) {

@@ -27,6 +27,7 @@ class ShaderBackend : public Backend {
     config.temp_qualifier = s_.temp_qualifier;
     config.input_array_qualifier = s_.input_array_qualifier;
     config.output_array_qualifier = "out ";
+    config.reciprocal_sqrt = s_.reciprocal_sqrt;
     EmittedFile file;
     file.file_name = "zhf_order" + std::to_string(module.order) + (f64 ? "_f64" : "") + s_.extension;
     const std::string body = print_functions(module, config, options.precision, file.functions);

@@ -17,6 +17,7 @@ struct ShaderSpelling {
   std::string double_suffix;        // literal suffix of double constants: "lf", "L"
   std::string temp_qualifier;       // "" for GLSL (a GLSL const must be a compile-time constant)
   std::string input_array_qualifier;
+  std::string reciprocal_sqrt;      // "inversesqrt", "rsqrt"
   bool array_constructor = false;   // GLSL: T[n](...); HLSL: static const T x[n] = {...}
 };
 

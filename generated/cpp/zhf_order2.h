@@ -249,7 +249,7 @@ struct Kernels;
 template <>
 struct Kernels<2> {
   static constexpr int kOrder = 2;
-  static constexpr int kLobeStage = 0;  // runtime::LobeStage: float
+  static constexpr int kLobeStage = 0;  // runtime::LobeStage of rotate and rotate_batch: float
   template <class T>
   static void sh_eval(const T dir[3], T y[4]) { sh_eval_order2<T>(dir, y); }
   template <class T>

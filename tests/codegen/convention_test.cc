@@ -3,6 +3,7 @@
 // terms (R -> K R K, directions -> K d, coefficients -> S f, K = diag(-1, -1, 1), S = (-1)^m),
 // and costs the same multiplies. zhf's own functions are verified against the reference by
 // `zhf verify`; the printers do not depend on the convention.
+#include <cmath>
 #include <map>
 #include <random>
 #include <string>
@@ -35,6 +36,8 @@ std::map<std::pair<int, int>, double> evaluate(const codegen::Function& f, const
       case codegen::Op::kSub: v[i] = v[n.a] - v[n.b]; break;
       case codegen::Op::kMul: v[i] = v[n.a] * v[n.b]; break;
       case codegen::Op::kNeg: v[i] = -v[n.a]; break;
+      case codegen::Op::kRsqrt: v[i] = 1 / std::sqrt(v[n.a]); break;
+      case codegen::Op::kSelect: v[i] = v[n.a] > 0 ? v[n.b] : v[n.c]; break;
     }
   }
   std::map<std::pair<int, int>, double> out;

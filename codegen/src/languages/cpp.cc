@@ -1,6 +1,7 @@
 // C++: header-only kernels in namespace zhf::gen, templated on the scalar type T, each order's
 // functions also gathered in the trait gen::Kernels<N> for generic code; and the constant tables of
 // the lobe-parallel kernel (runtime/lanes.h) in gen::LanesTables<N>.
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 #include <stdexcept>
@@ -12,6 +13,26 @@
 namespace zhf::codegen {
 namespace {
 
+// What the zxzxz bands call beyond + - *, for the scalar types; a vector type brings its own
+// overloads, found by argument-dependent lookup (runtime/pack.h). Guarded: every order's header
+// has it.
+constexpr const char* kKernelMath = R"(
+#ifndef ZHF_GEN_KERNEL_MATH
+#define ZHF_GEN_KERNEL_MATH
+namespace zhf::gen {
+template <class T>
+inline T reciprocal_sqrt(const T& x) {
+  using std::sqrt;
+  return T(1) / sqrt(x);
+}
+template <class T>
+inline T select_positive(const T& x, const T& if_positive, const T& otherwise) {
+  return x > T(0) ? if_positive : otherwise;
+}
+}  // namespace zhf::gen
+#endif
+)";
+
 LanguageConfig cpp_config() {
   LanguageConfig config;
   config.name = "cpp";
@@ -22,21 +43,23 @@ LanguageConfig cpp_config() {
   config.wide_scalar = "W";
   config.wide_declaration = "using W = std::common_type_t<T, double>;  // the lobe stage's type";
   config.input_array_qualifier = "const ";
+  config.reciprocal_sqrt = "reciprocal_sqrt";
+  config.select_positive = "select_positive";
   config.batch = true;
   config.planar_channels = true;
   return config;
 }
 
-// gen::Kernels<N>: the module's functions as static members (name without _orderN), its lobe
-// stage and its lobes.
+// gen::Kernels<N>: the module's functions as static members (name without _orderN) and where its
+// rotations run their lobe stage (float when every band is by zxzxz).
 std::string kernels_trait(const Module& module, const LanguageConfig& config) {
   const std::string n = std::to_string(module.order);
   std::ostringstream out;
   out << "\n// The functions above for generic code (runtime/rotator.h, zhf_kernels.h).\n"
       << "template <int N>\nstruct Kernels;\ntemplate <>\nstruct Kernels<" << n << "> {\n"
       << "  static constexpr int kOrder = " << n << ";\n"
-      << "  static constexpr int kLobeStage = " << static_cast<int>(module.lobe_stage)
-      << ";  // runtime::LobeStage: " << runtime::lobe_stage_name(module.lobe_stage) << "\n";
+      << "  static constexpr int kLobeStage = " << static_cast<int>(module.rotation_lobe_stage())
+      << ";  // runtime::LobeStage of rotate and rotate_batch: " << runtime::lobe_stage_name(module.rotation_lobe_stage()) << "\n";
   for (const Function& f : module.functions)
     out << "  template <class T>\n  static void " << f.member << "(" << print_parameters(f, config) << ") { " << f.name
         << "<T>(" << print_arguments(f) << "); }\n";
@@ -50,7 +73,12 @@ EmittedFile emit_kernels(const Module& module, const EmitOptions& options) {
   file.file_name = "zhf_order" + std::to_string(module.order) + ".h";
   const std::string body = print_functions(module, config, Precision::kDouble, file.functions);
   std::ostringstream out;
-  out << banner(options.command, file.functions) << "#pragma once\n\n#include <cstddef>\n";
+  out << banner(options.command, file.functions) << "#pragma once\n\n";
+  const bool square_roots = std::any_of(file.functions.begin(), file.functions.end(),
+                                        [](const EmittedFunction& f) { return f.ops.others > 0; });
+  if (square_roots) out << "#include <cmath>\n";
+  out << "#include <cstddef>\n";
+  if (square_roots) out << kKernelMath;
   if (module.lobe_stage != runtime::LobeStage::kFloat) out << "#include <type_traits>\n";
   out << "\nnamespace zhf::gen {\n";
   if (!module.lobes.empty()) {

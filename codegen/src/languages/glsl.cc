@@ -11,6 +11,7 @@ std::unique_ptr<Backend> make_glsl_backend() {
   s.double_vector_stem = "dvec";
   s.double_suffix = "lf";
   s.input_array_qualifier = "in ";
+  s.reciprocal_sqrt = "inversesqrt";
   s.array_constructor = true;
   return make_shader_backend(s);
 }

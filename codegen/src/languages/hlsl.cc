@@ -11,6 +11,7 @@ std::unique_ptr<Backend> make_hlsl_backend() {
   s.double_vector_stem = "double";
   s.double_suffix = "L";
   s.temp_qualifier = "const ";
+  s.reciprocal_sqrt = "rsqrt";
   return make_shader_backend(s);
 }
 

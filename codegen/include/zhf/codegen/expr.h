@@ -1,5 +1,6 @@
 // The one expression model every backend prints: a DAG of scalar (or channel-vector) additions,
-// subtractions, negations and multiplications over inputs and constants. Construction folds
+// subtractions, negations and multiplications over inputs and constants, with reciprocal square
+// roots and sign selections for the few kernels that normalise (the zxzxz Euler stage). Construction folds
 // constants and signs and shares identical subexpressions, so the three languages get the
 // same algorithm and the same operation counts by construction.
 #pragma once
@@ -12,11 +13,15 @@
 
 namespace zhf::codegen {
 
-enum class Op { kInput, kConst, kAdd, kSub, kMul, kNeg };
+enum class Op {
+  kInput, kConst, kAdd, kSub, kMul, kNeg,
+  kRsqrt,   // 1 / sqrt(a)
+  kSelect,  // a > 0 ? b : c
+};
 
 struct Node {
   Op op = Op::kConst;
-  int a = -1, b = -1;   // operands
+  int a = -1, b = -1, c = -1;  // operands
   double value = 0;     // kConst
   int param = -1;       // kInput: parameter and element
   int element = -1;
@@ -27,6 +32,7 @@ struct Node {
 struct OpCount {
   int multiplies = 0;
   int adds = 0;  // additions, subtractions and negations
+  int others = 0;  // reciprocal square roots and selections
 };
 
 class Graph {
@@ -42,6 +48,8 @@ class Graph {
   int mul(int a, int b);
   int neg(int a);
   int scale(double c, int a) { return mul(constant(c), a); }
+  int rsqrt(int a);
+  int select_positive(int condition, int if_positive, int otherwise);
 
   // Nodes created while wide is set are computed in the wide type; printers convert where a
   // node's operand or output has the other width.
@@ -66,7 +74,7 @@ class Graph {
   int binary(Op op, int a, int b);
   std::vector<Node> nodes_;
   std::vector<std::pair<int, int>> negated_;  // (param, element)
-  std::map<std::tuple<int, int, int, double, int, int, bool>, int> index_;
+  std::map<std::tuple<int, int, int, int, double, int, int, bool>, int> index_;
   bool wide_ = false;
 };
 

@@ -8,6 +8,14 @@
 //   zhat_{l,d} = sum_m' (A_l[m'][d] / |u_d|^l) f_{l,m'}   (sparse: A^T with scale folded in)
 // where H are the scaled Legendre-times-(x+iy)^m polynomials of runtime/sh_eval.h and K_{l,m} collects
 // every normalisation: one multiply per output instead of one per lobe.
+//
+// Rotation by zxzxz (a band's other form): with zyz Euler angles R = Rz(a) Ry(b) Rz(g) and
+// Ry(b) = Rx(-90) Rz(b) Rx(+90),
+//   f'_l = Z_l(a) X_l^T Z_l(b) X_l Z_l(g) f_l,   X_l = D_l(Rx(+90 deg)) (constants, zeros folded),
+// where Z_l(t) turns each (cos m phi, sin m phi) pair by m t: 4l multiplies. The angles are never
+// formed: cos and sin of a come from R's last column normalised (one reciprocal square root; a
+// fixed choice at gimbal lock, where any a works), those of g from Rz(-a) R's middle row, b's are
+// R_22 and |R's last column in xy|, and the multiples m t by doubling and angle addition.
 #pragma once
 
 #include <optional>
@@ -78,6 +86,10 @@ struct Lobe {
 // of the lobe-parallel kernel (runtime/lanes.h) from a lanes table.
 enum class ModuleKind { kKernels, kLanesTables };
 
+// How a rotation kernel rotates one band l >= 2 (bands 0 and 1 are a copy and a 3x3).
+enum class BandMethod { kLobes, kZxzxz };
+const char* band_method_name(BandMethod method);  // "zhf", "zxzxz"
+
 struct Module {
   ModuleKind kind = ModuleKind::kKernels;
   int order = 0;
@@ -85,6 +97,11 @@ struct Module {
   std::vector<Lobe> lobes;
   std::vector<Function> functions;
   runtime::LobeStage lobe_stage = runtime::LobeStage::kFloat;  // of the rotations (kernels), or of lanes.h
+  std::vector<BandMethod> band_methods;  // [l] of the rotation kernels (rotate, rotate_batch); bands 0, 1 unused
+  std::string band_methods_reason;       // why, for the banner
+
+  // Where the rotation kernels run their lobe stage: lobe_stage, or float when no band is by lobes.
+  runtime::LobeStage rotation_lobe_stage() const;
 };
 
 // Which functions a module holds. The defaults are generated/'s; a scene spec narrows them.
@@ -111,7 +128,14 @@ struct ModuleOptions {
   // Where float rotations run their lobe stage (runtime/lobe_stage.h); none: automatic, the
   // cheapest stage whose float error model meets tolerance::kFloatRotation.
   std::optional<runtime::LobeStage> lobe_stage;
+  // How the rotation kernels rotate each band >= 2: every band by one method, or none: automatic,
+  // the assignment of methods to bands with the fewest operations in rotate_orderN.
+  std::optional<BandMethod> band_method;
 };
+
+// "auto" (none) or a method's name; false otherwise.
+bool parse_band_method_choice(const std::string& name, std::optional<BandMethod>& method);
+std::string band_method_choice_name(const std::optional<BandMethod>& method);
 
 // The lobe stage `auto` picks for a table's rotation kernels: float where eps_f (N-1) k_max meets
 // the float target, else double (R projected, the whole lobe stage in double).

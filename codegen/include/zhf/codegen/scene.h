@@ -6,6 +6,8 @@
 //     "precision": "float",           // float or double (shaders; C++ kernels are templates)
 //     "lobe_stage": "auto",           // auto, float, double-rotation or double: where float
 //                                     // kernels run the lobe stage (runtime/lobe_stage.h); optional
+//     "method": "auto",               // auto, zhf or zxzxz: how rotations rotate each band >= 2
+//                                     // (kernels.h; zhf emit --method); optional
 //     "signals": [
 //       {"name": "lighting", "order": 3, "channels": 3, "variants": ["standard"]},
 //       {"name": "transfer", "order": 5, "channels": 1, "variants": ["signal-tailored"],
@@ -46,6 +48,7 @@ struct Scene {
   std::vector<Language> targets;
   Precision precision = Precision::kFloat;
   std::optional<runtime::LobeStage> lobe_stage;  // none: auto
+  std::optional<BandMethod> method;              // none: auto
   std::vector<SceneSignal> signals;
 
   std::vector<int> orders() const;                   // sorted, unique

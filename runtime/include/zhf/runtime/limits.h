@@ -31,6 +31,9 @@ inline constexpr int kMaxSearchOrder = kMaxTableOrder;
 inline constexpr int kMinGeneratedOrder = 2;
 inline constexpr int kMaxGeneratedOrder = 8;
 inline constexpr int kMaxEmitOrder = 12;
+// zhf emit --method auto tries every assignment of methods to bands up to this many bands >= 2
+// (2^6 graphs at order 8), above it lobes below one band and zxzxz from it on.
+inline constexpr int kMaxExhaustiveMethodBands = 6;
 // The lobe-parallel kernel (lanes.h) and its tables.
 inline constexpr int kMinLanesOrder = 3;
 inline constexpr int kMaxLanesOrder = 8;

@@ -10,8 +10,11 @@
 // accuracy is the scalar path's.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <cstring>
+#include <type_traits>
 
 namespace zhf::runtime {
 
@@ -31,6 +34,13 @@ struct Pack {
   friend Pack operator-(const Pack& a, const Pack& b) { return Pack(a.v - b.v); }
   friend Pack operator*(const Pack& a, const Pack& b) { return Pack(a.v * b.v); }
   friend Pack operator-(const Pack& a) { return Pack(-a.v); }
+  // x > 0 ? if_positive : otherwise, lane by lane (the emitted kernels' select_positive).
+  friend Pack select_positive(const Pack& x, const Pack& if_positive, const Pack& otherwise) {
+    using Int = std::conditional_t<sizeof(T) == 4, std::int32_t, std::int64_t>;
+    typedef Int Mask __attribute__((vector_size(kBytes)));
+    const Mask positive = x.v > Vector{};  // all bits set where true
+    return Pack(Vector((positive & Mask(if_positive.v)) | (~positive & Mask(otherwise.v))));
+  }
 #else
   T v[kLanes];
   Pack() = default;  // uninitialised, as a scalar; Pack(0.0) for zeros
@@ -49,7 +59,18 @@ struct Pack {
   friend Pack operator-(Pack a, Pack b) { return zip(a, b, [](T x, T y) { return x - y; }); }
   friend Pack operator*(Pack a, Pack b) { return zip(a, b, [](T x, T y) { return x * y; }); }
   friend Pack operator-(Pack a) { return zip(a, a, [](T x, T) { return -x; }); }
+  friend Pack select_positive(const Pack& x, const Pack& if_positive, const Pack& otherwise) {
+    Pack r;
+    for (int i = 0; i < kLanes; ++i) r.v[i] = x.v[i] > T(0) ? if_positive.v[i] : otherwise.v[i];
+    return r;
+  }
 #endif
+  // 1 / sqrt(x), lane by lane (the emitted kernels' reciprocal_sqrt).
+  friend Pack reciprocal_sqrt(const Pack& x) {
+    Pack r;
+    for (int i = 0; i < kLanes; ++i) r.v[i] = T(1) / std::sqrt(x.v[i]);
+    return r;
+  }
   Pack& operator+=(const Pack& b) { return *this = *this + b; }
   Pack& operator-=(const Pack& b) { return *this = *this - b; }
   Pack& operator*=(const Pack& b) { return *this = *this * b; }

@@ -232,6 +232,10 @@ inline constexpr double kSameMagnitude = 1e-12;
 // An entry this close to 0 or +-1 is exactly that (X+ = D(Rx(90)) from the reference, a rescaled
 // lobe's equal components): a few roundings of values of size 1.
 inline constexpr double kExactEntry = 1e-14;
+// Emitted zxzxz kernels: below this |R's last column in xy|^2 (sin^2 b) the rotation is at gimbal
+// lock and a = 0; above it the column is normalised in full precision (a float normal number,
+// whose square root ~1e-15 is what sin b is rounded to at lock, below double kernels' tolerance).
+inline constexpr double kGimbalLockSine2 = 1e-30;
 // A Gauss-Legendre node this close to 0 is the centre node (computed as a root).
 inline constexpr double kCenterNode = 1e-12;
 // Two axes whose cross product is below this are parallel (no turn carries one onto the other).

@@ -23,6 +23,13 @@
 
 namespace zhf::sh {
 
+// X+ = D(Rx(+90 deg)) for bands 0..order-1, from the reference rotation (entries are exact up to its
+// rounding: kExactEntry).
+inline BandMatrices quarter_turn_x(int order) {
+  const double half_pi = 1.57079632679489661923;
+  return ivanic_ruedenberg(rotation_about_axis(Eigen::Vector3d::UnitX(), half_pi), order);
+}
+
 template <class T>
 class ZxzxzRotator {
  public:
@@ -30,12 +37,10 @@ class ZxzxzRotator {
   explicit ZxzxzRotator(int order) : order_(order), plus_(order), minus_(order) {
     if (order < 1 || order > runtime::kMaxShOrder)
       throw std::invalid_argument("ZxzxzRotator: order " + std::to_string(order) + " is outside 1.." + std::to_string(runtime::kMaxShOrder));
-    const double half_pi = 1.57079632679489661923;
-    const BandMatrices p = ivanic_ruedenberg(rotation_about_axis(Eigen::Vector3d::UnitX(), half_pi), order);
-    const BandMatrices m = ivanic_ruedenberg(rotation_about_axis(Eigen::Vector3d::UnitX(), -half_pi), order);
+    const BandMatrices p = quarter_turn_x(order);
     for (int l = 1; l < order; ++l) {
       plus_[l] = sparse(p[l]);
-      minus_[l] = sparse(m[l]);
+      minus_[l] = sparse(p[l].transpose());
     }
   }
   int order() const { return order_; }
