@@ -96,10 +96,11 @@ int run_emit(const EmitCommandOptions& o, const std::string& command) {
   io::throw_if_interrupted();
   io::write_file_atomically(path.string(), file.text);
   std::printf("wrote %s\n", path.string().c_str());
-  for (const codegen::EmittedFunction& f : file.functions)
+  for (const codegen::EmittedFunction& f : file.functions) {
     std::printf("  %-36s %6d multiplies %6d adds", f.name.c_str(), f.ops.multiplies, f.ops.adds);
     if (f.ops.others) std::printf(" %6d others", f.ops.others);
     std::printf("\n");
+  }
   return kExitOk;
 }
 
