@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include "graph_eval.h"
 #include "test_support.h"
 #include "zhf/codegen/kernels.h"
 #include "zhf/runtime/table_io.h"
@@ -21,29 +22,8 @@
 namespace zhf {
 namespace {
 
-using Values = std::vector<std::vector<double>>;  // per parameter
-
-// The function's outputs, (param, element) -> value, for one-channel functions.
-std::map<std::pair<int, int>, double> evaluate(const codegen::Function& f, const Values& inputs) {
-  const codegen::Graph& g = f.graph;
-  std::vector<double> v(g.size());
-  for (int i = 0; i < g.size(); ++i) {
-    const codegen::Node& n = g.node(i);
-    switch (n.op) {
-      case codegen::Op::kInput: v[i] = inputs[n.param][n.element]; break;
-      case codegen::Op::kConst: v[i] = n.value; break;
-      case codegen::Op::kAdd: v[i] = v[n.a] + v[n.b]; break;
-      case codegen::Op::kSub: v[i] = v[n.a] - v[n.b]; break;
-      case codegen::Op::kMul: v[i] = v[n.a] * v[n.b]; break;
-      case codegen::Op::kNeg: v[i] = -v[n.a]; break;
-      case codegen::Op::kRsqrt: v[i] = 1 / std::sqrt(v[n.a]); break;
-      case codegen::Op::kSelect: v[i] = v[n.a] > 0 ? v[n.b] : v[n.c]; break;
-    }
-  }
-  std::map<std::pair<int, int>, double> out;
-  for (const codegen::Output& o : f.outputs) out[{o.param, o.element}] = v[o.node];
-  return out;
-}
+using Values = test::GraphInputs;
+using test::evaluate;
 
 // Negations the simplifier cannot fold (a negated input that is an output, or leads a sum of
 // negated terms): measured at most 11 adds at order 5 (rotation_matrices), against 365 to 503
