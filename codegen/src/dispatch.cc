@@ -8,13 +8,15 @@
 namespace zhf::codegen {
 namespace {
 
-// Where the lobe-parallel kernel (runtime/lanes.h) is the faster path for one vector per
-// rotation, float, as measured by a bare loop over 512 random rotations (best of 7) on an AMD
-// EPYC (Zen 3 class) with g++ 12 -O3, scalar kernel time / lanes time at orders 3..8:
-//   x86-64 baseline (SSE2):  1.39 1.88 1.54 3.04 1.63 2.46
-//   x86-64-v3 (AVX2, FMA):   1.18 1.55 2.39 3.02 2.14 2.28
+// Where the lobe-parallel kernel (runtime/lanes.h) is the faster path for one vector per rotation,
+// float, against the scalar kernels (zxzxz at orders 3..8), as measured by the peer harness (one
+// run, median ns, AMD EPYC Zen 3 class, g++ 12 -O3; docs/performance.md):
+//   x86-64-v3 (AVX2, FMA), lanes / scalar: N=3 13.0/14.6, 4 22.4/28.5, 5 46.0/49.3, 6 79.8/64.1, 7 190.9/94.7, 8 261.5/148.3
+//   x86-64 baseline (SSE2): lanes ahead at 3 and 4 only (N=5 scalar 50.6 ns, lanes 73.0)
 // Other architectures were not measured, so they keep the scalar kernels.
-constexpr const char* kMeasuredOn = "x86-64 (SSE2 baseline and AVX2), orders 3..8: lanes 1.2x to 3.0x faster";
+constexpr int kLanesUpToAvx2 = 5;
+constexpr int kLanesUpToBaseline = 4;
+constexpr const char* kMeasuredOn = "x86-64: lanes up to order 5 with AVX2, up to 4 on baseline SSE2";
 
 std::string list(const std::vector<int>& values) {
   std::string out;
@@ -47,14 +49,15 @@ EmittedFile emit_dispatch_header(const std::vector<int>& orders, const std::vect
   for (int n : lanes_orders) out << "template <>\ninline constexpr bool kHasLanes<" << n << "> = true;\n";
   out << "\n// Where runtime/lanes.h is the faster verified path, by measurement: " << kMeasuredOn << ";\n"
       << "// other architectures unmeasured (the scalar kernels). docs/performance.md has the figures.\n"
-      << "#if defined(__x86_64__) || defined(_M_X64)\ninline constexpr bool kLanesFirst = true;\n#else\n"
-      << "inline constexpr bool kLanesFirst = false;\n#endif\n\n";
+      << "#if defined(__x86_64__) || defined(_M_X64)\n#if defined(__AVX2__)\ninline constexpr int kLanesUpTo = " << kLanesUpToAvx2
+      << ";\n#else\ninline constexpr int kLanesUpTo = " << kLanesUpToBaseline << ";\n#endif\n#else\n"
+      << "inline constexpr int kLanesUpTo = 0;\n#endif\n\n";
   out << "// The fastest verified rotation path of a generated order (throws for any other order).\n"
       << "template <class T>\nruntime::KernelSet<T> fastest_kernels(int order) {\n"
       << "  return with_order(order, [](auto n) {\n"
       << "    constexpr int N = decltype(n)::value;\n"
       << "    if constexpr (kHasLanes<N>) {\n"
-      << "      if (kLanesFirst) return runtime::lanes_kernels<N, T>();\n"
+      << "      if constexpr (N <= kLanesUpTo) return runtime::lanes_kernels<N, T>();\n"
       << "    }\n"
       << "    return runtime::scalar_kernels<N, T>();\n"
       << "  });\n}\n\n";

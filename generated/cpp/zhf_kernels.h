@@ -61,12 +61,16 @@ inline constexpr bool kHasLanes<7> = true;
 template <>
 inline constexpr bool kHasLanes<8> = true;
 
-// Where runtime/lanes.h is the faster verified path, by measurement: x86-64 (SSE2 baseline and AVX2), orders 3..8: lanes 1.2x to 3.0x faster;
+// Where runtime/lanes.h is the faster verified path, by measurement: x86-64: lanes up to order 5 with AVX2, up to 4 on baseline SSE2;
 // other architectures unmeasured (the scalar kernels). docs/performance.md has the figures.
 #if defined(__x86_64__) || defined(_M_X64)
-inline constexpr bool kLanesFirst = true;
+#if defined(__AVX2__)
+inline constexpr int kLanesUpTo = 5;
 #else
-inline constexpr bool kLanesFirst = false;
+inline constexpr int kLanesUpTo = 4;
+#endif
+#else
+inline constexpr int kLanesUpTo = 0;
 #endif
 
 // The fastest verified rotation path of a generated order (throws for any other order).
@@ -75,7 +79,7 @@ runtime::KernelSet<T> fastest_kernels(int order) {
   return with_order(order, [](auto n) {
     constexpr int N = decltype(n)::value;
     if constexpr (kHasLanes<N>) {
-      if (kLanesFirst) return runtime::lanes_kernels<N, T>();
+      if constexpr (N <= kLanesUpTo) return runtime::lanes_kernels<N, T>();
     }
     return runtime::scalar_kernels<N, T>();
   });
