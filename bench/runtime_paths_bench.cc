@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
     }
     const TableRotation<float> lobes(table);
     const TableRotation<double> exact(table);
-    const ZxzxzRotation<float> zxzxz = ZxzxzRotation<float>::from_table(table);
+    const ZxzxzRotation<float> zxzxz(order);
     const int n = order * order;
     std::mt19937_64 rng(order);
     zhf::sh::Normal<> normal;

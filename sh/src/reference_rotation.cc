@@ -3,86 +3,19 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "zhf/runtime/band_recurrence.h"
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/sh/legendre.h"
 
 namespace zhf::sh {
-namespace {
-
-// Band matrix accessor with m, n in [-l, l].
-struct BandView {
-  Eigen::MatrixXd& m;
-  int l;
-  double& operator()(int row, int col) { return m(row + l, col + l); }
-};
-struct ConstBandView {
-  const Eigen::MatrixXd& m;
-  int l;
-  double operator()(int row, int col) const { return m(row + l, col + l); }
-};
-
-// Ivanic-Ruedenberg helper P^l_{i,a,b} (their eq. 8.5 with the errata).
-double ir_p(int i, int a, int b, int l, const ConstBandView& r1, const ConstBandView& prev) {
-  if (b == l) return r1(i, 1) * prev(a, l - 1) - r1(i, -1) * prev(a, -l + 1);
-  if (b == -l) return r1(i, 1) * prev(a, -l + 1) + r1(i, -1) * prev(a, l - 1);
-  return r1(i, 0) * prev(a, b);
-}
-
-double ir_u(int m, int n, int l, const ConstBandView& r1, const ConstBandView& prev) {
-  return ir_p(0, m, n, l, r1, prev);
-}
-
-double ir_v(int m, int n, int l, const ConstBandView& r1, const ConstBandView& prev) {
-  if (m == 0) return ir_p(1, 1, n, l, r1, prev) + ir_p(-1, -1, n, l, r1, prev);
-  if (m > 0) {
-    const double d = (m == 1) ? 1.0 : 0.0;
-    return ir_p(1, m - 1, n, l, r1, prev) * std::sqrt(1 + d) - ir_p(-1, -m + 1, n, l, r1, prev) * (1 - d);
-  }
-  const double d = (m == -1) ? 1.0 : 0.0;
-  return ir_p(1, m + 1, n, l, r1, prev) * (1 - d) + ir_p(-1, -m - 1, n, l, r1, prev) * std::sqrt(1 + d);
-}
-
-double ir_w(int m, int n, int l, const ConstBandView& r1, const ConstBandView& prev) {
-  if (m > 0) return ir_p(1, m + 1, n, l, r1, prev) + ir_p(-1, -m - 1, n, l, r1, prev);
-  return ir_p(1, m - 1, n, l, r1, prev) - ir_p(-1, -m + 1, n, l, r1, prev);
-}
-
-}  // namespace
 
 BandMatrices ivanic_ruedenberg(const RotationMatrix& r, int order) {
+  const std::vector<std::vector<double>> flat = runtime::recurrence_band_matrices(r.data(), order);
   BandMatrices bands;
-  if (order <= 0) return bands;
-  bands.push_back(Eigen::MatrixXd::Ones(1, 1));
-  if (order == 1) return bands;
-  // Band 1 is c (y, z, x): its matrix is R restricted to the axes in that order.
-  const int* axis_of_m = runtime::kBand1Axis;
-  Eigen::MatrixXd band1(3, 3);
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) band1(i, j) = r(axis_of_m[i], axis_of_m[j]);
-  bands.push_back(band1);
-  // Views into `bands` would dangle when it grows: band 1 is read from its own copy.
-  const ConstBandView r1{band1, 1};
-  for (int l = 2; l < order; ++l) {
-    Eigen::MatrixXd band(2 * l + 1, 2 * l + 1);
-    BandView out{band, l};
-    const ConstBandView prev{bands[l - 1], l - 1};
-    for (int m = -l; m <= l; ++m) {
-      for (int n = -l; n <= l; ++n) {
-        const int am = std::abs(m);
-        const double denom = (std::abs(n) == l) ? (2.0 * l) * (2.0 * l - 1) : double(l + n) * (l - n);
-        const double delta_m0 = (m == 0) ? 1.0 : 0.0;
-        const double u = std::sqrt(double(l + m) * (l - m) / denom);
-        const double v = 0.5 * std::sqrt((1 + delta_m0) * double(l + am - 1) * (l + am) / denom) * (1 - 2 * delta_m0);
-        const double w = -0.5 * std::sqrt(double(l - am - 1) * (l - am) / denom) * (1 - delta_m0);
-        double value = 0;
-        if (u != 0) value += u * ir_u(m, n, l, r1, prev);
-        if (v != 0) value += v * ir_v(m, n, l, r1, prev);
-        if (w != 0) value += w * ir_w(m, n, l, r1, prev);
-        out(m, n) = value;
-      }
-    }
-    bands.push_back(std::move(band));
+  for (std::size_t l = 0; l < flat.size(); ++l) {
+    const int side = 2 * int(l) + 1;
+    bands.push_back(Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(flat[l].data(), side, side));
   }
   return bands;
 }

@@ -21,6 +21,12 @@ inline constexpr double kMaxCoefficientMagnitude = 1e150;
 // search and the run-time path were measured at (condition 205, float error 8e-7).
 inline constexpr int kMinTableOrder = 2;
 inline constexpr int kMaxTableOrder = 32;
+// The table-free zxzxz path (zxzxz_rotation.h, Rotator::zxzxz): its fixed quarter turns take
+// ~5.6 MB in float at 128, and its per-call buffers live on the stack.
+inline constexpr int kMaxZxzxzOrder = 128;
+// Up to this order its double results keep tolerance::kDouble; above, the quarter turns' rounding
+// (the recurrence in long double) sets tolerance::kHighOrderZxzxzDouble.
+inline constexpr int kMaxDoubleAccurateZxzxzOrder = 64;
 // Candidate directions and the sparsity search need a lobe band: order 3 up. Order 32 has 6.4
 // million candidates; above it their tables no longer fit in memory.
 inline constexpr int kMinSearchOrder = 3;

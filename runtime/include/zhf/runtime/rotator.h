@@ -16,8 +16,8 @@
 //                                         path for the instruction set compiled for (zhf_kernels.h);
 //   Rotator<T>::from_table(table)         any order up to 32 from a lobe table: below
 //                                         kZxzxzFromOrder the lobes (table_rotation.h), from it zxzxz
-//                                         with band matrices made once through the table
-//                                         (zxzxz_rotation.h), the faster by measurement.
+//                                         (zxzxz_rotation.h), the faster by measurement;
+//   Rotator<T>::zxzxz(order)              any order up to 128, no table (zxzxz_rotation.h).
 #pragma once
 
 #include <cassert>
@@ -107,10 +107,19 @@ class Rotator {
     Rotator r;
     r.order_ = table.order;
     if (table.order >= kZxzxzFromOrder) {
-      r.zxzxz_ = ZxzxzRotation<T>::from_table(table);
+      r.zxzxz_ = ZxzxzRotation<T>(table.order);
     } else {
       r.table_ = TableRotation<T>(table);
     }
+    return r;
+  }
+
+  // Any order 1..kMaxZxzxzOrder through zxzxz, no table needed; throws std::invalid_argument for
+  // any other order.
+  static Rotator zxzxz(int order) {
+    Rotator r;
+    r.zxzxz_ = ZxzxzRotation<T>(order);
+    r.order_ = order;
     return r;
   }
 

@@ -177,8 +177,13 @@ inline constexpr double kSameAxis = 1e-6;
 
 
 // ---- Goals and defaults that reports and options state ---------------------------------------
-// Run-time orders (16..32) in float: the error a user of Rotator::from_table may expect.
+// Run-time orders (16..128) in float: the error a user of Rotator::from_table or Rotator::zxzxz may
+// expect.
 inline constexpr double kRuntimeOrdersFloat = 1e-5;
+// Rotator<double>::zxzxz above kMaxDoubleAccurateZxzxzOrder: its quarter turns X come from the
+// Ivanic-Ruedenberg recurrence, whose rounding grows with l (in double 1.5e-12 at l = 63, 5e-7 at
+// 127); made in long double they are off by 2.6e-10 at most at order 128 (measured): 4x that.
+inline constexpr double kHighOrderZxzxzDouble = 1e-9;
 // zhf analyze / zhf.analyze: the relative L2 error within which a band limit or a zonal fit counts
 // as found, by default.
 inline constexpr double kDefaultZonalFit = 1e-3;

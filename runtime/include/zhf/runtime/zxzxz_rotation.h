@@ -1,84 +1,104 @@
-// ZxzxzRotation: the zxzxz factorisation with dense SIMD band products, the run-time path for
-// orders where it beats the lobe table (Rotator::from_table picks it by order; docs/performance.md
-// gives the measurements). With zyz Euler angles R = Rz(a) Ry(b) Rz(g) and Ry(b) = Rx(-90) Rz(b)
-// Rx(+90),
-//   D(R) f = Z(a) X- Z(b) X+ Z(g) f,
-// where Z(t) turns each (cos m phi, sin m phi) pair by m t and X+ = D(Rx(+90 deg)), X- = X+^T are
-// fixed per band, held as DenseRotations (packs of rows, block-diagonal over bands).
+// ZxzxzRotation: the zxzxz factorisation for any order to kMaxZxzxzOrder, the run-time path for
+// orders where it beats the lobe table (Rotator::from_table picks it by order, Rotator::zxzxz for
+// any order; docs/performance.md gives the measurements). With zyz Euler angles
+// R = Rz(a) Ry(b) Rz(g), Ry(b) = Rx(-90) Rz(b) Rx(+90) and X^T = Z(pi) X Z(pi) (a half turn about z
+// carries x onto -x),
+//   D(R) f = Z(a) X^T Z(b) X Z(g) f = Z(a + pi) X Z(b + pi) X Z(g) f,
+// where Z(t) turns each (cos m phi, sin m phi) pair by m t and X = D(Rx(+90 deg)) is fixed per band,
+// made once by the recurrence (band_recurrence.h: no lobe table) in long double, whose rounding
+// grows with l (x86-64's 80-bit long double: 2.6e-10 at order 128; where long double is double,
+// ~5e-7 there, below float's tolerance still).
 //
-// Convention as Rotator. Accuracy: the X+ given (from_table: through the lobe path in double,
-// ~1e-13 at order 32) and T's rounding over two band products and three turns (float: below 1e-6 on unit inputs
-// at order 32, tested); the angles are extracted in double and stable at gimbal lock.
-// Cost: 2 sum_l (2l+1) x (packs of rows band l touches) pack multiply-adds, 3 N^2 for the turns,
-// three atan2 and one sin/cos pair; no allocation per call.
+// Layout: X commutes with the mirror x -> -x, which keeps cos(m phi) for even m and sin(m phi) for
+// odd m (class E) and flips the others (class O). Band l is held as E_m = f_{l,m} (m even) or
+// f_{l,-m} (m odd) and O_m = f_{l,-m} (m even; O_0 = 0) or f_{l,m} (m odd), m = 0..l, so X is two
+// dense (l+1)^2 blocks, applied as packs of rows (pack.h), and a turn is elementwise:
+// E' = c E + s' O, O' = c O - s' E with s' = (-1)^(m+1) sin(m t).
+//
+// The angles are never formed: (cos a, sin a) is R's last column in xy normalised (a = 0 at
+// gimbal lock, where any a works), Rz(-a) R = Ry(b) Rz(g) gives g's from its middle row and b's
+// are (R_22, |column in xy|); their multiples by doubling and angle addition, in double.
+//
+// Convention as Rotator. Accuracy: X to ~1e-15 (the recurrence), T's rounding over two band
+// products and three turns: float below 1e-6 on unit inputs at order 32 (tested). Cost per call:
+// 2 sum_l (l+1) ceil((l+1)/lanes) pack multiply-adds, ~12 N^2 lane operations for the turns, one
+// square root; no allocation.
 #pragma once
 
 #include <cmath>
-#include <utility>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
-#include "zhf/runtime/dense_rotation.h"
+#include "zhf/runtime/band_recurrence.h"
 #include "zhf/runtime/limits.h"
-#include "zhf/runtime/lobe_table.h"
-#include "zhf/runtime/table_rotation.h"
+#include "zhf/runtime/pack.h"
+#include "zhf/runtime/tolerances.h"
 
 namespace zhf::runtime {
 
-// zyz Euler angles of a rotation, stable at and near gimbal lock (b = 0 or pi). a comes from
-// R's last column (error ~eps / sin b, which moves the rotation by only ~eps because b's turn
-// is that small); g then comes from a + g (upper 2x2 block, well conditioned for cos b >= 0)
-// or a - g (for cos b < 0), so the z-turn that dominates near lock is exact to rounding.
-template <class T>
-void euler_zyz(const T r[9], T& a, T& b, T& g) {
-  using std::atan2;
-  using std::hypot;
-  a = atan2(r[5], r[2]);
-  b = atan2(hypot(r[2], r[5]), r[8]);
-  if (r[8] >= T(0))
-    g = atan2(r[3] - r[1], r[0] + r[4]) - a;     // a + g, from (1 + cos b) (sin, cos)
-  else
-    g = a - atan2(-(r[3] + r[1]), r[4] - r[0]);  // a - g, from (1 - cos b) (sin, cos)
-}
-
-// c[m] = cos(m t), s[m] = sin(m t) for m < order, by the angle-addition recurrence.
-template <class T>
-void angle_multiples(T t, int order, T* c, T* s) {
-  using std::cos;
-  using std::sin;
-  c[0] = T(1);
-  s[0] = T(0);
-  if (order < 2) return;
-  c[1] = cos(t);
-  s[1] = sin(t);
-  for (int m = 2; m < order; ++m) {
-    c[m] = c[m - 1] * c[1] - s[m - 1] * s[1];
-    s[m] = s[m - 1] * c[1] + c[m - 1] * s[1];
-  }
-}
-
-// Band l (f[m + l]) turned about z by t, given its multiples: g(phi) = f(phi - t) sends the
-// (m, -m) weights (x, y) to (x cos mt - y sin mt, x sin mt + y cos mt).
-template <class T, class C>
-void turn_band(int l, const C* c, const C* s, T* f) {
-  for (int m = 1; m <= l; ++m) {
-    const T x = f[l + m], y = f[l - m];
-    f[l + m] = x * T(c[m]) - y * T(s[m]);
-    f[l - m] = x * T(s[m]) + y * T(c[m]);
+// cos(m t) and sin(m t) for m < order of the zyz Euler angles of r, without forming them
+// (see above): c_a[m], s_a[m], and so on. Even m by doubling m/2, odd m by adding t to m - 1:
+// error ~m eps at every angle.
+inline void zyz_multiples(const double r[9], int order, double* c_a, double* s_a, double* c_b, double* s_b, double* c_g,
+                          double* s_g) {
+  const double column2 = r[2] * r[2] + r[5] * r[5];
+  const bool locked = !(column2 > tolerance::kGimbalLockSine2);
+  const double inverse = locked ? 1.0 : 1 / std::sqrt(column2);
+  const double ca = locked ? 1.0 : r[2] * inverse, sa = locked ? 0.0 : r[5] * inverse;
+  const double first[3][2] = {{ca, sa}, {r[8], column2 * inverse}, {ca * r[4] - sa * r[1], ca * r[3] - sa * r[0]}};
+  double* c[3] = {c_a, c_b, c_g};
+  double* s[3] = {s_a, s_b, s_g};
+  for (int k = 0; k < 3; ++k) {
+    c[k][0] = 1, s[k][0] = 0;
+    if (order > 1) c[k][1] = first[k][0], s[k][1] = first[k][1];
+    for (int m = 2; m < order; ++m) {
+      if (m % 2 == 0) {
+        const double ch = c[k][m / 2], sh = s[k][m / 2];
+        c[k][m] = (ch - sh) * (ch + sh);
+        s[k][m] = 2 * ch * sh;
+      } else {
+        c[k][m] = c[k][m - 1] * first[k][0] - s[k][m - 1] * first[k][1];
+        s[k][m] = s[k][m - 1] * first[k][0] + c[k][m - 1] * first[k][1];
+      }
+    }
   }
 }
 
 template <class T>
 class ZxzxzRotation {
  public:
+  using P = Pack<T>;
+  static constexpr int kLanes = P::kLanes;
+
   ZxzxzRotation() = default;
-  // x_plus: D(Rx(+90 deg)) for the order wanted.
-  explicit ZxzxzRotation(const DenseRotation<double>& x_plus)
-      : order_(x_plus.order()), plus_(convert(x_plus, false)), minus_(convert(x_plus, true)) {}
-  // X+ through a lobe table's lobe path in double (the table's shape checked by the caller).
-  static ZxzxzRotation from_table(const LobeTable& table) {
-    const TableRotation<double> exact(table);
-    const double x_plus[9] = {1, 0, 0, 0, 0, -1, 0, 1, 0};
-    return ZxzxzRotation(
-        dense_rotation<double>(table.order, [&](const double* in, double* out) { exact.rotate(x_plus, in, out, 1); }));
+  // Any order 1..kMaxZxzxzOrder; throws std::invalid_argument for any other.
+  explicit ZxzxzRotation(int order) : order_(order) {
+    if (order < 1 || order > kMaxZxzxzOrder)
+      throw std::invalid_argument("ZxzxzRotation: order " + std::to_string(order) + " is outside 1.." +
+                                  std::to_string(kMaxZxzxzOrder));
+    const double quarter_turn[9] = {1, 0, 0, 0, 0, -1, 0, 1, 0};  // Rx(+90 deg)
+    const std::vector<std::vector<long double>> x = recurrence_band_matrices<long double>(quarter_turn, order);
+    offset_.assign(order + 1, 0);
+    for (int l = 0; l < order; ++l) offset_[l + 1] = offset_[l] + 2 * (l + 1) * packs(l);
+    blocks_.assign(offset_[order], P(0.0));
+    for (int l = 1; l < order; ++l) {
+      const int side = 2 * l + 1;
+      for (int k = 0; k < 2; ++k)
+        for (int j = 0; j <= l; ++j) {
+          const int col = position(l, k, j);
+          if (col < 0) continue;
+          for (int i = 0; i <= l; ++i) {
+            const int row = position(l, k, i);
+            if (row < 0) continue;
+            P& pack = blocks_[offset_[l] + (k * (l + 1) + j) * packs(l) + i / kLanes];
+            T lanes[kLanes];
+            pack.store(lanes);
+            lanes[i % kLanes] = T(x[l][row * side + col]);
+            pack = P::load(lanes);
+          }
+        }
+    }
   }
 
   int order() const { return order_; }
@@ -86,47 +106,99 @@ class ZxzxzRotation {
   // out[c N^2 + i] for channels c < channels, from in laid out the same way; in and out must not
   // overlap.
   void rotate(const T r[9], const T* in, T* out, int channels) const {
-    double rd[9], a, b, g;
+    double rd[9];
     for (int i = 0; i < 9; ++i) rd[i] = double(r[i]);
-    euler_zyz(rd, a, b, g);
-    double ca[kMaxTableOrder], sa[kMaxTableOrder], cb[kMaxTableOrder], sb[kMaxTableOrder], cg[kMaxTableOrder],
-        sg[kMaxTableOrder];
-    angle_multiples(a, order_, ca, sa);
-    angle_multiples(b, order_, cb, sb);
-    angle_multiples(g, order_, cg, sg);
+    double c[3][kMaxZxzxzOrder], s[3][kMaxZxzxzOrder];
+    zyz_multiples(rd, order_, c[0], s[0], c[1], s[1], c[2], s[2]);
+    // Turns in class form, padded to whole packs: g, then b + pi and a + pi (the signs (-1)^m).
+    constexpr int kPacks = (kMaxZxzxzOrder + kLanes - 1) / kLanes;
+    P cos_turn[3][kPacks], sin_turn[3][kPacks];
+    for (int k = 0; k < 3; ++k) {
+      const int angle = k == 0 ? 2 : k == 1 ? 1 : 0;
+      T cs[kPacks * kLanes] = {}, sn[kPacks * kLanes] = {};
+      for (int m = 0; m < order_; ++m) {
+        const double shift = k > 0 && m % 2 ? -1.0 : 1.0;
+        cs[m] = T(shift * c[angle][m]);
+        sn[m] = T((m % 2 ? shift : -shift) * s[angle][m]);
+      }
+      for (int p = 0; p < kPacks; ++p) cos_turn[k][p] = P::load(cs + p * kLanes), sin_turn[k][p] = P::load(sn + p * kLanes);
+    }
     const int n = order_ * order_;
-    T u[kMaxTableOrder * kMaxTableOrder];
     for (int ch = 0; ch < channels; ++ch) {
+      const T* f = in + ch * n;
       T* o = out + ch * n;
-      for (int i = 0; i < n; ++i) o[i] = in[ch * n + i];
-      turn_all(cg, sg, o);
-      plus_.apply(o, u);
-      turn_all(cb, sb, u);
-      minus_.apply(u, o);
-      turn_all(ca, sa, o);
+      o[0] = f[0];
+      for (int l = 1; l < order_; ++l) {
+        const int count = packs(l);
+        P e[kPacks], q[kPacks];
+        load_band(l, f + l * l, e, q);
+        turn(count, cos_turn[0], sin_turn[0], e, q);
+        quarter_turn(l, e, q);
+        turn(count, cos_turn[1], sin_turn[1], e, q);
+        quarter_turn(l, e, q);
+        turn(count, cos_turn[2], sin_turn[2], e, q);
+        store_band(l, e, q, o + l * l);
+      }
     }
   }
 
  private:
-  static DenseRotation<T> convert(const DenseRotation<double>& x, bool transposed) {
-    std::vector<std::vector<T>> bands;
-    for (int l = 0; l < x.order(); ++l) {
-      const int size = band_size(l);
-      bands.emplace_back(size * size);
-      for (int i = 0; i < size; ++i)
-        for (int j = 0; j < size; ++j) {
-          const double* band = x.bands()[l].data();
-          bands[l][i * size + j] = T(transposed ? band[j * size + i] : band[i * size + j]);
-        }
-    }
-    return DenseRotation<T>(x.order(), std::move(bands));
+  static int packs(int l) { return (l + 1 + kLanes - 1) / kLanes; }
+  // Where class k's element m of band l sits in the band (m + l), or -1 for O_0.
+  static int position(int l, int k, int m) {
+    const bool cosine = (m % 2 == 0) == (k == 0);
+    if (!cosine && m == 0) return -1;
+    return cosine ? l + m : l - m;
   }
-  void turn_all(const double* c, const double* s, T* f) const {
-    for (int l = 1; l < order_; ++l) turn_band(l, c, s, f + l * l);
+  static void load_band(int l, const T* f, P* e, P* q) {
+    constexpr int kPacks = (kMaxZxzxzOrder + kLanes - 1) / kLanes;
+    T even[kPacks * kLanes] = {}, odd[kPacks * kLanes] = {};
+    for (int m = 0; m <= l; ++m) {
+      even[m] = f[position(l, 0, m)];
+      const int at = position(l, 1, m);
+      odd[m] = at < 0 ? T(0) : f[at];
+    }
+    for (int p = 0; p < packs(l); ++p) e[p] = P::load(even + p * kLanes), q[p] = P::load(odd + p * kLanes);
+  }
+  static void store_band(int l, const P* e, const P* q, T* f) {
+    constexpr int kPacks = (kMaxZxzxzOrder + kLanes - 1) / kLanes;
+    T even[kPacks * kLanes], odd[kPacks * kLanes];
+    for (int p = 0; p < packs(l); ++p) e[p].store(even + p * kLanes), q[p].store(odd + p * kLanes);
+    for (int m = 0; m <= l; ++m) {
+      f[position(l, 0, m)] = even[m];
+      const int at = position(l, 1, m);
+      if (at >= 0) f[at] = odd[m];
+    }
+  }
+  static void turn(int count, const P* c, const P* s, P* e, P* q) {
+    for (int p = 0; p < count; ++p) {
+      const P x = e[p], y = q[p];
+      e[p] = c[p] * x + s[p] * y;
+      q[p] = c[p] * y - s[p] * x;
+    }
+  }
+  // Each class through its block: out = sum_j column_j * in_j.
+  void quarter_turn(int l, P* e, P* q) const {
+    constexpr int kPacks = (kMaxZxzxzOrder + kLanes - 1) / kLanes;
+    const int count = packs(l);
+    P* classes[2] = {e, q};
+    for (int k = 0; k < 2; ++k) {
+      T in[kPacks * kLanes];
+      for (int p = 0; p < count; ++p) classes[k][p].store(in + p * kLanes);
+      P sum[kPacks];
+      for (int p = 0; p < count; ++p) sum[p] = P(0.0);
+      const P* column = blocks_.data() + offset_[l] + k * (l + 1) * count;
+      for (int j = 0; j <= l; ++j, column += count) {
+        const P x = P::broadcast(in[j]);
+        for (int p = 0; p < count; ++p) sum[p] += column[p] * x;
+      }
+      for (int p = 0; p < count; ++p) classes[k][p] = sum[p];
+    }
   }
 
   int order_ = 0;
-  DenseRotation<T> plus_{0, {}}, minus_{0, {}};
+  std::vector<int> offset_;   // band l's blocks start at offset_[l] (packs)
+  std::vector<P> blocks_;     // per band: class E then O, (l+1) columns of packs(l) packs each
 };
 
 }  // namespace zhf::runtime

@@ -14,7 +14,7 @@ namespace zhf::sh {
 using BandMatrices = std::vector<Eigen::MatrixXd>;  // entry l is (2l+1)^2, rows m'+l, cols m+l
 
 // Ivanic & Ruedenberg's recurrence (J. Phys. Chem. 1996, with the 1998 errata): each band
-// from band 1 and the previous band.
+// from band 1 and the previous band (runtime/band_recurrence.h, as Eigen matrices).
 BandMatrices ivanic_ruedenberg(const RotationMatrix& r, int order);
 
 // Projection of f(R^T w) back onto the SH basis with a product quadrature that is exact for

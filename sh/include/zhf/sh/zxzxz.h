@@ -1,6 +1,6 @@
 // The zxzxz rotation as a reference and for counting operations (the runtime's ZxzxzRotation is
-// the fast one; the angles and turns are shared): the usual fast general method the ZHF paper
-// compares against: with zyz
+// the fast one, with angles taken from R's entries; this one forms them with atan2): the usual
+// fast general method the ZHF paper compares against: with zyz
 // Euler angles R = Rz(a) Ry(b) Rz(g) and Ry(b) = Rx(-90) Rz(b) Rx(+90),
 //   D(R) f = Z(a) X- Z(b) X+ Z(g) f,
 // where Z(t) turns each (cos m phi, sin m phi) pair by m t and X+- = D(Rx(+-90 deg)) are fixed
@@ -17,11 +17,53 @@
 
 #include "zhf/runtime/limits.h"
 #include "zhf/runtime/tolerances.h"
-#include "zhf/runtime/zxzxz_rotation.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
 
 namespace zhf::sh {
+
+// zyz Euler angles of a rotation, stable at and near gimbal lock (b = 0 or pi). a comes from
+// R's last column (error ~eps / sin b, which moves the rotation by only ~eps because b's turn
+// is that small); g then comes from a + g (upper 2x2 block, well conditioned for cos b >= 0)
+// or a - g (for cos b < 0), so the z-turn that dominates near lock is exact to rounding.
+template <class T>
+void euler_zyz(const T r[9], T& a, T& b, T& g) {
+  using std::atan2;
+  using std::hypot;
+  a = atan2(r[5], r[2]);
+  b = atan2(hypot(r[2], r[5]), r[8]);
+  if (r[8] >= T(0))
+    g = atan2(r[3] - r[1], r[0] + r[4]) - a;     // a + g, from (1 + cos b) (sin, cos)
+  else
+    g = a - atan2(-(r[3] + r[1]), r[4] - r[0]);  // a - g, from (1 - cos b) (sin, cos)
+}
+
+// c[m] = cos(m t), s[m] = sin(m t) for m < order, by the angle-addition recurrence.
+template <class T>
+void angle_multiples(T t, int order, T* c, T* s) {
+  using std::cos;
+  using std::sin;
+  c[0] = T(1);
+  s[0] = T(0);
+  if (order < 2) return;
+  c[1] = cos(t);
+  s[1] = sin(t);
+  for (int m = 2; m < order; ++m) {
+    c[m] = c[m - 1] * c[1] - s[m - 1] * s[1];
+    s[m] = s[m - 1] * c[1] + c[m - 1] * s[1];
+  }
+}
+
+// Band l (f[m + l]) turned about z by t, given its multiples: g(phi) = f(phi - t) sends the
+// (m, -m) weights (x, y) to (x cos mt - y sin mt, x sin mt + y cos mt).
+template <class T, class C>
+void turn_band(int l, const C* c, const C* s, T* f) {
+  for (int m = 1; m <= l; ++m) {
+    const T x = f[l + m], y = f[l - m];
+    f[l + m] = x * T(c[m]) - y * T(s[m]);
+    f[l - m] = x * T(s[m]) + y * T(c[m]);
+  }
+}
 
 // X+ = D(Rx(+90 deg)) for bands 0..order-1, from the reference rotation (entries are exact up to its
 // rounding: kExactEntry).
@@ -52,11 +94,11 @@ class ZxzxzRotator {
   // computed once.
   void rotate_channels(const T r[9], const T* in, T* out, int channels) const {
     T a, b, g;
-    runtime::euler_zyz(r, a, b, g);
+    euler_zyz(r, a, b, g);
     Multiples ca, sa, cb, sb, cg, sg;
-    runtime::angle_multiples(a, order_, ca.data(), sa.data());
-    runtime::angle_multiples(b, order_, cb.data(), sb.data());
-    runtime::angle_multiples(g, order_, cg.data(), sg.data());
+    angle_multiples(a, order_, ca.data(), sa.data());
+    angle_multiples(b, order_, cb.data(), sb.data());
+    angle_multiples(g, order_, cg.data(), sg.data());
     Band u, v;
     const int n = order_ * order_;
     for (int c = 0; c < channels; ++c) {
@@ -65,11 +107,11 @@ class ZxzxzRotator {
       o[0] = f[0];
       for (int l = 1; l < order_; ++l) {
         std::copy(f + l * l, f + (l + 1) * (l + 1), u.begin());
-        runtime::turn_band(l, cg.data(), sg.data(), u.data());
+        turn_band(l, cg.data(), sg.data(), u.data());
         apply(plus_[l], u, v);
-        runtime::turn_band(l, cb.data(), sb.data(), v.data());
+        turn_band(l, cb.data(), sb.data(), v.data());
         apply(minus_[l], v, u);
-        runtime::turn_band(l, ca.data(), sa.data(), u.data());
+        turn_band(l, ca.data(), sa.data(), u.data());
         for (int i = 0; i < 2 * l + 1; ++i) o[l * l + i] = u[i];
       }
     }
