@@ -112,16 +112,17 @@ class ZxzxzRotation {
     zyz_multiples(rd, order_, c[0], s[0], c[1], s[1], c[2], s[2]);
     // Turns in class form, padded to whole packs: g, then b + pi and a + pi (the signs (-1)^m).
     constexpr int kPacks = (kMaxZxzxzOrder + kLanes - 1) / kLanes;
+    const int used = packs(order_ - 1);
     P cos_turn[3][kPacks], sin_turn[3][kPacks];
     for (int k = 0; k < 3; ++k) {
       const int angle = k == 0 ? 2 : k == 1 ? 1 : 0;
-      T cs[kPacks * kLanes] = {}, sn[kPacks * kLanes] = {};
-      for (int m = 0; m < order_; ++m) {
+      T cs[kPacks * kLanes], sn[kPacks * kLanes];
+      for (int m = 0; m < used * kLanes; ++m) {
         const double shift = k > 0 && m % 2 ? -1.0 : 1.0;
-        cs[m] = T(shift * c[angle][m]);
-        sn[m] = T((m % 2 ? shift : -shift) * s[angle][m]);
+        cs[m] = m < order_ ? T(shift * c[angle][m]) : T(0);
+        sn[m] = m < order_ ? T((m % 2 ? shift : -shift) * s[angle][m]) : T(0);
       }
-      for (int p = 0; p < kPacks; ++p) cos_turn[k][p] = P::load(cs + p * kLanes), sin_turn[k][p] = P::load(sn + p * kLanes);
+      for (int p = 0; p < used; ++p) cos_turn[k][p] = P::load(cs + p * kLanes), sin_turn[k][p] = P::load(sn + p * kLanes);
     }
     const int n = order_ * order_;
     for (int ch = 0; ch < channels; ++ch) {
@@ -152,10 +153,10 @@ class ZxzxzRotation {
   }
   static void load_band(int l, const T* f, P* e, P* q) {
     constexpr int kPacks = (kMaxZxzxzOrder + kLanes - 1) / kLanes;
-    T even[kPacks * kLanes] = {}, odd[kPacks * kLanes] = {};
-    for (int m = 0; m <= l; ++m) {
-      even[m] = f[position(l, 0, m)];
-      const int at = position(l, 1, m);
+    T even[kPacks * kLanes], odd[kPacks * kLanes];
+    for (int m = 0; m < packs(l) * kLanes; ++m) {
+      even[m] = m <= l ? f[position(l, 0, m)] : T(0);
+      const int at = m <= l ? position(l, 1, m) : -1;
       odd[m] = at < 0 ? T(0) : f[at];
     }
     for (int p = 0; p < packs(l); ++p) e[p] = P::load(even + p * kLanes), q[p] = P::load(odd + p * kLanes);
@@ -177,7 +178,8 @@ class ZxzxzRotation {
       q[p] = c[p] * y - s[p] * x;
     }
   }
-  // Each class through its block: out = sum_j column_j * in_j.
+  // Each class through its block: out = sum_j column_j * in_j, four independent sums per pack so
+  // the multiply-adds overlap instead of waiting on one another.
   void quarter_turn(int l, P* e, P* q) const {
     constexpr int kPacks = (kMaxZxzxzOrder + kLanes - 1) / kLanes;
     const int count = packs(l);
@@ -185,14 +187,22 @@ class ZxzxzRotation {
     for (int k = 0; k < 2; ++k) {
       T in[kPacks * kLanes];
       for (int p = 0; p < count; ++p) classes[k][p].store(in + p * kLanes);
-      P sum[kPacks];
-      for (int p = 0; p < count; ++p) sum[p] = P(0.0);
-      const P* column = blocks_.data() + offset_[l] + k * (l + 1) * count;
-      for (int j = 0; j <= l; ++j, column += count) {
-        const P x = P::broadcast(in[j]);
-        for (int p = 0; p < count; ++p) sum[p] += column[p] * x;
+      P x[kMaxZxzxzOrder];
+      for (int j = 0; j <= l; ++j) x[j] = P::broadcast(in[j]);
+      const P* block = blocks_.data() + offset_[l] + k * (l + 1) * count;
+      for (int p = 0; p < count; ++p) {
+        const P* column = block + p;
+        P s0(0.0), s1(0.0), s2(0.0), s3(0.0);
+        int j = 0;
+        for (; j + 3 <= l; j += 4) {
+          s0 += column[j * count] * x[j];
+          s1 += column[(j + 1) * count] * x[j + 1];
+          s2 += column[(j + 2) * count] * x[j + 2];
+          s3 += column[(j + 3) * count] * x[j + 3];
+        }
+        for (; j <= l; ++j) s0 += column[j * count] * x[j];
+        classes[k][p] = (s0 + s1) + (s2 + s3);
       }
-      for (int p = 0; p < count; ++p) classes[k][p] = sum[p];
     }
   }
 
