@@ -109,5 +109,9 @@ int main(int argc, char** argv) {
   }
   run_soa<3>(4096, int(runs));
   run_soa<4>(4096, int(runs));
+  run_soa<5>(4096, int(runs));
+  run_soa<6>(4096, int(runs));
+  run_soa<7>(4096, int(runs));
+  run_soa<8>(4096, int(runs));
   return 0;
 }

@@ -7,8 +7,8 @@
 //
 // Layout (structure of arrays, as rotate_batch_orderN): R[k count + v] for the row-major entries
 // k < 9 of rotation v, coeffs[i count + v] and rotated[i count + v] for i < N^2. Convention as
-// Rotator. Orders whose kernels keep their lobe stage in T (kLobeStage 0: orders 2..4 of the
-// shipped kernels); per lane the accuracy of gen::Kernels<N>::rotate<T>. Cost: the kernel's
+// Rotator. Orders whose rotate kernel keeps any lobe stage in T (kLobeStage 0: every shipped
+// order, 2..8, whose bands rotate by zxzxz); per lane the accuracy of gen::Kernels<N>::rotate<T>. Cost: the kernel's
 // operation count (zhf_orderN.h's banner) per kLanes rotations; no allocation.
 #pragma once
 
