@@ -117,6 +117,10 @@ TEST(NoAllocation, NoRotateCallAllocatesAfterConstruction) {
     check_rotator(runtime::Rotator<float>::from_table(table), "table float");
     check_rotator(runtime::Rotator<double>::from_table(table), "table double");
   }
+  for (int order : {9, 40}) {  // beyond the tables (its dense band matrices too)
+    check_rotator(runtime::Rotator<float>::zxzxz(order), "zxzxz float");
+    check_rotator(runtime::Rotator<double>::zxzxz(order), "zxzxz double");
+  }
 }
 
 }  // namespace

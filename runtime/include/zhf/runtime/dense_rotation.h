@@ -113,7 +113,7 @@ class DenseRotation {
   // y = D x over bands 1.. (N^2 - 1 values each); x may be y (every pack is formed before any
   // is stored).
   void apply_rest(const T* x, T* y) const {
-    P acc[(kMaxTableOrder * kMaxTableOrder + P::kLanes - 1) / P::kLanes];
+    P acc[(kMaxZxzxzOrder * kMaxZxzxzOrder + P::kLanes - 1) / P::kLanes];  // any Rotator's order
     for (int p = 0; p < rest_packs_; ++p) {
       // Four partial sums: one would be a chain of dependent multiply-adds.
       P sum[4] = {P(0.0), P(0.0), P(0.0), P(0.0)};
@@ -154,7 +154,7 @@ class DenseRotation {
     const T* d = columns_.data() + 1;
     for (int l = 1; l < order_; ++l) {
       const int n = band_size(l), base = l * l;
-      V x[2 * kMaxTableOrder - 1];
+      V x[2 * kMaxZxzxzOrder - 1];
       for (int j = 0; j < n; ++j) x[j] = load(base + j);
       for (int i = 0; i < n; ++i) {
         V sum = constant(0);
