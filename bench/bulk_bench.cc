@@ -4,7 +4,8 @@
 //              each), DenseRotation::apply_splats;
 //   planar     the same items as planes of one coefficient of one channel each, apply_planar;
 //   soa        many rotations, one per vector, structure of arrays: runtime::rotate_soa (the
-//              generated kernel across SIMD lanes) and the generated rotate_batch_orderN loop.
+//              generated kernel across SIMD lanes), the generated rotate_batch_orderN loop, and
+//              the scalar kernel called once per rotation.
 // Rates count bytes read plus bytes written; "of copy" is the rate over the copy's in that run.
 // Build for the ISA to report (bench/CMakeLists.txt builds it with the project's flags), e.g.
 //   g++ -O3 -march=x86-64-v3 -DNDEBUG -std=c++17 -Iruntime/include -Igenerated/cpp bench/bulk_bench.cc -pthread
@@ -89,8 +90,19 @@ void run_soa(std::size_t count, int runs) {
   const double t_generated =
       best_seconds(runs * 5, [&] { zhf::gen::Kernels<N>::template rotate_batch<float>(count, r.data(), in.data(), out.data()); });
   const double t_packs = best_seconds(runs * 5, [&] { zhf::runtime::rotate_soa<N>(count, r.data(), in.data(), out.data()); });
-  std::printf("N=%d soa, %zu rotations, one thread: rotate_soa %.2f ns per rotation; generated rotate_batch %.2f ns\n", N,
-              count, t_packs / count * 1e9, t_generated / count * 1e9);
+  // The scalar kernel once per rotation, on the same rotations and vectors laid out one after another.
+  std::vector<float> r_each(9 * count), in_each(n * count), out_each(n * count);
+  for (std::size_t v = 0; v < count; ++v) {
+    for (int k = 0; k < 9; ++k) r_each[9 * v + k] = r[k * count + v];
+    for (std::size_t i = 0; i < n; ++i) in_each[n * v + i] = in[i * count + v];
+  }
+  const double t_scalar = best_seconds(runs * 5, [&] {
+    for (std::size_t v = 0; v < count; ++v)
+      zhf::gen::Kernels<N>::template rotate<float>(&r_each[9 * v], &in_each[n * v], &out_each[n * v]);
+  });
+  std::printf("N=%d soa, %zu rotations, one thread: rotate_soa %.2f ns per rotation; generated rotate_batch %.2f ns; "
+              "scalar rotate per rotation %.2f ns (%.2fx rotate_soa)\n",
+              N, count, t_packs / count * 1e9, t_generated / count * 1e9, t_scalar / count * 1e9, t_scalar / t_packs);
 }
 
 }  // namespace
