@@ -548,7 +548,8 @@ class Builder {
   }
 
   // cos and sin of m t for m <= the top band marked, t each zyz Euler angle of R (kernels.h says
-  // how they are found without the angles); empty when no band is marked.
+  // how they are found without the angles; runtime::zyz_multiples does the same steps in double);
+  // empty when no band is marked.
   struct EulerTurns {
     std::vector<int> cos_a, sin_a, cos_b, sin_b, cos_g, sin_g;
   };

@@ -1,7 +1,8 @@
 // The band matrices of a rotation by Ivanic & Ruedenberg's recurrence (J. Phys. Chem. 1996, with
 // the 1998 errata): band l from band 1 (R on the axes y, z, x) and band l - 1. The one
-// implementation: sh::ivanic_ruedenberg (the tests' reference) wraps it, and ZxzxzRotation makes
-// its fixed quarter turns X = D(Rx(90 deg)) with it, for any order, without a lobe table.
+// implementation: sh::ivanic_ruedenberg (the tests' reference) wraps it, and quarter_turn_bands
+// below makes zxzxz's fixed quarter turns X = D(Rx(90 deg)) with it (the emitted kernels' through
+// sh::quarter_turn_x, the run-time path's directly), for any order, without a lobe table.
 //
 // Convention: g_l = D_l f_l for g(w) = f(R^T w), R row-major; band l is (2l+1)^2, row-major, rows
 // m' + l, columns m + l. Accuracy: ~1e-15 at order 32 against the independent quadrature
@@ -86,6 +87,13 @@ std::vector<std::vector<S>> recurrence_band_matrices(const double r[9], int orde
     bands.push_back(std::move(band));
   }
   return bands;
+}
+
+// X = D(Rx(+90 deg)) for bands 0..order-1, from Rx's exact entries.
+template <class S = double>
+std::vector<std::vector<S>> quarter_turn_bands(int order) {
+  const double rx90[9] = {1, 0, 0, 0, 0, -1, 0, 1, 0};
+  return recurrence_band_matrices<S>(rx90, order);
 }
 
 }  // namespace zhf::runtime

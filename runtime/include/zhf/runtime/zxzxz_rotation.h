@@ -26,6 +26,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -39,7 +40,8 @@ namespace zhf::runtime {
 
 // cos(m t) and sin(m t) for m < order of the zyz Euler angles of r, without forming them
 // (see above): c_a[m], s_a[m], and so on. Even m by doubling m/2, odd m by adding t to m - 1:
-// error ~m eps at every angle.
+// error ~m eps at every angle. The emitted kernels build the same steps into their graph
+// (codegen/src/kernels.cc, euler_turns), in the kernel's type.
 inline void zyz_multiples(const double r[9], int order, double* c_a, double* s_a, double* c_b, double* s_b, double* c_g,
                           double* s_g) {
   const double column2 = r[2] * r[2] + r[5] * r[5];
@@ -77,28 +79,21 @@ class ZxzxzRotation {
     if (order < 1 || order > kMaxZxzxzOrder)
       throw std::invalid_argument("ZxzxzRotation: order " + std::to_string(order) + " is outside 1.." +
                                   std::to_string(kMaxZxzxzOrder));
-    const double quarter_turn[9] = {1, 0, 0, 0, 0, -1, 0, 1, 0};  // Rx(+90 deg)
-    const std::vector<std::vector<long double>> x = recurrence_band_matrices<long double>(quarter_turn, order);
+    const std::vector<std::vector<long double>> x = quarter_turn_bands<long double>(order);
     offset_.assign(order + 1, 0);
     for (int l = 0; l < order; ++l) offset_[l + 1] = offset_[l] + 2 * (l + 1) * packs(l);
-    blocks_.assign(offset_[order], P(0.0));
-    for (int l = 1; l < order; ++l) {
-      const int side = 2 * l + 1;
+    // Band l's class-k block, column j, row i at lanes[(offset_[l] + (k (l+1) + j) packs(l)) kLanes + i].
+    std::vector<T> lanes(std::size_t(offset_[order]) * kLanes, T(0));
+    for (int l = 1; l < order; ++l)
       for (int k = 0; k < 2; ++k)
-        for (int j = 0; j <= l; ++j) {
-          const int col = position(l, k, j);
-          if (col < 0) continue;
+        for (int j = 0; j <= l; ++j)
           for (int i = 0; i <= l; ++i) {
-            const int row = position(l, k, i);
-            if (row < 0) continue;
-            P& pack = blocks_[offset_[l] + (k * (l + 1) + j) * packs(l) + i / kLanes];
-            T lanes[kLanes];
-            pack.store(lanes);
-            lanes[i % kLanes] = T(x[l][row * side + col]);
-            pack = P::load(lanes);
+            const int row = position(l, k, i), col = position(l, k, j);
+            if (row >= 0 && col >= 0)
+              lanes[std::size_t(offset_[l] + (k * (l + 1) + j) * packs(l)) * kLanes + i] = T(x[l][row * (2 * l + 1) + col]);
           }
-        }
-    }
+    blocks_.reserve(offset_[order]);
+    for (int p = 0; p < offset_[order]; ++p) blocks_.push_back(P::load(&lanes[std::size_t(p) * kLanes]));
   }
 
   int order() const { return order_; }
@@ -108,19 +103,19 @@ class ZxzxzRotation {
   void rotate(const T r[9], const T* in, T* out, int channels) const {
     double rd[9];
     for (int i = 0; i < 9; ++i) rd[i] = double(r[i]);
+    // The turns in the order applied: g, then b + pi and a + pi (the signs (-1)^m), in class form
+    // padded to whole packs.
     double c[3][kMaxZxzxzOrder], s[3][kMaxZxzxzOrder];
-    zyz_multiples(rd, order_, c[0], s[0], c[1], s[1], c[2], s[2]);
-    // Turns in class form, padded to whole packs: g, then b + pi and a + pi (the signs (-1)^m).
+    zyz_multiples(rd, order_, c[2], s[2], c[1], s[1], c[0], s[0]);
     constexpr int kPacks = (kMaxZxzxzOrder + kLanes - 1) / kLanes;
     const int used = packs(order_ - 1);
     P cos_turn[3][kPacks], sin_turn[3][kPacks];
     for (int k = 0; k < 3; ++k) {
-      const int angle = k == 0 ? 2 : k == 1 ? 1 : 0;
       T cs[kPacks * kLanes], sn[kPacks * kLanes];
       for (int m = 0; m < used * kLanes; ++m) {
         const double shift = k > 0 && m % 2 ? -1.0 : 1.0;
-        cs[m] = m < order_ ? T(shift * c[angle][m]) : T(0);
-        sn[m] = m < order_ ? T((m % 2 ? shift : -shift) * s[angle][m]) : T(0);
+        cs[m] = m < order_ ? T(shift * c[k][m]) : T(0);
+        sn[m] = m < order_ ? T((m % 2 ? shift : -shift) * s[k][m]) : T(0);
       }
       for (int p = 0; p < used; ++p) cos_turn[k][p] = P::load(cs + p * kLanes), sin_turn[k][p] = P::load(sn + p * kLanes);
     }

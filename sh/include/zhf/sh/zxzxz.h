@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "zhf/runtime/band_recurrence.h"
 #include "zhf/runtime/limits.h"
 #include "zhf/runtime/tolerances.h"
 #include "zhf/sh/reference_rotation.h"
@@ -65,11 +66,15 @@ void turn_band(int l, const C* c, const C* s, T* f) {
   }
 }
 
-// X+ = D(Rx(+90 deg)) for bands 0..order-1, from the reference rotation (entries are exact up to its
-// rounding: kExactEntry).
+// X+ = D(Rx(+90 deg)) for bands 0..order-1 (runtime/band_recurrence.h; entries exact up to its
+// rounding: kExactEntry), as Eigen matrices.
 inline BandMatrices quarter_turn_x(int order) {
-  const double half_pi = 1.57079632679489661923;
-  return ivanic_ruedenberg(rotation_about_axis(Eigen::Vector3d::UnitX(), half_pi), order);
+  BandMatrices bands;
+  for (const std::vector<double>& band : runtime::quarter_turn_bands(order)) {
+    const int side = static_cast<int>(std::lround(std::sqrt(double(band.size()))));
+    bands.push_back(Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(band.data(), side, side));
+  }
+  return bands;
 }
 
 template <class T>
