@@ -603,17 +603,13 @@ class Builder {
     }
     return v;
   }
-  // X_l v or X_l^T v, X_l = D_l(Rx(+90 deg)) with its zeros and units (to kExactEntry) folded away.
+  // X_l v or X_l^T v, X_l = D_l(Rx(+90 deg)), whose exact zeros and units the graph folds away.
   std::vector<int> quarter_turn(Graph& g, int l, const std::vector<int>& v, bool transpose) const {
     const Eigen::MatrixXd& x = quarter_turn_[l];
     std::vector<int> out(2 * l + 1);
     for (int i = 0; i < 2 * l + 1; ++i) {
       std::vector<std::pair<double, int>> terms;
-      for (int j = 0; j < 2 * l + 1; ++j) {
-        double entry = transpose ? x(j, i) : x(i, j);
-        if (std::abs(std::abs(entry) - 1) <= runtime::tolerance::kExactEntry) entry = entry > 0 ? 1 : -1;
-        if (std::abs(entry) > runtime::tolerance::kExactEntry) terms.push_back({entry, v[j]});
-      }
+      for (int j = 0; j < 2 * l + 1; ++j) terms.push_back({transpose ? x(j, i) : x(i, j), v[j]});
       out[i] = g.linear(terms);
     }
     return out;

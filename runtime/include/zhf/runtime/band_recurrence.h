@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "zhf/runtime/rotation.h"
+#include "zhf/runtime/tolerances.h"
 
 namespace zhf::runtime {
 
@@ -89,11 +90,18 @@ std::vector<std::vector<S>> recurrence_band_matrices(const double r[9], int orde
   return bands;
 }
 
-// X = D(Rx(+90 deg)) for bands 0..order-1, from Rx's exact entries.
+// X = D(Rx(+90 deg)) for bands 0..order-1, from Rx's exact entries; the entries that are 0 or +-1
+// (half of them are 0) come out exactly so, not as the recurrence's rounding of them.
 template <class S = double>
 std::vector<std::vector<S>> quarter_turn_bands(int order) {
   const double rx90[9] = {1, 0, 0, 0, 0, -1, 0, 1, 0};
-  return recurrence_band_matrices<S>(rx90, order);
+  std::vector<std::vector<S>> bands = recurrence_band_matrices<S>(rx90, order);
+  for (std::vector<S>& band : bands)
+    for (S& x : band) {
+      if (std::abs(x) <= S(tolerance::kExactEntry)) x = 0;
+      if (std::abs(std::abs(x) - 1) <= S(tolerance::kExactEntry)) x = x > 0 ? 1 : -1;
+    }
+  return bands;
 }
 
 }  // namespace zhf::runtime

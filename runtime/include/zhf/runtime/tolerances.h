@@ -234,7 +234,7 @@ inline constexpr double kDoubleRoundingDefect = 1e-14;
 // Two magnitudes this close (relative) are one value: grouping equal |A_l| entries and equal
 // lobe-scale factors; rounding of one evaluation is ~1e-16.
 inline constexpr double kSameMagnitude = 1e-12;
-// An entry this close to 0 or +-1 is exactly that (X+ = D(Rx(90)) from the reference, a rescaled
+// An entry this close to 0 or +-1 is exactly that (X = D(Rx(90)) from the recurrence, a rescaled
 // lobe's equal components): a few roundings of values of size 1.
 inline constexpr double kExactEntry = 1e-14;
 // Emitted zxzxz kernels: below this |R's last column in xy|^2 (sin^2 b) the rotation is at gimbal

@@ -17,7 +17,6 @@
 
 #include "zhf/runtime/band_recurrence.h"
 #include "zhf/runtime/limits.h"
-#include "zhf/runtime/tolerances.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
 
@@ -66,8 +65,8 @@ void turn_band(int l, const C* c, const C* s, T* f) {
   }
 }
 
-// X+ = D(Rx(+90 deg)) for bands 0..order-1 (runtime/band_recurrence.h; entries exact up to its
-// rounding: kExactEntry), as Eigen matrices.
+// X+ = D(Rx(+90 deg)) for bands 0..order-1 (runtime/band_recurrence.h; its zeros and units exact),
+// as Eigen matrices.
 inline BandMatrices quarter_turn_x(int order) {
   BandMatrices bands;
   for (const std::vector<double>& band : runtime::quarter_turn_bands(order)) {
@@ -130,16 +129,12 @@ class ZxzxzRotator {
     double value;
     bool unit;  // +-1: a sign, not a multiply
   };
-  // X's entries that are not zero (|x| < 1e-14: exact zeros up to the reference's rounding),
-  // row by row.
+  // X's entries that are not zero (quarter_turn_x gives its zeros and units exactly), row by row.
   static std::vector<Entry> sparse(const Eigen::MatrixXd& x) {
     std::vector<Entry> out;
     for (int i = 0; i < x.rows(); ++i)
-      for (int j = 0; j < x.cols(); ++j) {
-        if (std::abs(x(i, j)) <= runtime::tolerance::kExactEntry) continue;
-        const bool unit = std::abs(std::abs(x(i, j)) - 1) <= runtime::tolerance::kExactEntry;
-        out.push_back({i, j, unit ? (x(i, j) > 0 ? 1.0 : -1.0) : x(i, j), unit});
-      }
+      for (int j = 0; j < x.cols(); ++j)
+        if (x(i, j) != 0) out.push_back({i, j, x(i, j), std::abs(x(i, j)) == 1});
     return out;
   }
   // X is orthogonal, so every row has an entry and every output is assigned.
