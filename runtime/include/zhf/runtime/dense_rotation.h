@@ -3,7 +3,9 @@
 // interleaved RGB layout, or planar arrays. Convention as Rotator: out_l = D_l in_l.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
+#include <cstring>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -32,21 +34,23 @@ class DenseRotation {
     const int rest = order_ * order_ - 1;
     rest_packs_ = (rest + P::kLanes - 1) / P::kLanes;
     for (int p = 0; p < rest_packs_; ++p) {
-      rest_pack_begin_.push_back(static_cast<int>(rest_terms_.size()));
+      rest_pack_begin_.push_back(static_cast<int>(rest_columns_.size()));
+      const int start = rest_pack_row(p, rest);
       for (int l = 1; l < order_; ++l) {
+        if (!band_in_pack(l, start)) continue;
         const int n = band_size(l), first_row = l * l - 1;
-        if (first_row >= (p + 1) * P::kLanes || first_row + n <= p * P::kLanes) continue;
         for (int j = 0; j < n; ++j) {
           T lanes[P::kLanes] = {};
           for (int k = 0; k < P::kLanes; ++k) {
-            const int row = p * P::kLanes + k - first_row;
+            const int row = start + k - first_row;
             if (row >= 0 && row < n) lanes[k] = bands_[l][row * n + j];
           }
-          rest_terms_.push_back({first_row + j, P::load(lanes)});
+          rest_columns_.push_back(P::load(lanes));
+          rest_inputs_.push_back(first_row + j);
         }
       }
     }
-    rest_pack_begin_.push_back(static_cast<int>(rest_terms_.size()));
+    rest_pack_begin_.push_back(static_cast<int>(rest_columns_.size()));
   }
 
   int order() const { return order_; }
@@ -74,41 +78,81 @@ class DenseRotation {
   // 3D Gaussian Splatting's layout, count items of 3 N^2 values: the three band-0 values (R, G,
   // B), then bands 1.. of R, of G and of B (N^2 - 1 each). in == out is allowed. Cost per item:
   // 3 sum_{l>0} (2l+1) x (packs of rows band l touches) pack multiply-adds (N = 4: 45 for 249
-  // scalar multiply-adds); docs/performance.md compares it with memory bandwidth.
+  // scalar multiply-adds; N = 8: 333 for 2040), straight-line code at orders 3..8;
+  // docs/performance.md compares it with memory bandwidth.
   void apply_splats(std::size_t count, const T* in, T* out, int threads = 0) const {
-    const std::size_t rest = static_cast<std::size_t>(coefficients() - 1), item = 3 + 3 * rest;
-    parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t v = begin; v < end; ++v) {
-        const T* f = in + item * v;
-        T* g = out + item * v;
-        for (int c = 0; c < 3; ++c) g[c] = f[c];
-        for (int c = 0; c < 3; ++c) apply_rest(f + 3 + c * rest, g + 3 + c * rest);
-      }
-    });
+    switch (order_) {
+      case 3: return apply_splats_of<3>(count, in, out, threads);
+      case 4: return apply_splats_of<4>(count, in, out, threads);
+      case 5: return apply_splats_of<5>(count, in, out, threads);
+      case 6: return apply_splats_of<6>(count, in, out, threads);
+      case 7: return apply_splats_of<7>(count, in, out, threads);
+      case 8: return apply_splats_of<8>(count, in, out, threads);
+      default: return apply_splats_of<0>(count, in, out, threads);
+    }
   }
 
   // Planar layout: plane p = c N^2 + i holds coefficient i of channel c of every item,
-  // in[p count + v], for channels planes sets. in == out is allowed. Runs Pack<T>::kLanes items
-  // per step; the same multiply-adds as apply() per item.
+  // in[p count + v], for channels planes sets. in == out is allowed. A block of items at a time,
+  // band by band, Pack<T>::kLanes items per step: 2 (2l + 1) planes are read and written at once,
+  // in runs of the block's length. The same multiply-adds as apply() per item.
   void apply_planar(std::size_t count, int channels, const T* in, T* out, int threads = 0) const {
-    const std::size_t planes = static_cast<std::size_t>(coefficients()) * count;  // one channel's
     parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
-      const std::size_t whole = begin + (end - begin) / P::kLanes * P::kLanes;
-      for (int c = 0; c < channels; ++c) {
-        const T* f = in + planes * static_cast<std::size_t>(c);
-        T* g = out + planes * static_cast<std::size_t>(c);
-        for (std::size_t v = begin; v < whole; v += P::kLanes) apply_planar_step<P>(f + v, g + v, count);
-        for (std::size_t v = whole; v < end; ++v) apply_planar_step<T>(f + v, g + v, count);
+      for (std::size_t block = begin; block < end; block += kPlanarBlock) {
+        const std::size_t block_end = std::min(end, block + kPlanarBlock);
+        const std::size_t whole = block + (block_end - block) / P::kLanes * P::kLanes;
+        for (int c = 0; c < channels; ++c) {
+          const std::size_t first_plane = static_cast<std::size_t>(c) * static_cast<std::size_t>(coefficients());
+          const T* f = in + first_plane * count;
+          T* g = out + first_plane * count;
+          for (std::size_t v = block; v < block_end; ++v) g[v] = f[v];  // band 0
+          const T* d = columns_.data() + 1;
+          for (int l = 1; l < order_; ++l) {
+            const std::size_t first_row = static_cast<std::size_t>(l * l) * count;
+            for (std::size_t v = block; v < whole; v += P::kLanes)
+              apply_planar_band<P>(l, d, f + first_row + v, g + first_row + v, count);
+            for (std::size_t v = whole; v < block_end; ++v)
+              apply_planar_band<T>(l, d, f + first_row + v, g + first_row + v, count);
+            d += band_size(l) * band_size(l);
+          }
+        }
       }
     });
   }
 
  private:
   using P = Pack<T>;
-  struct RestTerm {
-    int input;  // position among the N^2 - 1 values of bands 1..
-    P column;   // its column's rows in this pack
-  };
+  // apply_planar's items per block: long runs per plane for the prefetchers (2048 and more
+  // measured alike; 256 ran 1.6x slower at order 4), the band's planes within L2.
+  static constexpr std::size_t kPlanarBlock = 4096;
+
+  // Bands 1.. are cut into packs of kLanes output rows. Pack p starts at row p kLanes, except
+  // that the last one ends at the last row, overlapping its neighbour, so that every pack is
+  // stored whole inside the vector (rest < kLanes: one pack, stored lane by lane).
+  static constexpr int rest_pack_row(int p, int rest) { return std::max(0, std::min(p * P::kLanes, rest - P::kLanes)); }
+  // Whether band l has rows in the pack starting at row start.
+  static constexpr bool band_in_pack(int l, int start) {
+    const int first_row = l * l - 1;
+    return first_row < start + P::kLanes && first_row + band_size(l) > start;
+  }
+
+  // apply_splats with the order fixed (N > 0) or read at run time (N = 0).
+  template <int N>
+  void apply_splats_of(std::size_t count, const T* in, T* out, int threads) const {
+    const std::size_t rest = static_cast<std::size_t>(coefficients() - 1), item = 3 + 3 * rest;
+    parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t v = begin; v < end; ++v) {
+        const T* f = in + item * v;
+        T* g = out + item * v;
+        for (int c = 0; c < 3; ++c) g[c] = f[c];
+        if constexpr (N > 0) {
+          apply_splat_rest<N>(f + 3, g + 3);
+        } else {
+          for (int c = 0; c < 3; ++c) apply_rest(f + 3 + c * rest, g + 3 + c * rest);
+        }
+      }
+    });
+  }
 
   // y = D x over bands 1.. (N^2 - 1 values each); x may be y (every pack is formed before any
   // is stored).
@@ -117,53 +161,115 @@ class DenseRotation {
     for (int p = 0; p < rest_packs_; ++p) {
       // Four partial sums: one would be a chain of dependent multiply-adds.
       P sum[4] = {P(0.0), P(0.0), P(0.0), P(0.0)};
-      const RestTerm* term = &rest_terms_[rest_pack_begin_[p]];
+      const P* column = &rest_columns_[rest_pack_begin_[p]];
+      const int* input = &rest_inputs_[rest_pack_begin_[p]];
       const int terms = rest_pack_begin_[p + 1] - rest_pack_begin_[p];
       int t = 0;
       for (; t + 4 <= terms; t += 4)
-        for (int k = 0; k < 4; ++k) sum[k] += term[t + k].column * P::broadcast(x[term[t + k].input]);
-      for (; t < terms; ++t) sum[t % 4] += term[t].column * P::broadcast(x[term[t].input]);
+        for (int k = 0; k < 4; ++k) sum[k] += column[t + k] * P::broadcast(x[input[t + k]]);
+      for (; t < terms; ++t) sum[t % 4] += column[t] * P::broadcast(x[input[t]]);
       acc[p] = (sum[0] + sum[1]) + (sum[2] + sum[3]);
     }
-    const int rest = coefficients() - 1, whole = rest / P::kLanes;
-    for (int p = 0; p < whole; ++p) acc[p].store(y + p * P::kLanes);
-    if (whole < rest_packs_) {
+    const int rest = coefficients() - 1;
+    if (rest >= P::kLanes) {
+      for (int p = 0; p < rest_packs_; ++p) acc[p].store(y + rest_pack_row(p, rest));
+    } else if (rest > 0) {
       T lanes[P::kLanes];
-      acc[whole].store(lanes);
+      acc[0].store(lanes);
       // A few scalar stores: a memcpy of run-time length is a library call.
-      for (int k = 0; k < rest - whole * P::kLanes; ++k) y[whole * P::kLanes + k] = lanes[k];
+      for (int k = 0; k < rest; ++k) y[k] = lanes[k];
     }
   }
 
-  // One step of apply_planar over V (a Pack: kLanes items; T: one item); planes count apart.
+  // apply_rest on the three channels of a splat (x: N^2 - 1 values of each, one after another) at
+  // a fixed order of at least one whole pack of rows: the same packs and terms as straight-line
+  // code, each column loaded once for the three channels, two partial sums per pack and channel,
+  // every input and column offset a constant; x may be y (every pack is formed before any is
+  // stored).
+  template <int N>
+  [[gnu::flatten]] void apply_splat_rest(const T* x, T* y) const {
+    constexpr int rest = N * N - 1, packs = (rest + P::kLanes - 1) / P::kLanes;
+    static_assert(rest >= P::kLanes, "a whole pack of rows");
+    const P* column = rest_columns_.data();
+    P acc[3][packs];
+    for_each_index<packs>([&](auto p) {
+      constexpr int start = rest_pack_row(p, rest);
+      P even[3] = {P(0.0), P(0.0), P(0.0)}, odd[3] = {P(0.0), P(0.0), P(0.0)};
+      for_each_index<N>([&](auto l) {
+        if constexpr (l > 0 && band_in_pack(l, start)) {
+          for_each_index<band_size(l)>([&](auto j) {
+            const P d = column[j];
+            for_each_index<3>([&](auto c) {
+              (j % 2 ? odd : even)[c] += d * P::broadcast(x[c * rest + l * l - 1 + j]);
+            });
+          });
+          column += band_size(l);
+        }
+      });
+      for_each_index<3>([&](auto c) { acc[c][p] = even[c] + odd[c]; });
+    });
+    for_each_index<3>([&](auto c) {
+      for_each_index<packs>([&](auto p) { acc[c][p].store(y + c * rest + rest_pack_row(p, rest)); });
+    });
+  }
+
+  // f(std::integral_constant<int, i>) for i = 0 .. Count - 1, unrolled.
+  template <int Count, class F>
+  static void for_each_index(F&& f) {
+    for_each_index(f, std::make_integer_sequence<int, Count>());
+  }
+  template <class F, int... I>
+  static void for_each_index(F& f, std::integer_sequence<int, I...>) {
+    (f(std::integral_constant<int, I>()), ...);
+  }
+
+  // Band l of apply_planar (d: D_l column-major) on V (a Pack: kLanes items; T: one item): the
+  // band's 2l + 1 planes from in and out, stride apart. Two partial sums per row, in the same
+  // order for V = T and V = P, so an item's result does not depend on where a chunk starts; the
+  // bands of the generated orders run as straight-line code.
   template <class V>
-  void apply_planar_step(const T* in, T* out, std::size_t count) const {
-    auto constant = [](T c) {
-      if constexpr (std::is_same_v<V, T>) return c;
-      else return V::broadcast(c);
-    };
-    auto load = [&](int i) {
-      if constexpr (std::is_same_v<V, T>) return in[i * count];
-      else return V::load(in + i * count);
-    };
-    auto store = [&](int i, const V& value) {
-      if constexpr (std::is_same_v<V, T>) out[i * count] = value;
-      else value.store(out + i * count);
-    };
-    store(0, load(0));
-    const T* d = columns_.data() + 1;
-    for (int l = 1; l < order_; ++l) {
-      const int n = band_size(l), base = l * l;
-      V x[2 * kMaxZxzxzOrder - 1];
-      for (int j = 0; j < n; ++j) x[j] = load(base + j);
-      for (int i = 0; i < n; ++i) {
-        V sum = constant(0);
-        for (int j = 0; j < n; ++j) sum += constant(d[j * n + i]) * x[j];
-        store(base + i, sum);
+  void apply_planar_band(int l, const T* d, const T* in, T* out, std::size_t stride) const {
+    switch (l) {
+      case 1: return apply_planar_band_of<V, 1>(d, in, out, stride);
+      case 2: return apply_planar_band_of<V, 2>(d, in, out, stride);
+      case 3: return apply_planar_band_of<V, 3>(d, in, out, stride);
+      case 4: return apply_planar_band_of<V, 4>(d, in, out, stride);
+      case 5: return apply_planar_band_of<V, 5>(d, in, out, stride);
+      case 6: return apply_planar_band_of<V, 6>(d, in, out, stride);
+      case 7: return apply_planar_band_of<V, 7>(d, in, out, stride);
+      default: break;
+    }
+    const int n = band_size(l);
+    V x[2 * kMaxZxzxzOrder - 1];
+    for (int j = 0; j < n; ++j) x[j] = load<V>(in + j * stride);
+    for (int i = 0; i < n; ++i) {
+      V even(T(0)), odd(T(0));
+      for (int j = 0; j + 1 < n; j += 2) {
+        even += V(d[j * n + i]) * x[j];
+        odd += V(d[(j + 1) * n + i]) * x[j + 1];
       }
-      d += n * n;
+      even += V(d[(n - 1) * n + i]) * x[n - 1];
+      store(even + odd, out + i * stride);
     }
   }
+  template <class V, int L>
+  [[gnu::flatten]] void apply_planar_band_of(const T* d, const T* in, T* out, std::size_t stride) const {
+    constexpr int n = band_size(L);
+    V x[n];
+    for_each_index<n>([&](auto j) { x[j] = load<V>(in + j * stride); });
+    for_each_index<n>([&](auto i) {
+      V even(T(0)), odd(T(0));
+      for_each_index<n>([&](auto j) { (j % 2 ? odd : even) += V(d[j * n + i]) * x[j]; });
+      store(even + odd, out + i * stride);
+    });
+  }
+  template <class V>
+  static V load(const T* p) {
+    if constexpr (std::is_same_v<V, T>) return *p;
+    else return V::load(p);
+  }
+  static void store(const T& value, T* p) { *p = value; }
+  static void store(const P& value, T* p) { value.store(p); }
 
   template <int N>
   void apply_bands(const T* in, T* out) const {
@@ -186,7 +292,8 @@ class DenseRotation {
   std::vector<T> columns_;  // band by band, each D_l column-major
   int rest_packs_ = 0;
   std::vector<int> rest_pack_begin_;  // pack p's terms: [begin[p], begin[p + 1])
-  std::vector<RestTerm> rest_terms_;
+  std::vector<P> rest_columns_;       // a term's column rows in its pack
+  std::vector<int> rest_inputs_;      // a term's input, among the N^2 - 1 values of bands 1..
 };
 
 // The band matrices of the rotation rotate(in, out) performs at this order (in, out: N^2 values),
