@@ -182,37 +182,46 @@ class DenseRotation {
   }
 
   // apply_rest on the three channels of a splat (x: N^2 - 1 values of each, one after another) at
-  // a fixed order of at least one whole pack of rows: the same packs and terms as straight-line
-  // code, each column loaded once for the three channels, two partial sums per pack and channel,
-  // every input and column offset a constant; x may be y (every pack is formed before any is
-  // stored).
+  // a fixed order of at least one whole pack of rows, as straight-line code: band by band, each
+  // input broadcast once for the packs its band has rows in and each column pack loaded once for
+  // the three channels; a pack is stored once the last band with rows in it is done, when those
+  // rows' inputs have all been read, so x may be y.
   template <int N>
   [[gnu::flatten]] void apply_splat_rest(const T* x, T* y) const {
     constexpr int rest = N * N - 1, packs = (rest + P::kLanes - 1) / P::kLanes;
     static_assert(rest >= P::kLanes, "a whole pack of rows");
-    const P* column = rest_columns_.data();
+    const P* columns = rest_columns_.data();  // a local: the stores could alias the member
     P acc[3][packs];
-    for_each_index<packs>([&](auto p) {
-      constexpr int start = rest_pack_row(p, rest);
-      P even[3] = {P(0.0), P(0.0), P(0.0)}, odd[3] = {P(0.0), P(0.0), P(0.0)};
-      for_each_index<N>([&](auto l) {
-        if constexpr (l > 0 && band_in_pack(l, start)) {
-          for_each_index<band_size(l)>([&](auto j) {
-            const P d = column[j];
-            for_each_index<3>([&](auto c) {
-              (j % 2 ? odd : even)[c] += d * P::broadcast(x[c * rest + l * l - 1 + j]);
-            });
+    for_each_index<packs>([&](auto p) { for_each_index<3>([&](auto c) { acc[c][p] = P(0.0); }); });
+    for_each_index<N>([&](auto l) {
+      if constexpr (l > 0) {
+        for_each_index<band_size(l)>([&](auto j) {
+          P input[3];
+          for_each_index<3>([&](auto c) { input[c] = P::broadcast(x[c * rest + l * l - 1 + j]); });
+          for_each_index<packs>([&](auto p) {
+            if constexpr (band_in_pack(l, rest_pack_row(p, rest))) {
+              const P d = columns[column_of(N, p, l) + j];
+              for_each_index<3>([&](auto c) { acc[c][p] += d * input[c]; });
+            }
           });
-          column += band_size(l);
-        }
-      });
-      for_each_index<3>([&](auto c) { acc[c][p] = even[c] + odd[c]; });
-    });
-    for_each_index<3>([&](auto c) {
-      for_each_index<packs>([&](auto p) { acc[c][p].store(y + c * rest + rest_pack_row(p, rest)); });
+        });
+        for_each_index<packs>([&](auto p) {
+          constexpr int start = rest_pack_row(p, rest);
+          if constexpr (band_in_pack(l, start) && (l + 1 == N || !band_in_pack(l + 1, start)))
+            for_each_index<3>([&](auto c) { acc[c][p].store(y + c * rest + start); });
+        });
+      }
     });
   }
-
+  // Where band l's first column in pack p sits among the rest columns, at order N.
+  static constexpr int column_of(int order, int p, int l) {
+    const int rest = order * order - 1;
+    int offset = 0;
+    for (int q = 0; q <= p; ++q)
+      for (int k = 1; k < (q < p ? order : l); ++k)
+        if (band_in_pack(k, rest_pack_row(q, rest))) offset += band_size(k);
+    return offset;
+  }
   // f(std::integral_constant<int, i>) for i = 0 .. Count - 1, unrolled.
   template <int Count, class F>
   static void for_each_index(F&& f) {

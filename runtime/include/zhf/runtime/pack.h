@@ -65,9 +65,32 @@ struct Pack {
     return r;
   }
 #endif
-  // 1 / sqrt(x), lane by lane (the emitted kernels' reciprocal_sqrt).
+  // 1 / sqrt(x), lane by lane (the emitted kernels' reciprocal_sqrt). On x86 through the vector
+  // square-root instruction, correctly rounded as std::sqrt is, so each lane equals the scalar
+  // kernel's; the lane loop is not vectorised because std::sqrt may set errno.
   friend Pack reciprocal_sqrt(const Pack& x) {
     Pack r;
+#if defined(__GNUC__) && defined(__AVX__)
+    if constexpr (kBytes == 32 && std::is_same_v<T, float>) {
+      r.v = T(1) / __builtin_ia32_sqrtps256(x.v);
+      return r;
+    } else if constexpr (kBytes == 32 && std::is_same_v<T, double>) {
+      r.v = T(1) / __builtin_ia32_sqrtpd256(x.v);
+      return r;
+    }
+#elif defined(__GNUC__) && defined(__SSE2__)
+    if constexpr (kBytes % 16 == 0 && (std::is_same_v<T, float> || std::is_same_v<T, double>)) {
+      typedef T Half __attribute__((vector_size(16)));
+      for (int part = 0; part < kBytes / 16; ++part) {
+        Half h;
+        std::memcpy(&h, reinterpret_cast<const char*>(&x.v) + 16 * part, 16);
+        if constexpr (std::is_same_v<T, float>) h = T(1) / __builtin_ia32_sqrtps(h);
+        else h = T(1) / __builtin_ia32_sqrtpd(h);
+        std::memcpy(reinterpret_cast<char*>(&r.v) + 16 * part, &h, 16);
+      }
+      return r;
+    }
+#endif
     for (int i = 0; i < kLanes; ++i) r.v[i] = T(1) / std::sqrt(x.v[i]);
     return r;
   }
