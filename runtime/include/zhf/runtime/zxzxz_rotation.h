@@ -19,6 +19,10 @@
 // gimbal lock, where any a works), Rz(-a) R = Ry(b) Rz(g) gives g's from its middle row and b's
 // are (R_22, |column in xy|); their multiples by doubling and angle addition, in double.
 //
+// A call gathers a group of bands into class form in a local stage (one pass over the input),
+// rotates band by band there, with the block products unrolled over a band's packs at orders to
+// 32, and scatters the group back.
+//
 // Convention as Rotator. Accuracy: X to ~1e-15 (the recurrence), T's rounding over two band
 // products and three turns: float below 1e-6 on unit inputs at order 32 (tested). Cost per call:
 // 2 sum_l (l+1) ceil((l+1)/lanes) pack multiply-adds, ~12 N^2 lane operations for the turns, one
@@ -94,6 +98,16 @@ class ZxzxzRotation {
           }
     blocks_.reserve(offset_[order]);
     for (int p = 0; p < offset_[order]; ++p) blocks_.push_back(P::load(&lanes[std::size_t(p) * kLanes]));
+    // Band l's classes, padded to whole packs, at stage positions [class_begin_[l], class_begin_[l + 1]):
+    // E then O, packs(l) kLanes values each; input i (band l, i >= 1) at class_slot_[i].
+    class_begin_.assign(order + 1, 0);
+    class_slot_.assign(std::size_t(order) * order, 0);
+    for (int l = 1; l < order; ++l) {
+      class_begin_[l + 1] = class_begin_[l] + 2 * packs(l) * kLanes;
+      for (int k = 0; k < 2; ++k)
+        for (int m = 0; m <= l; ++m)
+          if (position(l, k, m) >= 0) class_slot_[l * l + position(l, k, m)] = class_begin_[l] + k * packs(l) * kLanes + m;
+    }
   }
 
   int order() const { return order_; }
@@ -120,20 +134,31 @@ class ZxzxzRotation {
       for (int p = 0; p < used; ++p) cos_turn[k][p] = P::load(cs + p * kLanes), sin_turn[k][p] = P::load(sn + p * kLanes);
     }
     const int n = order_ * order_;
+    T stage[kStageValues];
     for (int ch = 0; ch < channels; ++ch) {
       const T* f = in + ch * n;
       T* o = out + ch * n;
       o[0] = f[0];
-      for (int l = 1; l < order_; ++l) {
-        const int count = packs(l);
-        P e[kPacks], q[kPacks];
-        load_band(l, f + l * l, e, q);
-        turn(count, cos_turn[0], sin_turn[0], e, q);
-        quarter_turn(l, e, q);
-        turn(count, cos_turn[1], sin_turn[1], e, q);
-        quarter_turn(l, e, q);
-        turn(count, cos_turn[2], sin_turn[2], e, q);
-        store_band(l, e, q, o + l * l);
+      // Bands in groups whose classes fit the stage: all of a group's inputs are gathered into
+      // class order before its first band is loaded as packs (a pack loaded right after its lanes'
+      // scalar stores waits for them), the bands rotated there, then scattered back.
+      for (int first = 1, last = 1; first < order_; first = last) {
+        while (last < order_ && class_begin_[last + 1] - class_begin_[first] <= kStageValues) ++last;
+        const int begin = class_begin_[first], values = class_begin_[last] - begin;
+        const int* slot = class_slot_.data();
+        for (int i = 0; i < values; ++i) stage[i] = T(0);  // padding and O_0
+        for (int i = first * first; i < last * last; ++i) stage[slot[i] - begin] = f[i];
+        for (int l = first; l < last; ++l) {
+          T* band = stage + class_begin_[l] - begin;
+          switch (packs(l)) {
+            case 1: rotate_band<1>(l, band, cos_turn, sin_turn); break;
+            case 2: rotate_band<2>(l, band, cos_turn, sin_turn); break;
+            case 3: rotate_band<3>(l, band, cos_turn, sin_turn); break;
+            case 4: rotate_band<4>(l, band, cos_turn, sin_turn); break;
+            default: rotate_band<0>(l, band, cos_turn, sin_turn); break;
+          }
+        }
+        for (int i = first * first; i < last * last; ++i) o[i] = stage[slot[i] - begin];
       }
     }
   }
@@ -146,25 +171,27 @@ class ZxzxzRotation {
     if (!cosine && m == 0) return -1;
     return cosine ? l + m : l - m;
   }
-  static void load_band(int l, const T* f, P* e, P* q) {
+  // Stage for rotate's band groups, in values: the largest band's classes (2 x 16 packs at order
+  // 128) and more; 16 KiB of floats.
+  static constexpr int kStageValues = 4096;
+  static_assert(kStageValues >= 2 * ((kMaxZxzxzOrder + kLanes - 1) / kLanes) * kLanes, "a band fits the stage");
+
+  // One band in class form (E then O, count packs each) through the three turns and two quarter
+  // turns; Count = packs(l) known to the compiler (1..4: orders to 32) or 0 (read at run time).
+  template <int Count, class Turns>
+  void rotate_band(int l, T* band, const Turns& cos_turn, const Turns& sin_turn) const {
     constexpr int kPacks = (kMaxZxzxzOrder + kLanes - 1) / kLanes;
-    T even[kPacks * kLanes], odd[kPacks * kLanes];
-    for (int m = 0; m < packs(l) * kLanes; ++m) {
-      even[m] = m <= l ? f[position(l, 0, m)] : T(0);
-      const int at = m <= l ? position(l, 1, m) : -1;
-      odd[m] = at < 0 ? T(0) : f[at];
-    }
-    for (int p = 0; p < packs(l); ++p) e[p] = P::load(even + p * kLanes), q[p] = P::load(odd + p * kLanes);
-  }
-  static void store_band(int l, const P* e, const P* q, T* f) {
-    constexpr int kPacks = (kMaxZxzxzOrder + kLanes - 1) / kLanes;
-    T even[kPacks * kLanes], odd[kPacks * kLanes];
-    for (int p = 0; p < packs(l); ++p) e[p].store(even + p * kLanes), q[p].store(odd + p * kLanes);
-    for (int m = 0; m <= l; ++m) {
-      f[position(l, 0, m)] = even[m];
-      const int at = position(l, 1, m);
-      if (at >= 0) f[at] = odd[m];
-    }
+    const int count = Count > 0 ? Count : packs(l);
+    P e[Count > 0 ? Count : kPacks], q[Count > 0 ? Count : kPacks];
+    for (int p = 0; p < count; ++p) e[p] = P::load(band + p * kLanes), q[p] = P::load(band + (count + p) * kLanes);
+    turn(count, cos_turn[0], sin_turn[0], e, q);
+    quarter_turn<Count>(l, band, e, 0);
+    quarter_turn<Count>(l, band, q, 1);
+    turn(count, cos_turn[1], sin_turn[1], e, q);
+    quarter_turn<Count>(l, band, e, 0);
+    quarter_turn<Count>(l, band, q, 1);
+    turn(count, cos_turn[2], sin_turn[2], e, q);
+    for (int p = 0; p < count; ++p) e[p].store(band + p * kLanes), q[p].store(band + (count + p) * kLanes);
   }
   static void turn(int count, const P* c, const P* s, P* e, P* q) {
     for (int p = 0; p < count; ++p) {
@@ -173,30 +200,48 @@ class ZxzxzRotation {
       q[p] = c[p] * y - s[p] * x;
     }
   }
-  // Each class through its block: out = sum_j column_j * in_j, four independent sums per pack so
-  // the multiply-adds overlap instead of waiting on one another.
-  void quarter_turn(int l, P* e, P* q) const {
-    constexpr int kPacks = (kMaxZxzxzOrder + kLanes - 1) / kLanes;
-    const int count = packs(l);
-    P* classes[2] = {e, q};
-    for (int k = 0; k < 2; ++k) {
-      T in[kPacks * kLanes];
-      for (int p = 0; p < count; ++p) classes[k][p].store(in + p * kLanes);
-      P x[kMaxZxzxzOrder];
-      for (int j = 0; j <= l; ++j) x[j] = P::broadcast(in[j]);
-      const P* block = blocks_.data() + offset_[l] + k * (l + 1) * count;
+  // Class k of band l through its block, in place: out = sum_j column_j * in_j, the class's values
+  // passing through scratch to be broadcast one by one. With Count packs known, each broadcast
+  // serves all packs and Count x kChains independent sums (8 where registers allow) keep both
+  // multiply-add pipes busy; otherwise four sums per pack.
+  template <int Count>
+  void quarter_turn(int l, T* scratch, P* packs_of_class, int k) const {
+    const int count = Count > 0 ? Count : packs(l);
+    for (int p = 0; p < count; ++p) packs_of_class[p].store(scratch + p * kLanes);
+    const P* block = blocks_.data() + offset_[l] + k * (l + 1) * count;
+    if constexpr (Count > 0) {
+      constexpr int kChains = Count >= 4 ? 2 : 8 / Count;
+      P sum[kChains][Count];
+      for (int u = 0; u < kChains; ++u)
+        for (int p = 0; p < Count; ++p) sum[u][p] = P(0.0);
+      int j = 0;
+      for (; j + kChains <= l + 1; j += kChains)
+        for (int u = 0; u < kChains; ++u) {
+          const P x = P::broadcast(scratch[j + u]);
+          for (int p = 0; p < Count; ++p) sum[u][p] += block[(j + u) * Count + p] * x;
+        }
+      for (; j <= l; ++j) {
+        const P x = P::broadcast(scratch[j]);
+        for (int p = 0; p < Count; ++p) sum[0][p] += block[j * Count + p] * x;
+      }
+      for (int p = 0; p < Count; ++p) {
+        P total = sum[0][p];
+        for (int u = 1; u < kChains; ++u) total += sum[u][p];
+        packs_of_class[p] = total;
+      }
+    } else {
       for (int p = 0; p < count; ++p) {
         const P* column = block + p;
         P s0(0.0), s1(0.0), s2(0.0), s3(0.0);
         int j = 0;
         for (; j + 3 <= l; j += 4) {
-          s0 += column[j * count] * x[j];
-          s1 += column[(j + 1) * count] * x[j + 1];
-          s2 += column[(j + 2) * count] * x[j + 2];
-          s3 += column[(j + 3) * count] * x[j + 3];
+          s0 += column[j * count] * P::broadcast(scratch[j]);
+          s1 += column[(j + 1) * count] * P::broadcast(scratch[j + 1]);
+          s2 += column[(j + 2) * count] * P::broadcast(scratch[j + 2]);
+          s3 += column[(j + 3) * count] * P::broadcast(scratch[j + 3]);
         }
-        for (; j <= l; ++j) s0 += column[j * count] * x[j];
-        classes[k][p] = (s0 + s1) + (s2 + s3);
+        for (; j <= l; ++j) s0 += column[j * count] * P::broadcast(scratch[j]);
+        packs_of_class[p] = (s0 + s1) + (s2 + s3);
       }
     }
   }
@@ -204,6 +249,8 @@ class ZxzxzRotation {
   int order_ = 0;
   std::vector<int> offset_;   // band l's blocks start at offset_[l] (packs)
   std::vector<P> blocks_;     // per band: class E then O, (l+1) columns of packs(l) packs each
+  std::vector<int> class_begin_;  // band l's classes in a stage of all bands (values)
+  std::vector<int> class_slot_;   // input i's place in that stage
 };
 
 }  // namespace zhf::runtime
