@@ -6,6 +6,7 @@
 #include "commands.h"
 #include "options.h"
 #include "progress.h"
+#include "zhf/codegen/kernels.h"
 #include "zhf/io/files.h"
 #include "zhf/io/lobe_table_writer.h"
 #include "zhf/io/signals.h"
@@ -38,11 +39,16 @@ constexpr PaperFigure kPaper[] = {{3, 16, 2.12},  {4, 41, 6.80},   {5, 80, 14.62
 
 void print_summary(const runtime::LobeTable& table) {
   std::printf("order %d, %s, %zu lobes\n", table.order, table.lobe_sharing ? "lobe sharing" : "no sharing", table.lobes.size());
-  std::printf("  band  zeros/entries  condition\n");
-  for (const runtime::TableBand& band : table.bands)
-    std::printf("  %4d  %5d/%-7d  %9.2f\n", band.l, band.zeros, band.inverse.rows * band.inverse.cols, band.condition);
-  std::printf("  total %d/%d zeros (%.1f%% sparse), worst condition %.2f\n", table.zeros, table.entries,
-              100.0 * table.zeros / std::max(1, table.entries), table.worst_condition());
+  std::printf("  band  zeros/entries  condition  multiplies of z = A^T f\n");
+  int multiplies = 0;
+  for (const runtime::TableBand& band : table.bands) {
+    const int band_multiplies = codegen::lobe_weight_multiplies(band.inverse);
+    multiplies += band_multiplies;
+    std::printf("  %4d  %5d/%-7d  %9.2f  %10d\n", band.l, band.zeros, band.inverse.rows * band.inverse.cols, band.condition,
+                band_multiplies);
+  }
+  std::printf("  total %d/%d zeros (%.1f%% sparse), worst condition %.2f, %d multiplies\n", table.zeros, table.entries,
+              100.0 * table.zeros / std::max(1, table.entries), table.worst_condition(), multiplies);
   for (const PaperFigure& p : kPaper)
     if (p.order == table.order && table.lobe_sharing)
       std::printf("  paper: %d zeros, worst condition %.2f\n", p.zeros, p.worst_condition);
@@ -51,7 +57,9 @@ void print_summary(const runtime::LobeTable& table) {
 int run_optimize(const OptimizeOptions& o, const std::string& command) {
   pipeline::SearchRequest r;
   r.order = static_cast<int>(integer_option("--order", o.order, runtime::kMinSearchOrder, runtime::kMaxSearchOrder));
-  r.objective = o.objective == "amplification" ? pipeline::Objective::kAmplification : pipeline::Objective::kSparsity;
+  r.objective = o.objective == "amplification" ? pipeline::Objective::kAmplification
+                : o.objective == "operations"  ? pipeline::Objective::kOperations
+                                               : pipeline::Objective::kSparsity;
   r.seed = seed_option("--seed", o.seed);
   r.time_limit = number_option("--time-limit", o.time_limit, 0, 1e7);
   r.threads = static_cast<int>(integer_option("--threads", o.threads, 0, runtime::kMaxThreads));
@@ -69,7 +77,7 @@ int run_optimize(const OptimizeOptions& o, const std::string& command) {
   if (r.objective == pipeline::Objective::kAmplification && (o.no_sharing || o.exhaustive || o.seed_from_continuous))
     throw UsageError("--objective amplification: searches shared continuous lobes; drop --no-sharing, --exhaustive and "
                      "--seed-from-continuous");
-  if (r.objective == pipeline::Objective::kSparsity && o.starts_given)
+  if (r.objective != pipeline::Objective::kAmplification && o.starts_given)
     throw UsageError("--starts: only --objective amplification has random starts");
   // Refuse an unwritable output before the search, not after it.
   if (!o.out.empty()) io::PendingFile check(o.out);
@@ -119,9 +127,11 @@ void add_optimize_command(CLI::App& app, Action& action, const std::string& comm
               "Enumerate every lobe set (up to permutations within a band); with --time-limit, report the bound");
   c->add_flag("--seed-from-continuous", o->seed_from_continuous, "Seed the GA with 16 continuous (nlopt) optima snapped to candidates");
   c->add_option("--objective", o->objective,
-                "sparsity (default: SH-zero candidates, most zeros within --max-condition) or amplification "
-                "(continuous lobes with the least float error amplification: the lanes tables of runtime/lanes.h)")
-      ->check(CLI::IsMember({"sparsity", "amplification"}));
+                "sparsity (default: SH-zero candidates, most zeros within --max-condition), operations (SH-zero "
+                "candidates, fewest emitted multiplies of the lobe weights z = A^T f within --max-condition) or "
+                "amplification (continuous lobes with the least float error amplification: the lanes tables of "
+                "runtime/lanes.h)")
+      ->check(CLI::IsMember({"sparsity", "operations", "amplification"}));
   CLI::Option* starts = c->add_option("--starts", o->starts,
                                       "amplification: random start points (default 8); more finds lower error, in proportion more time");
   c->add_flag("--quiet", o->quiet, "No progress line");

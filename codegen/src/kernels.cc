@@ -12,6 +12,18 @@
 namespace zhf::codegen {
 namespace {
 
+// Band l's sparse stage on inputs base.. base + 2l: out_i = sum_k A[k][i] x_k (transpose: the
+// lobe weights z = A^T f) or sum_k A[i][k] x_k (coefficients from lobe samples).
+std::vector<int> band_sums(Graph& g, const runtime::Matrix& inverse, bool transpose, int base) {
+  std::vector<int> sums;
+  for (int i = 0; i < inverse.rows; ++i) {
+    std::vector<std::pair<double, int>> terms;
+    for (int k = 0; k < inverse.rows; ++k) terms.push_back({transpose ? inverse(k, i) : inverse(i, k), g.input(0, base + k)});
+    sums.push_back(g.linear(terms));
+  }
+  return sums;
+}
+
 using runtime::kInvSqrt4Pi;
 constexpr double kSqrt3Over4Pi = 0.48860251190291992159;  // band 1: c (y, z, x)
 using runtime::kBand1Axis;
@@ -183,12 +195,8 @@ class Builder {
     for (int i = 0; i < std::min(count_, 4); ++i) put(f, 1, i, g.input(0, i));
     for (const runtime::TableBand& band : table_.bands) {
       const int l = band.l, base = l * l;
-      for (int i = 0; i < 2 * l + 1; ++i) {
-        std::vector<std::pair<double, int>> terms;
-        for (int k = 0; k < 2 * l + 1; ++k)
-          terms.push_back({transpose ? band.inverse(k, i) : band.inverse(i, k), g.input(0, base + k)});
-        put(f, 1, base + i, g.linear(terms));
-      }
+      const std::vector<int> sums = band_sums(g, band.inverse, transpose, base);
+      for (int i = 0; i < 2 * l + 1; ++i) put(f, 1, base + i, sums[i]);
     }
     if (!transpose && condon_shortley_) {
       // The system's coefficients are S f: the odd-m outputs negated (folded into their sums).
@@ -859,6 +867,11 @@ Module build_lanes_module(const runtime::LobeTable& table) {
                       : kLanesLobesInDoubleMargin * model <= kFloatRotation ? runtime::LobeStage::kDoubleRotation
                                                                             : runtime::LobeStage::kDouble;
   return module;
+}
+
+int lobe_weight_multiplies(const runtime::Matrix& inverse) {
+  Graph g;
+  return g.count(band_sums(g, inverse, /*transpose=*/true, 0)).multiplies;
 }
 
 }  // namespace zhf::codegen

@@ -75,7 +75,7 @@ ExhaustiveResult exhaustive_search(const LobeEvaluator& evaluator, double time_l
     std::vector<Fitness> fitness;
     evaluate_all(evaluator, batch, fitness, threads);
     for (size_t i = 0; i < batch.size(); ++i) {
-      if (result.search.best.empty() || better(fitness[i], result.search.fitness)) {
+      if (result.search.best.empty() || evaluator.better(fitness[i], result.search.fitness)) {
         result.search.best = batch[i];
         result.search.fitness = fitness[i];
       }

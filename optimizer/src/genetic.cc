@@ -95,7 +95,7 @@ SearchResult genetic_search(const LobeEvaluator& evaluator, const GeneticOptions
     result.evaluations += cache.evaluate(evaluator, population, fitness, options.threads);
     std::vector<int> order(population.size());
     std::iota(order.begin(), order.end(), 0);
-    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return better(fitness[a], fitness[b]); });
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return evaluator.better(fitness[a], fitness[b]); });
     std::vector<Genome> sorted_population;
     std::vector<Fitness> sorted_fitness;
     for (int i : order) {
@@ -142,7 +142,7 @@ SearchResult genetic_search(const LobeEvaluator& evaluator, const GeneticOptions
     population.swap(next);
     evaluate_and_sort();
     result.generations = generation;
-    if (better(fitness[0], result.fitness)) {
+    if (evaluator.better(fitness[0], result.fitness)) {
       result.best = population[0];
       result.fitness = fitness[0];
       stall = 0;
@@ -170,7 +170,7 @@ SearchResult random_search(const LobeEvaluator& evaluator, long evaluations, std
     std::vector<Fitness> fitness;
     evaluate_all(evaluator, batch, fitness, threads);
     for (size_t i = 0; i < batch.size(); ++i) {
-      if (result.best.empty() || better(fitness[i], result.fitness)) {
+      if (result.best.empty() || evaluator.better(fitness[i], result.fitness)) {
         result.best = batch[i];
         result.fitness = fitness[i];
       }

@@ -105,7 +105,7 @@ SearchResult iterated_local_search(const LobeEvaluator& evaluator, const Genome&
       result.evaluations += static_cast<long>(fitness_of_batch.size());
       int best = -1;
       for (size_t k = 0; k < fitness_of_batch.size(); ++k)
-        if (better(fitness_of_batch[k], best < 0 ? fitness : fitness_of_batch[best])) best = static_cast<int>(k);
+        if (evaluator.better(fitness_of_batch[k], best < 0 ? fitness : fitness_of_batch[best])) best = static_cast<int>(k);
       if (best >= 0) {
         genome = batch[best];
         fitness = fitness_of_batch[best];
@@ -115,7 +115,7 @@ SearchResult iterated_local_search(const LobeEvaluator& evaluator, const Genome&
   };
 
   auto [genome, fitness] = descend(start, start_fitness);
-  if (better(fitness, result.fitness)) {
+  if (evaluator.better(fitness, result.fitness)) {
     result.best = genome;
     result.fitness = fitness;
     if (options.on_improvement) options.on_improvement(0, result.fitness, result.evaluations);
@@ -136,7 +136,7 @@ SearchResult iterated_local_search(const LobeEvaluator& evaluator, const Genome&
     ++result.evaluations;
     auto [improved, improved_fitness] = descend(kicked, kicked_fitness);
     result.generations = kick;
-    if (better(improved_fitness, result.fitness)) {
+    if (evaluator.better(improved_fitness, result.fitness)) {
       result.best = improved;
       result.fitness = improved_fitness;
       since_improvement = 0;

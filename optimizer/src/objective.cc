@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
@@ -12,11 +13,12 @@
 
 namespace zhf::optimizer {
 
-bool better(const Fitness& a, const Fitness& b) {
+bool better(const Fitness& a, const Fitness& b, Ranking ranking) {
   if (a.feasible != b.feasible) return a.feasible;
   if (a.invertible != b.invertible) return a.invertible;
   // Outside the bound, head for it: the better-conditioned set wins.
   if (!a.feasible && a.worst_condition != b.worst_condition) return a.worst_condition < b.worst_condition;
+  if (ranking == Ranking::kFewestMultiplies && a.multiplies != b.multiplies) return a.multiplies < b.multiplies;
   if (a.zeros != b.zeros) return a.zeros > b.zeros;
   if (a.worst_condition != b.worst_condition) return a.worst_condition < b.worst_condition;
   return a.multiplies < b.multiplies;
@@ -48,9 +50,10 @@ int multiply_cost(const Eigen::MatrixXd& inverse) {
   return cost;
 }
 
-LobeEvaluator::LobeEvaluator(const candidates::CandidateSet& set, bool lobe_sharing, double max_condition,
+LobeEvaluator::LobeEvaluator(const candidates::CandidateSet& set, bool lobe_sharing, double max_condition, Scoring scoring,
                              size_t max_tabulated_values)
-    : candidates_(set), order_(set.order), lobe_sharing_(lobe_sharing), max_condition_(max_condition) {
+    : candidates_(set), order_(set.order), lobe_sharing_(lobe_sharing), max_condition_(max_condition),
+      scoring_(std::move(scoring)) {
   const int count = runtime::coefficient_count(order_);
   // The default bound tabulates every order up to 16; order 32 has 6.4 million candidates (52 GB
   // of values) and evaluates on demand.
@@ -78,6 +81,10 @@ Eigen::MatrixXd LobeEvaluator::band_matrix(const Genome& genes, int l) const {
   return y;
 }
 
+int LobeEvaluator::stage_multiplies(const Eigen::MatrixXd& inverse) const {
+  return scoring_.stage_multiplies ? scoring_.stage_multiplies(inverse) : multiply_cost(inverse);
+}
+
 Fitness LobeEvaluator::evaluate(const Genome& genes) const {
   Fitness fitness;
   fitness.invertible = true;
@@ -96,7 +103,7 @@ Fitness LobeEvaluator::evaluate(const Genome& genes) const {
     fitness.worst_condition = std::max(fitness.worst_condition, condition);
     Eigen::MatrixXd inverse = y.partialPivLu().inverse();
     fitness.zeros += zero_small_entries(inverse);
-    fitness.multiplies += multiply_cost(inverse);
+    fitness.multiplies += stage_multiplies(inverse);
   }
   fitness.feasible = fitness.worst_condition <= max_condition_;
   return fitness;
@@ -126,7 +133,7 @@ Fitness LobeEvaluator::fitness_of(const std::vector<BandAnalysis>& bands) const 
     if (!(band.condition <= runtime::tolerance::kSingularCondition)) fitness.invertible = false;
     fitness.zeros += band.zeros;
     fitness.worst_condition = std::max(fitness.worst_condition, band.condition);
-    fitness.multiplies += multiply_cost(band.inverse);
+    fitness.multiplies += stage_multiplies(band.inverse);
   }
   fitness.feasible = fitness.invertible && fitness.worst_condition <= max_condition_;
   return fitness;

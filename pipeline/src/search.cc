@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "zhf/candidates/candidates.h"
+#include "zhf/codegen/kernels.h"
 #include "zhf/optimizer/amplification.h"
 #include "zhf/optimizer/continuous.h"
 #include "zhf/optimizer/exhaustive.h"
@@ -21,7 +22,26 @@ std::string format(const char* pattern, double a = 0, double b = 0, double c = 0
 }
 
 nlohmann::json base_provenance(const SearchRequest& r) {
-  return {{"zhf_version", ZHF_VERSION}, {"command", r.command}};
+  nlohmann::json provenance = {{"zhf_version", ZHF_VERSION}, {"command", r.command}};
+  if (r.objective == Objective::kOperations) provenance["objective"] = "operations";
+  return provenance;
+}
+
+// What the lobe search ranks by: zeros (ties to the optimizer's multiply model, with which the
+// checked-in tables were made and still reproduce), or the emitted multiplies as the code
+// generator counts them.
+optimizer::Scoring scoring(const SearchRequest& r) {
+  optimizer::Scoring s;
+  if (r.objective != Objective::kOperations) return s;
+  s.ranking = optimizer::Ranking::kFewestMultiplies;
+  s.stage_multiplies = [](const Eigen::MatrixXd& inverse) { return codegen::lobe_weight_multiplies(optimizer::to_matrix(inverse)); };
+  return s;
+}
+
+// The search's figure of merit for the user: zeros, or multiplies and zeros.
+std::string merit(const SearchRequest& r, const optimizer::Fitness& f) {
+  return r.objective == Objective::kOperations ? format("%.0f multiplies (%.0f zeros)", f.multiplies, f.zeros)
+                                               : format("%.0f zeros", f.zeros);
 }
 
 void say(const SearchRequest& r, const std::string& line) {
@@ -72,16 +92,17 @@ SearchOutcome exhaustive(const SearchRequest& r, const optimizer::LobeEvaluator&
   out.table = optimizer::make_table(evaluator, e.search.best, provenance);
   out.found = true;
   out.feasible = e.search.fitness.feasible;
-  out.summary = e.complete ? format("  exhaustive: all %.0f lobe sets (up to permutations within a band) in %.1f s: %.0f zeros is optimal",
-                                    e.sets_total, e.search.seconds, e.search.fitness.zeros)
-                           : format("  exhaustive: stopped after %.0f of %.3g lobe sets (%.2g%%) in %.1f s; best %.0f zeros",
-                                    e.sets_evaluated, e.sets_total, 100 * e.sets_evaluated / e.sets_total, e.search.seconds,
-                                    e.search.fitness.zeros) +
-                                 format(", bound %.0f", e.upper_bound);
+  out.summary = e.complete ? format("  exhaustive: all %.0f lobe sets (up to permutations within a band) in %.1f s: ",
+                                    e.sets_total, e.search.seconds) + merit(r, e.search.fitness) + " is optimal"
+                           : format("  exhaustive: stopped after %.0f of %.3g lobe sets (%.2g%%) in %.1f s; best ",
+                                    e.sets_evaluated, e.sets_total, 100 * e.sets_evaluated / e.sets_total, e.search.seconds) +
+                                 merit(r, e.search.fitness) +
+                                 (r.objective == Objective::kSparsity ? format(", bound %.0f zeros", e.upper_bound) : "");
   return out;
 }
 
-SearchOutcome sparsity(const SearchRequest& r, const optimizer::LobeEvaluator& evaluator) {
+// The genetic search, then the iterated local search, under the evaluator's ranking.
+SearchOutcome lobe_search(const SearchRequest& r, const optimizer::LobeEvaluator& evaluator) {
   optimizer::GeneticOptions ga;
   ga.seed = r.seed;
   ga.population = r.population;
@@ -101,9 +122,9 @@ SearchOutcome sparsity(const SearchRequest& r, const optimizer::LobeEvaluator& e
   }
   if (r.progress)
     ga.on_generation = [&r](const optimizer::GenerationReport& g) {
-      say(r, format("ga generation %.0f: best zeros %.0f, worst cond %.2f, %.0f evaluations/s, %.1f s", g.generation,
-                    g.best.zeros, g.best.worst_condition, g.elapsed_seconds > 0 ? g.evaluations / g.elapsed_seconds : 0.0,
-                    g.elapsed_seconds));
+      say(r, format("ga generation %.0f: best ", g.generation) + merit(r, g.best) +
+                 format(", worst cond %.2f, %.0f evaluations/s, %.1f s", g.best.worst_condition,
+                        g.elapsed_seconds > 0 ? g.evaluations / g.elapsed_seconds : 0.0, g.elapsed_seconds));
     };
   const optimizer::SearchResult ga_result = optimizer::genetic_search(evaluator, ga);
   optimizer::LocalSearchOptions ils;
@@ -114,8 +135,8 @@ SearchOutcome sparsity(const SearchRequest& r, const optimizer::LobeEvaluator& e
   ils.time_limit_seconds = r.time_limit > 0 ? std::max(runtime::kMinSearchSeconds, r.time_limit - ga_result.seconds) : 0;
   if (r.progress)
     ils.on_improvement = [&r](int kick, const optimizer::Fitness& best, long evaluations) {
-      say(r, format("local search kick %.0f: best zeros %.0f, worst cond %.2f, %.0f evaluations", kick, best.zeros,
-                    best.worst_condition, double(evaluations)));
+      say(r, format("local search kick %.0f: best ", kick) + merit(r, best) +
+                 format(", worst cond %.2f, %.0f evaluations", best.worst_condition, double(evaluations)));
     };
   const bool ran_local_search = !ga_result.interrupted && !ga_result.timed_out;
   optimizer::SearchResult ils_result;
@@ -149,8 +170,8 @@ SearchOutcome search(const SearchRequest& request) {
                                 std::to_string(runtime::kMinSearchOrder) + ", " + std::to_string(runtime::kMaxSearchOrder) + "]");
   if (request.objective == Objective::kAmplification) return amplification(request);
   const candidates::CandidateSet set = candidates::enumerate_candidates(request.order);
-  const optimizer::LobeEvaluator evaluator(set, request.lobe_sharing, request.max_condition);
-  return request.exhaustive ? exhaustive(request, evaluator) : sparsity(request, evaluator);
+  const optimizer::LobeEvaluator evaluator(set, request.lobe_sharing, request.max_condition, scoring(request));
+  return request.exhaustive ? exhaustive(request, evaluator) : lobe_search(request, evaluator);
 }
 
 }  // namespace zhf::pipeline

@@ -1,6 +1,9 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <regex>
+#include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -76,6 +79,34 @@ TEST(CliOptimize, WithoutSharingEachBandHasItsOwnLobes) {
   EXPECT_FALSE(t.at("lobe_sharing").get<bool>());
   EXPECT_EQ(t.at("lobes").size(), 12u);  // 5 + 7
   EXPECT_EQ(t.at("bands")[1].at("lobes")[0], 5);
+}
+
+// The operations objective through the CLI: the same table byte for byte on one and two threads,
+// recorded as such, and fewer multiplies (the summary's count) than the sparsity objective's.
+TEST(CliOptimize, OperationsObjectiveIsDeterministicAndCheaper) {
+  namespace fs = std::filesystem;
+  const test::TempDir temp;
+  const std::string dir = temp.string();
+  auto run = [&](const std::string& objective, int threads) {
+    // Each run in a folder of its own, writing t.json there: the recorded command is the same.
+    const fs::path folder = fs::path(dir) / (objective + std::to_string(threads));
+    fs::create_directories(folder);
+    const RunResult r = run_zhf(split_arguments("optimize --order 4 --quiet --stall 20 --local-search-stall 20 --objective " +
+                                                objective + " --threads " + std::to_string(threads) + " --out t.json"),
+                                folder.string());
+    const std::string out = (folder / "t.json").string();
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    std::smatch m;
+    EXPECT_TRUE(std::regex_search(r.out, m, std::regex("worst condition [0-9.]+, ([0-9]+) multiplies"))) << r.out;
+    return std::make_pair(out, m.size() > 1 ? std::stoi(m[1]) : -1);
+  };
+  const auto [one, cheap] = run("operations", 1);
+  const auto [two, cheap_again] = run("operations", 2);
+  const auto [sparse_table, sparse] = run("sparsity", 1);
+  EXPECT_EQ(read_text(one), read_text(two)) << "the thread count changed the table";
+  EXPECT_EQ(read_json(one).at("provenance").at("objective"), "operations");
+  EXPECT_EQ(cheap, cheap_again);
+  EXPECT_LT(cheap, sparse) << "operations " << cheap << " multiplies, sparsity " << sparse;
 }
 
 }  // namespace

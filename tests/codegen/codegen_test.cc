@@ -10,6 +10,7 @@
 #include "test_support.h"
 #include "zhf/codegen/generate.h"
 #include "zhf/codegen/kernels.h"
+#include "zhf/optimizer/objective.h"
 #include "zhf/runtime/table_io.h"
 #include "zhf/io/process.h"
 
@@ -130,6 +131,29 @@ TEST(Kernels, ShadingFromLobeWeightsCostsNoMoreThanByLobes) {
     std::map<KernelKind, int> multiplies;
     for (const Function& f : module.functions) multiplies[f.kind] = f.graph.count(f.output_nodes()).multiplies;
     EXPECT_LE(multiplies.at(KernelKind::kShadeLobes), multiplies.at(KernelKind::kShade)) << "order " << order;
+  }
+}
+
+// The search's count of a band's lobe weights is what the emitted lobe_weights kernel costs, band
+// by band summed, and never more than the optimizer's model (equal magnitudes per column).
+TEST(Kernels, LobeWeightCountIsTheEmittedOneAndWithinTheModel) {
+  for (int order = 3; order <= 8; ++order) {
+    const runtime::LobeTable table = runtime::read_lobe_table(runtime::table_path(kGenerated / "lobes", order));
+    int counted = 0;
+    for (const runtime::TableBand& band : table.bands) {
+      const int multiplies = lobe_weight_multiplies(band.inverse);
+      Eigen::MatrixXd inverse(band.inverse.rows, band.inverse.cols);
+      for (int i = 0; i < band.inverse.rows; ++i)
+        for (int j = 0; j < band.inverse.cols; ++j) inverse(i, j) = band.inverse(i, j);
+      EXPECT_LE(multiplies, optimizer::multiply_cost(inverse)) << "order " << order << ", band " << band.l;
+      EXPECT_GT(multiplies, 0) << "order " << order << ", band " << band.l;
+      counted += multiplies;
+    }
+    const Module module = build_module(table, ModuleOptions());
+    for (const Function& f : module.functions) {
+      if (f.kind != KernelKind::kLobeWeights) continue;
+      EXPECT_EQ(counted, f.graph.count(f.output_nodes()).multiplies) << "order " << order;
+    }
   }
 }
 

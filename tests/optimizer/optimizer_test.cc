@@ -99,7 +99,7 @@ TEST(Objective, RepeatedLobeIsSingular) {
 TEST(Objective, OnDemandEvaluationMatchesTheTable) {
   const candidates::CandidateSet& set = candidate_set(6);
   const LobeEvaluator tabulated(set, true, kDefaultMaxCondition);
-  const LobeEvaluator on_demand(set, true, kDefaultMaxCondition, /*max_tabulated_values=*/0);
+  const LobeEvaluator on_demand(set, true, kDefaultMaxCondition, {}, /*max_tabulated_values=*/0);
   std::mt19937_64 rng(6);
   auto pick = [&](std::mt19937_64& g) { return sh::uniform_index(g, static_cast<int>(set.directions.size())); };
   for (int trial = 0; trial < 50; ++trial) {
@@ -132,8 +132,39 @@ TEST(Objective, PaperLobeSetsGiveThePublishedFigures) {
   }
 }
 
-TEST(GeneticSearch, SameResultWithOneAndTwoThreads) {
-  const LobeEvaluator evaluator(candidate_set(5), true, kDefaultMaxCondition);
+// The operations ranking puts fewer multiplies ahead of more zeros; the sparsity ranking the other
+// way round; both put the condition bound first.
+TEST(Objective, RankingsOrderZerosAndMultiplies) {
+  Fitness sparse, cheap;
+  sparse.invertible = cheap.invertible = true;
+  sparse.feasible = cheap.feasible = true;
+  sparse.worst_condition = cheap.worst_condition = 3;
+  sparse.zeros = 40, sparse.multiplies = 30;
+  cheap.zeros = 38, cheap.multiplies = 27;
+  EXPECT_TRUE(better(sparse, cheap, Ranking::kMostZeros));
+  EXPECT_FALSE(better(cheap, sparse, Ranking::kMostZeros));
+  EXPECT_TRUE(better(cheap, sparse, Ranking::kFewestMultiplies));
+  EXPECT_FALSE(better(sparse, cheap, Ranking::kFewestMultiplies));
+  Fitness outside = cheap;
+  outside.feasible = false;
+  outside.multiplies = 1;
+  EXPECT_TRUE(better(sparse, outside, Ranking::kFewestMultiplies));
+  // A supplied count replaces the model in the fitness.
+  Scoring scoring;
+  scoring.ranking = Ranking::kFewestMultiplies;
+  scoring.stage_multiplies = [](const Eigen::MatrixXd& inverse) { return int(inverse.rows()); };
+  const LobeEvaluator counted(candidate_set(4), true, kDefaultMaxCondition, scoring);
+  const Genome genome(counted.genes(), 0);
+  EXPECT_EQ(counted.ranking(), Ranking::kFewestMultiplies);
+  EXPECT_EQ(counted.fitness_of(counted.analyze(genome)).multiplies, 5 + 7);
+}
+
+// The genetic and local searches give the same lobe set for the same seed whatever the thread
+// count, under a ranking.
+void check_threads_do_not_change_the_search(Ranking ranking) {
+  Scoring scoring;
+  scoring.ranking = ranking;
+  const LobeEvaluator evaluator(candidate_set(5), true, kDefaultMaxCondition, scoring);
   GeneticOptions options;
   options.seed = 42;
   options.population = 120;
@@ -155,6 +186,30 @@ TEST(GeneticSearch, SameResultWithOneAndTwoThreads) {
   const SearchResult b = iterated_local_search(evaluator, one.best, one.fitness, polish);
   EXPECT_EQ(a.best, b.best);
   EXPECT_EQ(a.evaluations, b.evaluations);
+}
+
+TEST(GeneticSearch, SameResultWithOneAndTwoThreads) {
+  for (Ranking ranking : {Ranking::kMostZeros, Ranking::kFewestMultiplies}) {
+    SCOPED_TRACE(ranking == Ranking::kMostZeros ? "sparsity" : "operations");
+    check_threads_do_not_change_the_search(ranking);
+  }
+}
+
+// Ranked by multiplies, the same search at order 4 ends with fewer multiplies than ranked by
+// zeros: the ranking reaches the search (deterministic: the same sets on every run).
+TEST(GeneticSearch, OperationsRankingLowersTheMultiplies) {
+  Scoring operations;
+  operations.ranking = Ranking::kFewestMultiplies;
+  const LobeEvaluator by_zeros(candidate_set(4), true, kDefaultMaxCondition);
+  const LobeEvaluator by_multiplies(candidate_set(4), true, kDefaultMaxCondition, operations);
+  GeneticOptions options;
+  options.seed = 3;
+  options.population = 200;
+  options.stall_generations = 20;
+  const SearchResult sparse = genetic_search(by_zeros, options);
+  const SearchResult cheap = genetic_search(by_multiplies, options);
+  ASSERT_TRUE(sparse.fitness.feasible && cheap.fitness.feasible);
+  EXPECT_LT(cheap.fitness.multiplies, sparse.fitness.multiplies);
 }
 
 TEST(GeneticSearch, BeatsRandomSamplingWithTheSameEvaluations) {

@@ -164,6 +164,11 @@ Function product_function(int order, bool square, bool condon_shortley = false);
 // The flat indices of odd m below count: where S = (-1)^m negates.
 std::vector<int> odd_m_indices(int count);
 
+// The multiplies of one band's lobe weights z = A^T f as emitted (equal magnitudes in a column
+// share a multiply, shared sums are made once), for A = inverse: the part of a lobe kernel's cost
+// that depends on its lobes, and what `zhf optimize --objective operations` minimises.
+int lobe_weight_multiplies(const runtime::Matrix& inverse);
+
 // Order 2 needs no table: pass runtime::lobe_free_table().
 Module build_module(const runtime::LobeTable& table, const ModuleOptions& options);
 

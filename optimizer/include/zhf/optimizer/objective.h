@@ -1,7 +1,9 @@
-// The sparsity objective: how many entries of A_l = Y_l^-1 vanish for a lobe set, with the
-// conditioning bound and tie-breaks that decide between equally sparse sets.
+// The objectives of the lobe search: how many entries of A_l = Y_l^-1 vanish for a lobe set
+// (sparsity), or how many multiplies its emitted lobe-weight stage z = A^T f costs (operations),
+// with the conditioning bound and tie-breaks that decide between equal sets.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -25,17 +27,31 @@ struct Fitness {
   bool feasible = false;      // ... and <= the bound
   int zeros = 0;              // summed over bands 2..N-1
   double worst_condition = 0;
-  int multiplies = 0;         // cost model: see multiply_cost()
+  int multiplies = 0;         // of z = A^T f, summed over bands 2..N-1: see Scoring::stage_multiplies
 };
 
-// Strict order: feasible first, then more zeros, lower worst condition, fewer multiplies.
-// Between two sets outside the condition bound, the lower worst condition wins.
-bool better(const Fitness& a, const Fitness& b);
+// What a search ranks first after the condition bound.
+enum class Ranking {
+  kMostZeros,        // sparsity: more zeros, then lower worst condition, then fewer multiplies
+  kFewestMultiplies  // operations: fewer multiplies, then more zeros, then lower worst condition
+};
 
-// Cost model for z = A^T f until code generation reports real counts: one multiply per
-// distinct nonzero magnitude in each column of A (equal magnitudes share a multiply after
-// adding or subtracting their inputs).
+// Strict order: feasible first, then the ranking's keys. Between two sets outside the condition
+// bound, the lower worst condition wins.
+bool better(const Fitness& a, const Fitness& b, Ranking ranking = Ranking::kMostZeros);
+
+// A model of z = A^T f's multiplies: one per distinct nonzero magnitude in each column of A
+// (equal magnitudes share a multiply after adding or subtracting their inputs). The code
+// generator's count (codegen::lobe_weight_multiplies) is exact and at most this: it also shares
+// sums that recur across columns.
 int multiply_cost(const Eigen::MatrixXd& inverse);
+
+struct Scoring {
+  Ranking ranking = Ranking::kMostZeros;
+  // One band's multiplies for its A_l; must be safe to call from several threads at once. Unset:
+  // multiply_cost. zhf's pipeline passes the code generator's exact count.
+  std::function<int(const Eigen::MatrixXd& inverse)> stage_multiplies;
+};
 
 struct BandAnalysis {
   int l = 0;
@@ -50,13 +66,16 @@ class LobeEvaluator {
  public:
   // Candidates' SH values are tabulated up front when they fit in max_tabulated_values doubles,
   // else evaluated on demand (same results, slower).
-  LobeEvaluator(const candidates::CandidateSet& set, bool lobe_sharing, double max_condition,
+  LobeEvaluator(const candidates::CandidateSet& set, bool lobe_sharing, double max_condition, Scoring scoring = {},
                 size_t max_tabulated_values = runtime::kMaxTabulatedValues);
 
   int order() const { return order_; }
   bool lobe_sharing() const { return lobe_sharing_; }
   int genes() const { return runtime::lobe_count(order_, lobe_sharing_); }
   double max_condition() const { return max_condition_; }
+  Ranking ranking() const { return scoring_.ranking; }
+  // better() under this evaluator's ranking.
+  bool better(const Fitness& a, const Fitness& b) const { return optimizer::better(a, b, scoring_.ranking); }
   const candidates::CandidateSet& candidates() const { return candidates_; }
 
   // Fast path for the search: eigenvalues of Y^T Y for the condition, LU for the inverse.
@@ -67,11 +86,13 @@ class LobeEvaluator {
 
  private:
   Eigen::MatrixXd band_matrix(const Genome& genes, int l) const;
+  int stage_multiplies(const Eigen::MatrixXd& inverse) const;
 
   const candidates::CandidateSet& candidates_;
   int order_;
   bool lobe_sharing_;
   double max_condition_;
+  Scoring scoring_;
   std::vector<double> sh_;  // y at every candidate: sh_[c * N^2 + index(l, m)]; empty: on demand
 };
 

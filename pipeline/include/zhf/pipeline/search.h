@@ -1,6 +1,7 @@
 // From an order to its lobe table: the whole search, composed once for the CLI, the benchmarks
-// and the tests. The sparsity objective runs the genetic search then the iterated local search
-// (or, exhaustive, enumerates every set); the amplification objective runs the continuous search
+// and the tests. The sparsity and operations objectives run the genetic search then the iterated
+// local search (or, exhaustive, enumerate every set), ranking by zeros of A or by the code
+// generator's multiplies of z = A^T f; the amplification objective runs the continuous search
 // for the lanes tables. The provenance records what reproduces the table: zhf's version, the
 // command, the seed and the search's counts (never wall-clock time).
 #pragma once
@@ -15,7 +16,7 @@
 
 namespace zhf::pipeline {
 
-enum class Objective { kSparsity, kAmplification };
+enum class Objective { kSparsity, kOperations, kAmplification };
 
 struct SearchRequest {
   int order = 0;
