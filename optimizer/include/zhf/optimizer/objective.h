@@ -49,7 +49,8 @@ int multiply_cost(const Eigen::MatrixXd& inverse);
 struct Scoring {
   Ranking ranking = Ranking::kMostZeros;
   // One band's multiplies for its A_l; must be safe to call from several threads at once. Unset:
-  // multiply_cost. zhf's pipeline passes the code generator's exact count.
+  // multiply_cost. zhf's pipeline passes the code generator's exact count for the operations
+  // objective.
   std::function<int(const Eigen::MatrixXd& inverse)> stage_multiplies;
 };
 

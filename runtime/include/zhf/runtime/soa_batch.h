@@ -1,15 +1,16 @@
 // rotate_soa<N>: many vectors, each with its own rotation, Pack<T>::kLanes rotations per step (8
 // floats on AVX2) through the generated order-N kernel itself: a Pack is a number to it, so the
-// rotation is the same expression graph, verified once, run across lanes. Each step first copies
-// its lanes' inputs out of the strided arrays, so the kernel addresses a small local block; the
-// generated rotate_batch_orderN reads its 3 + 2 N^2 strided streams directly, which the compiler
-// vectorises only when count is a compile-time constant (4 to 6 times slower otherwise).
+// rotation is the same expression graph, verified once, run across lanes. Blocks of steps are
+// copied plane by plane out of the strided arrays into a local block (about 70 KiB of stack at
+// order 8), so the kernel addresses contiguous packs; the generated rotate_batch_orderN reads its
+// 3 + 2 N^2 strided streams directly, which the compiler vectorises only when count is a
+// compile-time constant (4 to 6 times slower otherwise).
 //
 // Layout (structure of arrays, as rotate_batch_orderN): R[k count + v] for the row-major entries
 // k < 9 of rotation v, coeffs[i count + v] and rotated[i count + v] for i < N^2. Convention as
 // Rotator. Orders whose rotate kernel keeps any lobe stage in T (kLobeStage 0: every shipped
-// order, 2..8, whose bands rotate by zxzxz); per lane the accuracy of gen::Kernels<N>::rotate<T>. Cost: the kernel's
-// operation count (zhf_orderN.h's banner) per kLanes rotations; no allocation.
+// order, 2..8, whose bands rotate by zxzxz); per lane the accuracy of gen::Kernels<N>::rotate<T>.
+// Cost: the kernel's operation count (zhf_orderN.h's banner) per kLanes rotations; no allocation.
 #pragma once
 
 #include <cstddef>
