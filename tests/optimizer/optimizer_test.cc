@@ -42,6 +42,14 @@ Genome genome_from_reference(const nlohmann::json& entry, const candidates::Cand
   return genome;
 }
 
+// The paper's entry for an order (tests/data/paper_lobes.json).
+nlohmann::json paper_entry(int order) {
+  const nlohmann::json reference = test::read_json(test::data_path("paper_lobes.json"));
+  for (const auto& entry : reference.at("orders"))
+    if (entry.at("N").get<int>() == order) return entry;
+  throw std::runtime_error("no paper entry for order " + std::to_string(order));
+}
+
 // Rebuilds Y_l in long double from the lobes' theta and phi (slow closed form) and checks
 // that every entry counted as zero is at rounding level. The directions themselves are
 // doubles, so a band of condition k still carries ~k * 1e-16 * max|A| of input rounding:
@@ -149,14 +157,16 @@ TEST(Objective, RankingsOrderZerosAndMultiplies) {
   outside.feasible = false;
   outside.multiplies = 1;
   EXPECT_TRUE(better(sparse, outside, Ranking::kFewestMultiplies));
-  // A supplied count replaces the model in the fitness.
+  // A supplied count replaces the model in the fitness, on both paths (no order-4 band has 1000
+  // entries, so the model cannot give this sum).
   Scoring scoring;
   scoring.ranking = Ranking::kFewestMultiplies;
-  scoring.stage_multiplies = [](const Eigen::MatrixXd& inverse) { return int(inverse.rows()); };
+  scoring.stage_multiplies = [](const Eigen::MatrixXd&) { return 1000; };
   const LobeEvaluator counted(candidate_set(4), true, kDefaultMaxCondition, scoring);
-  const Genome genome(counted.genes(), 0);
+  const Genome genome = genome_from_reference(paper_entry(4), candidate_set(4));
   EXPECT_EQ(counted.ranking(), Ranking::kFewestMultiplies);
-  EXPECT_EQ(counted.fitness_of(counted.analyze(genome)).multiplies, 5 + 7);
+  EXPECT_EQ(counted.fitness_of(counted.analyze(genome)).multiplies, 2000);
+  EXPECT_EQ(counted.evaluate(genome).multiplies, 2000);
 }
 
 // The genetic and local searches give the same lobe set for the same seed whatever the thread
@@ -219,7 +229,7 @@ TEST(GeneticSearch, BeatsRandomSamplingWithTheSameEvaluations) {
   const SearchResult ga = genetic_search(evaluator, options);
   const SearchResult random = random_search(evaluator, ga.evaluations, 3);
   EXPECT_EQ(random.evaluations, ga.evaluations);
-  EXPECT_TRUE(better(ga.fitness, random.fitness))
+  EXPECT_TRUE(evaluator.better(ga.fitness, random.fitness))
       << "GA " << ga.fitness.zeros << " zeros vs random " << random.fitness.zeros << " in " << ga.evaluations
       << " evaluations";
   EXPECT_GT(ga.fitness.zeros, random.fitness.zeros + 20);

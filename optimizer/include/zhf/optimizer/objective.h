@@ -38,7 +38,7 @@ enum class Ranking {
 
 // Strict order: feasible first, then the ranking's keys. Between two sets outside the condition
 // bound, the lower worst condition wins.
-bool better(const Fitness& a, const Fitness& b, Ranking ranking = Ranking::kMostZeros);
+bool better(const Fitness& a, const Fitness& b, Ranking ranking);
 
 // A model of z = A^T f's multiplies: one per distinct nonzero magnitude in each column of A
 // (equal magnitudes share a multiply after adding or subtracting their inputs). The code
