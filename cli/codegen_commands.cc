@@ -28,9 +28,10 @@ const std::string kLobeStageHelp =
     ", else float; float: fastest, and shaders need no shaderFloat64)";
 
 const std::string kMethodHelp =
-    "auto, zhf or zxzxz: how the rotation kernels rotate each band >= 2 (zhf: lobes; zxzxz: Euler turns about z "
-    "and two fixed quarter turns; auto: per band, whichever gives rotate_orderN the fewest operations)";
-const std::vector<std::string> kMethods = {"auto", "zhf", "zxzxz"};
+    "auto, zhf, zxzxz or quadratic: how the rotation kernels rotate each band >= 2 (zhf: lobes; zxzxz: Euler turns "
+    "about z and two fixed quarter turns; quadratic: band 2 as the matrix of its quadratic form, R M R^T, the others "
+    "by zxzxz; auto: per band, whichever gives rotate_orderN the fewest operations)";
+const std::vector<std::string> kMethods = codegen::band_method_choices();
 
 std::optional<codegen::BandMethod> band_method(const std::string& name) {
   std::optional<codegen::BandMethod> method;

@@ -217,20 +217,20 @@ class Builder {
     Graph& g = f.graph;
     const int in = 1, out = 2;
     copy_band0_rotate_band1(f, in, out, channels);
-    const std::vector<bool> by_lobes = live_by(BandMethod::kLobes), by_zxzxz = live_by(BandMethod::kZxzxz);
+    const std::vector<bool> by_lobes = live_by(BandMethod::kLobes);
     const std::vector<std::vector<int>> h = lobe_polynomials(g, /*transpose=*/false, by_lobes);
     g.set_wide(false);
-    const EulerTurns turns = euler_turns(g, by_zxzxz);
+    const EulerTurns turns = euler_turns(g, live_by(BandMethod::kZxzxz));
     for (const runtime::TableBand& band : table_.bands) {
       const int l = band.l, base = l * l;
       if (!live_[l]) {
         put_zeros(f, out, l);
         continue;
       }
-      if (by_zxzxz[l]) {
+      if (!by_lobes[l]) {
         std::vector<int> v(2 * l + 1);
         for (int i = 0; i < 2 * l + 1; ++i) v[i] = g.input(in, base + i, channels);
-        v = zxzxz_band(g, l, turns, v);
+        v = band_by_formula(g, l, turns, v);
         for (int i = 0; i < 2 * l + 1; ++i) put(f, out, base + i, v[i]);
         continue;
       }
@@ -313,19 +313,18 @@ class Builder {
           terms.push_back({1.0, g.mul(g.input(0, 3 * kBand1Axis[m + 1] + kBand1Axis[n + 1]), g.input(light, runtime::index(1, n)))});
         total.push_back({1.0, g.mul(g.linear(terms), g.input(transfer, runtime::index(1, m)))});
       }
-    // From the light's coefficients, the bands the rotations take by zxzxz rotate the light and
-    // dot it with the transfer; from lobe weights, every band is by lobes.
+    // From the light's coefficients, the bands the rotations take by a formula (zxzxz, quadratic)
+    // rotate the light and dot it with the transfer; from lobe weights, every band is by lobes.
     const std::vector<bool> by_lobes = from_lobes ? live_ : live_by(BandMethod::kLobes);
-    const std::vector<bool> by_zxzxz = from_lobes ? std::vector<bool>(order_, false) : live_by(BandMethod::kZxzxz);
     const std::vector<std::vector<int>> h = lobe_polynomials(g, /*transpose=*/false, by_lobes);
     g.set_wide(false);
-    const EulerTurns turns = euler_turns(g, by_zxzxz);
+    const EulerTurns turns = euler_turns(g, from_lobes ? std::vector<bool>(order_, false) : live_by(BandMethod::kZxzxz));
     for (const runtime::TableBand& band : table_.bands) {
       const int l = band.l, base = l * l;
-      if (by_zxzxz[l]) {
+      if (live_[l] && !by_lobes[l]) {
         std::vector<int> v(2 * l + 1);
         for (int i = 0; i < 2 * l + 1; ++i) v[i] = g.input(light, base + i);
-        v = zxzxz_band(g, l, turns, v);
+        v = band_by_formula(g, l, turns, v);
         for (int i = 0; i < 2 * l + 1; ++i) total.push_back({1.0, g.mul(v[i], g.input(transfer, base + i))});
         continue;
       }
@@ -629,6 +628,36 @@ class Builder {
     for (const runtime::TableBand& band : table_.bands) bands[band.l] = live_[band.l] && methods_[band.l] == method;
     return bands;
   }
+  // Band l (v[m + l]) rotated by its method, zxzxz or quadratic.
+  std::vector<int> band_by_formula(Graph& g, int l, const EulerTurns& t, const std::vector<int>& v) const {
+    return methods_[l] == BandMethod::kQuadratic ? quadratic_band(g, v) : zxzxz_band(g, l, t, v);
+  }
+  // Band 2 (v[m + 2]) as a quadratic form: sum_m f_m y_2^m(u) = (K/2) u^T M u on the unit sphere
+  // (K = sqrt(15 / 4 pi)), M symmetric and traceless (u^T u = 1 absorbs the trace), with
+  //   M_xy = f_-2, M_yz = f_-1, M_xz = f_1, M_xx = f_2 - f_0/sqrt3, M_yy = -f_2 - f_0/sqrt3, M_zz = 2 f_0/sqrt3
+  // (y_2^-2 = K xy, y_2^-1 = K yz, y_2^1 = K xz, y_2^2 = K (x^2 - y^2)/2, y_2^0 = K (3z^2 - 1)/(2 sqrt3)).
+  // g(u) = f(R^T u) has M' = R M R^T: M'_ij = r_i . (M r_j), r_i the rows of R. Five entries
+  // suffice, all from M r_1 and M r_2: M'_xy, M'_yy, M'_yz, M'_xz, M'_zz, with M'_xx = -M'_yy - M'_zz
+  // (R orthogonal keeps the trace 0), so f'_2 = (M'_xx - M'_yy)/2 = -M'_yy - M'_zz/2 and
+  // f'_0 = (sqrt3/2) M'_zz: 36 multiplies and no square root. zxzxz's band 2 costs less only
+  // where higher bands already pay for the Euler angles.
+  static std::vector<int> quadratic_band(Graph& g, const std::vector<int>& v) {
+    const double inverse_sqrt3 = 0.57735026918962576451, half_sqrt3 = 0.86602540378443864676;
+    const int t = g.scale(inverse_sqrt3, v[2]);
+    const int m[3][3] = {{g.sub(v[4], t), v[0], v[3]}, {v[0], g.linear({{-1.0, v[4]}, {-1.0, t}}), v[1]}, {v[3], v[1], g.add(t, t)}};
+    auto r = [&](int i, int j) { return g.input(0, 3 * i + j); };
+    auto m_times_row = [&](int j) {
+      Vec3 p;
+      for (int a = 0; a < 3; ++a) p.c[a] = g.linear({{1.0, g.mul(m[a][0], r(j, 0))}, {1.0, g.mul(m[a][1], r(j, 1))}, {1.0, g.mul(m[a][2], r(j, 2))}});
+      return p;
+    };
+    auto entry = [&](int i, const Vec3& p) {
+      return g.linear({{1.0, g.mul(r(i, 0), p.c[0])}, {1.0, g.mul(r(i, 1), p.c[1])}, {1.0, g.mul(r(i, 2), p.c[2])}});
+    };
+    const Vec3 p1 = m_times_row(1), p2 = m_times_row(2);
+    const int yy = entry(1, p1), zz = entry(2, p2);
+    return {entry(0, p1), entry(1, p2), g.scale(half_sqrt3, zz), entry(0, p2), g.linear({{-1.0, yy}, {-0.5, zz}})};
+  }
   // Band l (v[m + l]) rotated by zxzxz: Z(a) X^T Z(b) X Z(g) v.
   std::vector<int> zxzxz_band(Graph& g, int l, const EulerTurns& t, std::vector<int> v) const {
     v = turn(g, l, t.cos_g, t.sin_g, v);
@@ -730,19 +759,31 @@ runtime::LobeStage Module::rotation_lobe_stage() const {
   return runtime::LobeStage::kFloat;
 }
 
-const char* band_method_name(BandMethod method) { return method == BandMethod::kLobes ? "zhf" : "zxzxz"; }
+const char* band_method_name(BandMethod method) {
+  switch (method) {
+    case BandMethod::kLobes: return "zhf";
+    case BandMethod::kZxzxz: return "zxzxz";
+    case BandMethod::kQuadratic: return "quadratic";
+  }
+  return "?";
+}
 
 bool parse_band_method_choice(const std::string& name, std::optional<BandMethod>& method) {
   if (name == "auto") {
     method.reset();
     return true;
   }
-  for (BandMethod m : {BandMethod::kLobes, BandMethod::kZxzxz})
+  for (BandMethod m : {BandMethod::kLobes, BandMethod::kZxzxz, BandMethod::kQuadratic})
     if (name == band_method_name(m)) {
       method = m;
       return true;
     }
   return false;
+}
+
+std::vector<std::string> band_method_choices() {
+  return {"auto", band_method_name(BandMethod::kLobes), band_method_name(BandMethod::kZxzxz),
+          band_method_name(BandMethod::kQuadratic)};
 }
 
 std::string band_method_choice_name(const std::optional<BandMethod>& method) {
@@ -754,8 +795,9 @@ namespace {
 int total(const OpCount& c) { return c.multiplies + c.adds + c.others; }
 
 // Every assignment of methods to bands 2..N-1 up to kMaxExhaustiveMethodBands of them, else
-// lobes below a band and zxzxz from it on; the one whose rotate_orderN has the fewest operations
-// (then multiplies; then the earlier, with more bands by lobes). reason says what was compared.
+// lobes below a band and zxzxz from it on; band 2 also tries the quadratic form. The one whose
+// rotate_orderN has the fewest operations (then multiplies; then the earlier, with more bands
+// by lobes). reason says what was compared.
 std::vector<BandMethod> cheapest_band_methods(const Module& module, const ModuleOptions& options,
                                               const sh::BandMatrices& quarter_turn, std::string& reason) {
   const int n = module.order, free_bands = std::max(n - 2, 0);
@@ -774,6 +816,11 @@ std::vector<BandMethod> cheapest_band_methods(const Module& module, const Module
       candidates.push_back(m);
     }
   }
+  for (size_t i = 0, plain = candidates.size(); i < plain && n > 2; ++i)
+    if (candidates[i][2] == BandMethod::kLobes) {
+      candidates.push_back(candidates[i]);
+      candidates.back()[2] = BandMethod::kQuadratic;
+    }
   std::vector<BandMethod> best;
   OpCount best_count;
   OpCount all_lobes, all_zxzxz;
@@ -782,8 +829,9 @@ std::vector<BandMethod> cheapest_band_methods(const Module& module, const Module
                           quarter_turn);
     const Function f = builder.rotation(1, false);
     const OpCount c = f.graph.count(f.output_nodes());
-    if (std::count(m.begin() + std::min(n, 2), m.end(), BandMethod::kZxzxz) == 0) all_lobes = c;
-    if (std::count(m.begin() + std::min(n, 2), m.end(), BandMethod::kLobes) == 0) all_zxzxz = c;
+    const long by_lobes = std::count(m.begin() + std::min(n, 2), m.end(), BandMethod::kLobes);
+    if (by_lobes == free_bands) all_lobes = c;
+    if (std::count(m.begin() + std::min(n, 2), m.end(), BandMethod::kZxzxz) == free_bands) all_zxzxz = c;
     if (best.empty() || total(c) < total(best_count) || (total(c) == total(best_count) && c.multiplies < best_count.multiplies)) {
       best = m;
       best_count = c;
@@ -814,7 +862,11 @@ Module build_module(const runtime::LobeTable& table, const ModuleOptions& option
   }
   module.lobe_stage = lobe_stage_for(module.table, options);
   const sh::BandMatrices quarter_turn = sh::quarter_turn_x(std::max(table.order, 1));
-  if (options.band_method) {
+  if (options.band_method == BandMethod::kQuadratic) {
+    module.band_methods.assign(table.order, BandMethod::kZxzxz);
+    if (table.order > 2) module.band_methods[2] = BandMethod::kQuadratic;
+    module.band_methods_reason = "band 2 quadratic, the others by zxzxz, as asked";
+  } else if (options.band_method) {
     module.band_methods.assign(table.order, *options.band_method);
     module.band_methods_reason = std::string("every band by ") + band_method_name(*options.band_method) + ", as asked";
   } else {

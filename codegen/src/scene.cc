@@ -96,7 +96,7 @@ Scene parse_scene(const runtime::json::Value& root, const std::string& source) {
     scene.precision = precision->one_of({"float", "double"}) == "double" ? Precision::kDouble : Precision::kFloat;
   }
   if (const auto stage = top.find("lobe_stage")) parse_lobe_stage_choice(stage->one_of({"auto", "float", "double-rotation", "double"}), scene.lobe_stage);
-  if (const auto method = top.find("method")) parse_band_method_choice(method->one_of({"auto", "zhf", "zxzxz"}), scene.method);
+  if (const auto method = top.find("method")) parse_band_method_choice(method->one_of(band_method_choices()), scene.method);
   std::map<int, std::string> first_of_order;
   const std::vector<Field> signals = top.member("signals").items(1, runtime::kMaxSceneSignals);
   for (size_t i = 0; i < signals.size(); ++i) {

@@ -49,7 +49,7 @@ namespace zhf::gen {
 //   w_5: equator (root 1 of P_1^0); root 1 of P_2^1; root 2 of P_3^0; root 1 of P_3^2; zero of sin(3 phi)
 //   w_6: equator (root 1 of P_1^0); root 1 of P_2^1; root 2 of P_3^0; root 1 of P_3^2; zero of sin(3 phi)
 // Rotations (zhf emit --method): band 2 zxzxz, band 3 zxzxz;
-// fewest operations in rotate_order4 among 4 assignments: 128 multiplies, 72 adds, 4 others (every band by lobes: 232 multiplies, 166 adds; every band by zxzxz: 128 multiplies, 72 adds, 4 others).
+// fewest operations in rotate_order4 among 6 assignments: 128 multiplies, 72 adds, 4 others (every band by lobes: 232 multiplies, 166 adds; every band by zxzxz: 128 multiplies, 72 adds, 4 others).
 inline constexpr double kLobesOrder4[7][3] = {
     {0.0, 0.0, 1.0},  // w_0
     {0.7745966692414834, -0.44721359549995787, 0.44721359549995804},  // w_1

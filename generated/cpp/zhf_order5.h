@@ -54,7 +54,7 @@ namespace zhf::gen {
 //   w_7: root 1 of P_4^1; zero of cos(phi); zero of sin(2 phi); zero of cos(3 phi); zero of sin(4 phi)
 //   w_8: root 1 of P_3^1; zero of sin(phi); zero of sin(2 phi); zero of sin(3 phi); zero of sin(4 phi)
 // Rotations (zhf emit --method): band 2 zxzxz, band 3 zxzxz, band 4 zxzxz;
-// fewest operations in rotate_order5 among 8 assignments: 224 multiplies, 129 adds, 4 others (every band by lobes: 557 multiplies, 365 adds; every band by zxzxz: 224 multiplies, 129 adds, 4 others).
+// fewest operations in rotate_order5 among 12 assignments: 224 multiplies, 129 adds, 4 others (every band by lobes: 557 multiplies, 365 adds; every band by zxzxz: 224 multiplies, 129 adds, 4 others).
 inline constexpr double kLobesOrder5[9][3] = {
     {0.44721359549995804, 0.7745966692414833, -0.4472135954999579},  // w_0
     {0.0, 1.0, 0.0},  // w_1

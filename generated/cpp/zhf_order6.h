@@ -56,7 +56,7 @@ namespace zhf::gen {
 //   w_9: root 2 of P_2^0; root 3 of P_5^2; zero of cos(2 phi); zero of sin(4 phi)
 //   w_10: equator (root 1 of P_1^0); root 1 of P_2^1; root 2 of P_3^0; root 1 of P_3^2; root 2 of P_4^1; root 1 of P_4^3; root 3 of P_5^0; root 2 of P_5^2; root 1 of P_5^4; zero of cos(phi); zero of sin(2 phi); zero of cos(3 phi); zero of sin(4 phi); zero of cos(5 phi)
 // Rotations (zhf emit --method): band 2 zxzxz, band 3 zxzxz, band 4 zxzxz, band 5 zxzxz;
-// fewest operations in rotate_order6 among 16 assignments: 358 multiplies, 205 adds, 4 others (every band by lobes: 965 multiplies, 652 adds; every band by zxzxz: 358 multiplies, 205 adds, 4 others).
+// fewest operations in rotate_order6 among 24 assignments: 358 multiplies, 205 adds, 4 others (every band by lobes: 965 multiplies, 652 adds; every band by zxzxz: 358 multiplies, 205 adds, 4 others).
 inline constexpr double kLobesOrder6[11][3] = {
     {0.5773502691896258, 0.5773502691896257, 0.5773502691896257},  // w_0
     {-1.0, 0.0, 0.0},  // w_1

@@ -58,7 +58,7 @@ namespace zhf::gen {
 //   w_11: root 2 of P_2^0; root 3 of P_5^2; zero of cos(3 phi); zero of sin(6 phi)
 //   w_12: root 2 of P_5^3; zero of cos(3 phi); zero of sin(6 phi)
 // Rotations (zhf emit --method): band 2 zxzxz, band 3 zxzxz, band 4 zxzxz, band 5 zxzxz, band 6 zxzxz;
-// fewest operations in rotate_order7 among 32 assignments: 522 multiplies, 310 adds, 4 others (every band by lobes: 1608 multiplies, 1011 adds; every band by zxzxz: 522 multiplies, 310 adds, 4 others).
+// fewest operations in rotate_order7 among 48 assignments: 522 multiplies, 310 adds, 4 others (every band by lobes: 1608 multiplies, 1011 adds; every band by zxzxz: 522 multiplies, 310 adds, 4 others).
 inline constexpr double kLobesOrder7[13][3] = {
     {0.0, -1.0, 0.0},  // w_0
     {0.0, 0.816496580927726, 0.5773502691896257},  // w_1

@@ -29,7 +29,7 @@
 //   w_5: equator (root 1 of P_1^0); root 1 of P_2^1; root 2 of P_3^0; root 1 of P_3^2; zero of sin(3 phi)
 //   w_6: equator (root 1 of P_1^0); root 1 of P_2^1; root 2 of P_3^0; root 1 of P_3^2; zero of sin(3 phi)
 // Rotations (zhf emit --method): band 2 zxzxz, band 3 zxzxz;
-// fewest operations in rotate_order4 among 4 assignments: 128 multiplies, 72 adds, 4 others (every band by lobes: 232 multiplies, 166 adds; every band by zxzxz: 128 multiplies, 72 adds, 4 others).
+// fewest operations in rotate_order4 among 6 assignments: 128 multiplies, 72 adds, 4 others (every band by lobes: 232 multiplies, 166 adds; every band by zxzxz: 128 multiplies, 72 adds, 4 others).
 // Flattened: w_d = (kLobesOrder4[3d], [3d+1], [3d+2]).
 static const float kLobesOrder4[21] = {
     0.0f, 0.0f, 1.0f,  // w_0

@@ -39,7 +39,7 @@
 //   w_13: equator (root 1 of P_1^0); root 1 of P_2^1; root 2 of P_3^0; root 1 of P_3^2; root 2 of P_4^1; root 1 of P_4^3; root 3 of P_5^0; root 2 of P_5^2; root 1 of P_5^4; root 3 of P_6^1; root 2 of P_6^3; root 1 of P_6^5; root 4 of P_7^0; root 3 of P_7^2; root 2 of P_7^4; root 1 of P_7^6; zero of sin(3 phi); zero of sin(6 phi)
 //   w_14: equator (root 1 of P_1^0); root 1 of P_2^1; root 2 of P_3^0; root 1 of P_3^2; root 2 of P_4^1; root 1 of P_4^3; root 3 of P_5^0; root 2 of P_5^2; root 1 of P_5^4; root 3 of P_6^1; root 2 of P_6^3; root 1 of P_6^5; root 4 of P_7^0; root 3 of P_7^2; root 2 of P_7^4; root 1 of P_7^6; zero of sin(phi); zero of sin(2 phi); zero of sin(3 phi); zero of sin(4 phi); zero of sin(5 phi); zero of sin(6 phi); zero of sin(7 phi)
 // Rotations (zhf emit --method): band 2 zxzxz, band 3 zxzxz, band 4 zxzxz, band 5 zxzxz, band 6 zxzxz, band 7 zxzxz;
-// fewest operations in rotate_order8 among 64 assignments: 732 multiplies, 442 adds, 4 others (every band by lobes: 2410 multiplies, 1501 adds; every band by zxzxz: 732 multiplies, 442 adds, 4 others).
+// fewest operations in rotate_order8 among 96 assignments: 732 multiplies, 442 adds, 4 others (every band by lobes: 2410 multiplies, 1501 adds; every band by zxzxz: 732 multiplies, 442 adds, 4 others).
 // Flattened: w_d = (kLobesOrder8[3d], [3d+1], [3d+2]).
 static const float kLobesOrder8[45] = {
     0.0f, 0.8164966f, -0.57735026f,  // w_0

@@ -1,4 +1,4 @@
-// Each way a rotation kernel can rotate a band (lobes, zxzxz), forced for every band, against the
+// Each way a rotation kernel can rotate a band (lobes, zxzxz; quadratic at band 2), forced, against the
 // double reference at orders 3..8 on the extreme rotations (identity, half turns, gimbal lock at
 // beta = 0 and pi, tiny turns, lobes onto the pole) and random ones, in double and in float: the
 // graph itself, rounded as the emitted C++ rounds it. `zhf verify` runs the printed kernels.
@@ -36,12 +36,14 @@ TEST(BandMethods, EachMethodForEveryBandMatchesTheReferenceAtExtremeRotations) {
     std::vector<std::pair<std::string, sh::RotationMatrix>> rotations = sh::extreme_rotations(lobes);
     std::mt19937_64 rng(700 + order);
     for (int k = 0; k < kRandomRotations; ++k) rotations.push_back({"random " + std::to_string(k), sh::random_rotation(rng)});
-    for (codegen::BandMethod method : {codegen::BandMethod::kLobes, codegen::BandMethod::kZxzxz}) {
+    for (codegen::BandMethod method : {codegen::BandMethod::kLobes, codegen::BandMethod::kZxzxz, codegen::BandMethod::kQuadratic}) {
       codegen::ModuleOptions options;
       options.band_method = method;
       options.products = options.sh_eval = options.lobe_multiplies = false;
       const codegen::Module module = codegen::build_module(table, options);
-      for (int l = 2; l < order; ++l) ASSERT_EQ(module.band_methods[l], method);
+      const bool quadratic = method == codegen::BandMethod::kQuadratic;
+      ASSERT_EQ(module.band_methods[2], method);
+      for (int l = 3; l < order; ++l) ASSERT_EQ(module.band_methods[l], quadratic ? codegen::BandMethod::kZxzxz : method);
       const codegen::Function& rotate = find(module, codegen::KernelKind::kRotate);
       const codegen::Function& shade = find(module, codegen::KernelKind::kShade);
       const bool in_double = module.rotation_lobe_stage() == runtime::LobeStage::kDouble;

@@ -86,9 +86,11 @@ struct Lobe {
 // of the lobe-parallel kernel (runtime/lanes.h) from a lanes table.
 enum class ModuleKind { kKernels, kLanesTables };
 
-// How a rotation kernel rotates one band l >= 2 (bands 0 and 1 are a copy and a 3x3).
-enum class BandMethod { kLobes, kZxzxz };
-const char* band_method_name(BandMethod method);  // "zhf", "zxzxz"
+// How a rotation kernel rotates one band l >= 2 (bands 0 and 1 are a copy and a 3x3): by its
+// lobes, by zxzxz, or (band 2 only) as the symmetric traceless matrix M of its quadratic form,
+// M' = R M R^T.
+enum class BandMethod { kLobes, kZxzxz, kQuadratic };
+const char* band_method_name(BandMethod method);  // "zhf", "zxzxz", "quadratic"
 
 struct Module {
   ModuleKind kind = ModuleKind::kKernels;
@@ -128,11 +130,14 @@ struct ModuleOptions {
   // Where float rotations run their lobe stage (runtime/lobe_stage.h); none: automatic, the
   // cheapest stage whose float error model meets tolerance::kFloatRotation.
   std::optional<runtime::LobeStage> lobe_stage;
-  // How the rotation kernels rotate each band >= 2: every band by one method, or none: automatic,
-  // the assignment of methods to bands with the fewest operations in rotate_orderN.
+  // How the rotation kernels rotate each band >= 2: every band by one method (quadratic: band 2
+  // so, the others by zxzxz), or none: automatic, the assignment of methods to bands (band 2 may
+  // also be quadratic) with the fewest operations in rotate_orderN.
   std::optional<BandMethod> band_method;
 };
 
+// The names a method choice takes: "auto" (none), then each method's.
+std::vector<std::string> band_method_choices();
 // "auto" (none) or a method's name; false otherwise.
 bool parse_band_method_choice(const std::string& name, std::optional<BandMethod>& method);
 std::string band_method_choice_name(const std::optional<BandMethod>& method);

@@ -6,7 +6,7 @@
 //     "precision": "float",           // float or double (shaders; C++ kernels are templates)
 //     "lobe_stage": "auto",           // auto, float, double-rotation or double: where float
 //                                     // kernels run the lobe stage (runtime/lobe_stage.h); optional
-//     "method": "auto",               // auto, zhf or zxzxz: how rotations rotate each band >= 2
+//     "method": "auto",               // auto, zhf, zxzxz or quadratic: how rotations rotate each band >= 2
 //                                     // (kernels.h; zhf emit --method); optional
 //     "signals": [
 //       {"name": "lighting", "order": 3, "channels": 3, "variants": ["standard"]},

@@ -455,6 +455,12 @@ class Field {
     return value_->text;
   }
   const std::string& one_of(std::initializer_list<std::string_view> allowed) const {
+    return one_of(std::vector<std::string_view>(allowed));
+  }
+  const std::string& one_of(const std::vector<std::string>& allowed) const {
+    return one_of(std::vector<std::string_view>(allowed.begin(), allowed.end()));
+  }
+  const std::string& one_of(const std::vector<std::string_view>& allowed) const {
     const std::string& s = string();
     std::string list;
     for (std::string_view a : allowed) {
