@@ -9,14 +9,15 @@ namespace zhf::codegen {
 namespace {
 
 // Where the lobe-parallel kernel (runtime/lanes.h) is the faster path for one vector per rotation,
-// float, against the scalar kernels (zxzxz at orders 3..8), as measured by the peer harness (one
-// run, median ns, AMD EPYC Zen 3 class, g++ 12 -O3; docs/performance.md):
-//   x86-64-v3 (AVX2, FMA), lanes / scalar: N=3 13.0/14.6, 4 22.4/28.5, 5 46.0/49.3, 6 79.8/64.1, 7 190.9/94.7, 8 261.5/148.3
-//   x86-64 baseline (SSE2): lanes ahead at 3 and 4 only (N=5 scalar 50.6 ns, lanes 73.0)
+// float, against the scalar kernels (order 3 by its quadratic form, zxzxz at 4..8), as measured by
+// the peer harness (one run, median ns, AMD EPYC Zen 3 class, g++ 12 -O3; docs/performance.md):
+//   x86-64-v3 (AVX2, FMA), lanes / scalar: N=3 11.7/6.9, 4 22.4/28.5, 5 46.0/49.3, 6 79.8/64.1, 7 190.9/94.7, 8 261.5/148.3
+//   x86-64 baseline (SSE2): lanes ahead at 4 only (N=3 scalar 7.8 ns, lanes 15.4; N=5 scalar 50.6, lanes 73.0)
 // Other architectures were not measured, so they keep the scalar kernels.
+constexpr int kLanesFrom = 4;
 constexpr int kLanesUpToAvx2 = 5;
 constexpr int kLanesUpToBaseline = 4;
-constexpr const char* kMeasuredOn = "x86-64: lanes up to order 5 with AVX2, up to 4 on baseline SSE2";
+constexpr const char* kMeasuredOn = "x86-64: lanes at orders 4..5 with AVX2, at 4 on baseline SSE2";
 
 std::string list(const std::vector<int>& values) {
   std::string out;
@@ -51,13 +52,13 @@ EmittedFile emit_dispatch_header(const std::vector<int>& orders, const std::vect
       << "// other architectures unmeasured (the scalar kernels). docs/performance.md has the figures.\n"
       << "#if defined(__x86_64__) || defined(_M_X64)\n#if defined(__AVX2__)\ninline constexpr int kLanesUpTo = " << kLanesUpToAvx2
       << ";\n#else\ninline constexpr int kLanesUpTo = " << kLanesUpToBaseline << ";\n#endif\n#else\n"
-      << "inline constexpr int kLanesUpTo = 0;\n#endif\n\n";
+      << "inline constexpr int kLanesUpTo = 0;\n#endif\ninline constexpr int kLanesFrom = " << kLanesFrom << ";\n\n";
   out << "// The fastest verified rotation path of a generated order (throws for any other order).\n"
       << "template <class T>\nruntime::KernelSet<T> fastest_kernels(int order) {\n"
       << "  return with_order(order, [](auto n) {\n"
       << "    constexpr int N = decltype(n)::value;\n"
       << "    if constexpr (kHasLanes<N>) {\n"
-      << "      if constexpr (N <= kLanesUpTo) return runtime::lanes_kernels<N, T>();\n"
+      << "      if constexpr (N >= kLanesFrom && N <= kLanesUpTo) return runtime::lanes_kernels<N, T>();\n"
       << "    }\n"
       << "    return runtime::scalar_kernels<N, T>();\n"
       << "  });\n}\n\n";

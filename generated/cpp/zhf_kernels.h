@@ -61,7 +61,7 @@ inline constexpr bool kHasLanes<7> = true;
 template <>
 inline constexpr bool kHasLanes<8> = true;
 
-// Where runtime/lanes.h is the faster verified path, by measurement: x86-64: lanes up to order 5 with AVX2, up to 4 on baseline SSE2;
+// Where runtime/lanes.h is the faster verified path, by measurement: x86-64: lanes at orders 4..5 with AVX2, at 4 on baseline SSE2;
 // other architectures unmeasured (the scalar kernels). docs/performance.md has the figures.
 #if defined(__x86_64__) || defined(_M_X64)
 #if defined(__AVX2__)
@@ -72,6 +72,7 @@ inline constexpr int kLanesUpTo = 4;
 #else
 inline constexpr int kLanesUpTo = 0;
 #endif
+inline constexpr int kLanesFrom = 4;
 
 // The fastest verified rotation path of a generated order (throws for any other order).
 template <class T>
@@ -79,7 +80,7 @@ runtime::KernelSet<T> fastest_kernels(int order) {
   return with_order(order, [](auto n) {
     constexpr int N = decltype(n)::value;
     if constexpr (kHasLanes<N>) {
-      if constexpr (N <= kLanesUpTo) return runtime::lanes_kernels<N, T>();
+      if constexpr (N >= kLanesFrom && N <= kLanesUpTo) return runtime::lanes_kernels<N, T>();
     }
     return runtime::scalar_kernels<N, T>();
   });

@@ -246,12 +246,12 @@ void check_worst_unit_vectors() {
 }
 
 // The Rotator on the fastest path zhf_kernels.h picks: lanes.h where measured faster (x86-64,
-// orders 3..gen::kLanesUpTo), the scalar kernels elsewhere, held to the same targets.
+// orders gen::kLanesFrom..gen::kLanesUpTo), the scalar kernels elsewhere, held to the same targets.
 template <int N>
 void check_fastest_path() {
   const auto rotator = runtime::Rotator<float>::with(gen::fastest_kernels<float>(N));
 #if defined(__x86_64__)
-  EXPECT_EQ(rotator.path(), N >= 3 && N <= gen::kLanesUpTo ? "lanes" : "scalar") << "order " << N;
+  EXPECT_EQ(rotator.path(), N >= gen::kLanesFrom && N <= gen::kLanesUpTo ? "lanes" : "scalar") << "order " << N;
 #endif
   double worst = 0;
   for (const Case& c : cases(N, 200, 600 + N)) {
