@@ -13,11 +13,19 @@
 
 #include <cstddef>
 
+#ifndef ZHF_HOST_DEVICE
+#if defined(__CUDACC__) || defined(__CUDA__) || defined(__HIPCC__)
+#define ZHF_HOST_DEVICE __host__ __device__
+#else
+#define ZHF_HOST_DEVICE
+#endif
+#endif
+
 namespace zhf::gen {
 
 // sh_eval_order2: y[index(l,m)] = y_l^m(dir) for every band, dir a unit vector.
 template <class T>
-inline void sh_eval_order2(const T dir[3], T y[4]) {
+ZHF_HOST_DEVICE inline void sh_eval_order2(const T dir[3], T y[4]) {
   const T t5 = T(0.4886025119029199) * dir[1];
   const T t6 = T(0.4886025119029199) * dir[2];
   const T t7 = T(0.4886025119029199) * dir[0];
@@ -29,7 +37,7 @@ inline void sh_eval_order2(const T dir[3], T y[4]) {
 
 // rotate_order2: rotated = coefficients of f(R^T w), R row-major mapping v to R v.
 template <class T>
-inline void rotate_order2(const T R[9], const T coeffs[4], T rotated[4]) {
+ZHF_HOST_DEVICE inline void rotate_order2(const T R[9], const T coeffs[4], T rotated[4]) {
   const T t3 = coeffs[1] * R[4];
   const T t6 = coeffs[2] * R[5];
   const T t9 = coeffs[3] * R[3];
@@ -53,7 +61,7 @@ inline void rotate_order2(const T R[9], const T coeffs[4], T rotated[4]) {
 
 // rotate_signal_tailored_order2: rotated = A s, s = each band of f sampled at the inverse-rotated lobes R^T w_d.
 template <class T>
-inline void rotate_signal_tailored_order2(const T R[9], const T coeffs[4], T rotated[4]) {
+ZHF_HOST_DEVICE inline void rotate_signal_tailored_order2(const T R[9], const T coeffs[4], T rotated[4]) {
   const T t3 = coeffs[1] * R[4];
   const T t6 = coeffs[2] * R[5];
   const T t9 = coeffs[3] * R[3];
@@ -77,7 +85,7 @@ inline void rotate_signal_tailored_order2(const T R[9], const T coeffs[4], T rot
 
 // rotate_rgb_order2: rotated = coefficients of f(R^T w), R row-major mapping v to R v, for three channels.
 template <class T>
-inline void rotate_rgb_order2(const T R[9], const T coeffs[3][4], T rotated[3][4]) {
+ZHF_HOST_DEVICE inline void rotate_rgb_order2(const T R[9], const T coeffs[3][4], T rotated[3][4]) {
   const T t3_r = coeffs[0][1] * R[4];
   const T t3_g = coeffs[1][1] * R[4];
   const T t3_b = coeffs[2][1] * R[4];
@@ -139,7 +147,7 @@ inline void rotate_rgb_order2(const T R[9], const T coeffs[3][4], T rotated[3][4
 
 // rotate_batch_order2: rotated = coefficients of f(R^T w), R row-major mapping v to R v, for count vectors each with its own R (structure of arrays; the arrays must not overlap).
 template <class T>
-inline void rotate_batch_order2(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) {
+ZHF_HOST_DEVICE inline void rotate_batch_order2(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) {
   for (std::size_t v = 0; v < count; ++v) {
     const T t3 = coeffs[1 * count + v] * R[4 * count + v];
     const T t6 = coeffs[2 * count + v] * R[5 * count + v];
@@ -165,7 +173,7 @@ inline void rotate_batch_order2(std::size_t count, const T* __restrict R, const 
 
 // shade_order2: result[0] = integral of the lighting rotated by R (f(R^T w)) times transfer.
 template <class T>
-inline void shade_order2(const T R[9], const T light[4], const T transfer[4], T result[1]) {
+ZHF_HOST_DEVICE inline void shade_order2(const T R[9], const T light[4], const T transfer[4], T result[1]) {
   const T t2 = transfer[0] * light[0];
   const T t5 = light[1] * R[4];
   const T t8 = light[2] * R[5];
@@ -193,7 +201,7 @@ inline void shade_order2(const T R[9], const T light[4], const T transfer[4], T 
 
 // product_order2: h = f g projected to order 2 (SH product; factoring: pairs).
 template <class T>
-inline void product_order2(const T f[4], const T g[4], T h[4]) {
+ZHF_HOST_DEVICE inline void product_order2(const T f[4], const T g[4], T h[4]) {
   const T t2 = T(0.28209479177387814) * f[0];
   const T t4 = T(0.28209479177387814) * g[0];
   const T t5 = t2 * g[0];
@@ -221,7 +229,7 @@ inline void product_order2(const T f[4], const T g[4], T h[4]) {
 
 // square_order2: h = f^2 projected to order 2 (SH product; factoring: pairs).
 template <class T>
-inline void square_order2(const T f[4], T h[4]) {
+ZHF_HOST_DEVICE inline void square_order2(const T f[4], T h[4]) {
   const T t2 = T(0.28209479177387814) * f[0];
   const T t3 = f[0] * t2;
   const T t5 = f[1] * f[1];
@@ -251,21 +259,21 @@ struct Kernels<2> {
   static constexpr int kOrder = 2;
   static constexpr int kLobeStage = 0;  // runtime::LobeStage of rotate and rotate_batch: float
   template <class T>
-  static void sh_eval(const T dir[3], T y[4]) { sh_eval_order2<T>(dir, y); }
+  ZHF_HOST_DEVICE static void sh_eval(const T dir[3], T y[4]) { sh_eval_order2<T>(dir, y); }
   template <class T>
-  static void rotate(const T R[9], const T coeffs[4], T rotated[4]) { rotate_order2<T>(R, coeffs, rotated); }
+  ZHF_HOST_DEVICE static void rotate(const T R[9], const T coeffs[4], T rotated[4]) { rotate_order2<T>(R, coeffs, rotated); }
   template <class T>
-  static void rotate_signal_tailored(const T R[9], const T coeffs[4], T rotated[4]) { rotate_signal_tailored_order2<T>(R, coeffs, rotated); }
+  ZHF_HOST_DEVICE static void rotate_signal_tailored(const T R[9], const T coeffs[4], T rotated[4]) { rotate_signal_tailored_order2<T>(R, coeffs, rotated); }
   template <class T>
-  static void rotate_rgb(const T R[9], const T coeffs[3][4], T rotated[3][4]) { rotate_rgb_order2<T>(R, coeffs, rotated); }
+  ZHF_HOST_DEVICE static void rotate_rgb(const T R[9], const T coeffs[3][4], T rotated[3][4]) { rotate_rgb_order2<T>(R, coeffs, rotated); }
   template <class T>
-  static void rotate_batch(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) { rotate_batch_order2<T>(count, R, coeffs, rotated); }
+  ZHF_HOST_DEVICE static void rotate_batch(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) { rotate_batch_order2<T>(count, R, coeffs, rotated); }
   template <class T>
-  static void shade(const T R[9], const T light[4], const T transfer[4], T result[1]) { shade_order2<T>(R, light, transfer, result); }
+  ZHF_HOST_DEVICE static void shade(const T R[9], const T light[4], const T transfer[4], T result[1]) { shade_order2<T>(R, light, transfer, result); }
   template <class T>
-  static void product(const T f[4], const T g[4], T h[4]) { product_order2<T>(f, g, h); }
+  ZHF_HOST_DEVICE static void product(const T f[4], const T g[4], T h[4]) { product_order2<T>(f, g, h); }
   template <class T>
-  static void square(const T f[4], T h[4]) { square_order2<T>(f, h); }
+  ZHF_HOST_DEVICE static void square(const T f[4], T h[4]) { square_order2<T>(f, h); }
 };
 
 }  // namespace zhf::gen

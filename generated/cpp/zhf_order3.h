@@ -16,6 +16,14 @@
 
 #include <cstddef>
 
+#ifndef ZHF_HOST_DEVICE
+#if defined(__CUDACC__) || defined(__CUDA__) || defined(__HIPCC__)
+#define ZHF_HOST_DEVICE __host__ __device__
+#else
+#define ZHF_HOST_DEVICE
+#endif
+#endif
+
 namespace zhf::gen {
 
 // Lobe directions w_d (unit vectors) for order 3, from generated/lobes/order_3.json;
@@ -42,7 +50,7 @@ inline constexpr double kLobesOrder3[5][3] = {
 
 // sh_eval_order3: y[index(l,m)] = y_l^m(dir) for every band, dir a unit vector.
 template <class T>
-inline void sh_eval_order3(const T dir[3], T y[9]) {
+ZHF_HOST_DEVICE inline void sh_eval_order3(const T dir[3], T y[9]) {
   const T t5 = T(0.4886025119029199) * dir[1];
   const T t6 = T(0.4886025119029199) * dir[2];
   const T t7 = T(0.4886025119029199) * dir[0];
@@ -73,7 +81,7 @@ inline void sh_eval_order3(const T dir[3], T y[9]) {
 
 // lobe_weights_order3: lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied.
 template <class T>
-inline void lobe_weights_order3(const T f[9], T z[9]) {
+ZHF_HOST_DEVICE inline void lobe_weights_order3(const T f[9], T z[9]) {
   const T t10 = f[4] - f[5];
   const T t12 = T(1.3729368492956533) * t10;
   const T t14 = T(1.8305824657275378) * f[8];
@@ -97,7 +105,7 @@ inline void lobe_weights_order3(const T f[9], T z[9]) {
 
 // coefficients_from_samples_order3: coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied.
 template <class T>
-inline void coefficients_from_samples_order3(const T s[9], T f[9]) {
+ZHF_HOST_DEVICE inline void coefficients_from_samples_order3(const T s[9], T f[9]) {
   const T t10 = s[4] + s[6];
   const T t12 = T(1.3729368492956533) * t10;
   const T t13 = s[4] + s[7];
@@ -121,7 +129,7 @@ inline void coefficients_from_samples_order3(const T s[9], T f[9]) {
 
 // rotate_order3: rotated = coefficients of f(R^T w), R row-major mapping v to R v.
 template <class T>
-inline void rotate_order3(const T R[9], const T coeffs[9], T rotated[9]) {
+ZHF_HOST_DEVICE inline void rotate_order3(const T R[9], const T coeffs[9], T rotated[9]) {
   const T t3 = coeffs[1] * R[4];
   const T t6 = coeffs[2] * R[5];
   const T t9 = coeffs[3] * R[3];
@@ -212,7 +220,7 @@ inline void rotate_order3(const T R[9], const T coeffs[9], T rotated[9]) {
 
 // rotate_signal_tailored_order3: rotated = A s, s = each band of f sampled at the inverse-rotated lobes R^T w_d.
 template <class T>
-inline void rotate_signal_tailored_order3(const T R[9], const T coeffs[9], T rotated[9]) {
+ZHF_HOST_DEVICE inline void rotate_signal_tailored_order3(const T R[9], const T coeffs[9], T rotated[9]) {
   const T t3 = coeffs[1] * R[4];
   const T t6 = coeffs[2] * R[5];
   const T t9 = coeffs[3] * R[3];
@@ -361,7 +369,7 @@ inline void rotate_signal_tailored_order3(const T R[9], const T coeffs[9], T rot
 
 // rotate_rgb_order3: rotated = coefficients of f(R^T w), R row-major mapping v to R v, for three channels.
 template <class T>
-inline void rotate_rgb_order3(const T R[9], const T coeffs[3][9], T rotated[3][9]) {
+ZHF_HOST_DEVICE inline void rotate_rgb_order3(const T R[9], const T coeffs[3][9], T rotated[3][9]) {
   const T t3_r = coeffs[0][1] * R[4];
   const T t3_g = coeffs[1][1] * R[4];
   const T t3_b = coeffs[2][1] * R[4];
@@ -624,7 +632,7 @@ inline void rotate_rgb_order3(const T R[9], const T coeffs[3][9], T rotated[3][9
 
 // rotate_batch_order3: rotated = coefficients of f(R^T w), R row-major mapping v to R v, for count vectors each with its own R (structure of arrays; the arrays must not overlap).
 template <class T>
-inline void rotate_batch_order3(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) {
+ZHF_HOST_DEVICE inline void rotate_batch_order3(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) {
   for (std::size_t v = 0; v < count; ++v) {
     const T t3 = coeffs[1 * count + v] * R[4 * count + v];
     const T t6 = coeffs[2 * count + v] * R[5 * count + v];
@@ -717,7 +725,7 @@ inline void rotate_batch_order3(std::size_t count, const T* __restrict R, const 
 
 // shade_order3: result[0] = integral of the lighting rotated by R (f(R^T w)) times transfer.
 template <class T>
-inline void shade_order3(const T R[9], const T light[9], const T transfer[9], T result[1]) {
+ZHF_HOST_DEVICE inline void shade_order3(const T R[9], const T light[9], const T transfer[9], T result[1]) {
   const T t2 = transfer[0] * light[0];
   const T t5 = light[1] * R[4];
   const T t8 = light[2] * R[5];
@@ -817,7 +825,7 @@ inline void shade_order3(const T R[9], const T light[9], const T transfer[9], T 
 
 // shade_lobes_order3: result[0] = integral of the lighting rotated by R (f(R^T w)) times transfer, the lighting given as lobe weights z (lobe_weights).
 template <class T>
-inline void shade_lobes_order3(const T R[9], const T z[9], const T transfer[9], T result[1]) {
+ZHF_HOST_DEVICE inline void shade_lobes_order3(const T R[9], const T z[9], const T transfer[9], T result[1]) {
   const T t2 = transfer[0] * z[0];
   const T t5 = z[1] * R[4];
   const T t8 = z[2] * R[5];
@@ -968,7 +976,7 @@ inline void shade_lobes_order3(const T R[9], const T z[9], const T transfer[9], 
 
 // product_order3: h = f g projected to order 3 (SH product; factoring: pairs).
 template <class T>
-inline void product_order3(const T f[9], const T g[9], T h[9]) {
+ZHF_HOST_DEVICE inline void product_order3(const T f[9], const T g[9], T h[9]) {
   const T t2 = T(0.28209479177387814) * f[0];
   const T t4 = T(0.28209479177387814) * g[0];
   const T t5 = t2 * g[0];
@@ -1152,7 +1160,7 @@ inline void product_order3(const T f[9], const T g[9], T h[9]) {
 
 // square_order3: h = f^2 projected to order 3 (SH product; factoring: pairs).
 template <class T>
-inline void square_order3(const T f[9], T h[9]) {
+ZHF_HOST_DEVICE inline void square_order3(const T f[9], T h[9]) {
   const T t2 = T(0.28209479177387814) * f[0];
   const T t3 = f[0] * t2;
   const T t5 = f[1] * f[1];
@@ -1287,27 +1295,27 @@ struct Kernels<3> {
   static constexpr int kOrder = 3;
   static constexpr int kLobeStage = 0;  // runtime::LobeStage of rotate and rotate_batch: float
   template <class T>
-  static void sh_eval(const T dir[3], T y[9]) { sh_eval_order3<T>(dir, y); }
+  ZHF_HOST_DEVICE static void sh_eval(const T dir[3], T y[9]) { sh_eval_order3<T>(dir, y); }
   template <class T>
-  static void lobe_weights(const T f[9], T z[9]) { lobe_weights_order3<T>(f, z); }
+  ZHF_HOST_DEVICE static void lobe_weights(const T f[9], T z[9]) { lobe_weights_order3<T>(f, z); }
   template <class T>
-  static void coefficients_from_samples(const T s[9], T f[9]) { coefficients_from_samples_order3<T>(s, f); }
+  ZHF_HOST_DEVICE static void coefficients_from_samples(const T s[9], T f[9]) { coefficients_from_samples_order3<T>(s, f); }
   template <class T>
-  static void rotate(const T R[9], const T coeffs[9], T rotated[9]) { rotate_order3<T>(R, coeffs, rotated); }
+  ZHF_HOST_DEVICE static void rotate(const T R[9], const T coeffs[9], T rotated[9]) { rotate_order3<T>(R, coeffs, rotated); }
   template <class T>
-  static void rotate_signal_tailored(const T R[9], const T coeffs[9], T rotated[9]) { rotate_signal_tailored_order3<T>(R, coeffs, rotated); }
+  ZHF_HOST_DEVICE static void rotate_signal_tailored(const T R[9], const T coeffs[9], T rotated[9]) { rotate_signal_tailored_order3<T>(R, coeffs, rotated); }
   template <class T>
-  static void rotate_rgb(const T R[9], const T coeffs[3][9], T rotated[3][9]) { rotate_rgb_order3<T>(R, coeffs, rotated); }
+  ZHF_HOST_DEVICE static void rotate_rgb(const T R[9], const T coeffs[3][9], T rotated[3][9]) { rotate_rgb_order3<T>(R, coeffs, rotated); }
   template <class T>
-  static void rotate_batch(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) { rotate_batch_order3<T>(count, R, coeffs, rotated); }
+  ZHF_HOST_DEVICE static void rotate_batch(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) { rotate_batch_order3<T>(count, R, coeffs, rotated); }
   template <class T>
-  static void shade(const T R[9], const T light[9], const T transfer[9], T result[1]) { shade_order3<T>(R, light, transfer, result); }
+  ZHF_HOST_DEVICE static void shade(const T R[9], const T light[9], const T transfer[9], T result[1]) { shade_order3<T>(R, light, transfer, result); }
   template <class T>
-  static void shade_lobes(const T R[9], const T z[9], const T transfer[9], T result[1]) { shade_lobes_order3<T>(R, z, transfer, result); }
+  ZHF_HOST_DEVICE static void shade_lobes(const T R[9], const T z[9], const T transfer[9], T result[1]) { shade_lobes_order3<T>(R, z, transfer, result); }
   template <class T>
-  static void product(const T f[9], const T g[9], T h[9]) { product_order3<T>(f, g, h); }
+  ZHF_HOST_DEVICE static void product(const T f[9], const T g[9], T h[9]) { product_order3<T>(f, g, h); }
   template <class T>
-  static void square(const T f[9], T h[9]) { square_order3<T>(f, h); }
+  ZHF_HOST_DEVICE static void square(const T f[9], T h[9]) { square_order3<T>(f, h); }
 };
 
 }  // namespace zhf::gen

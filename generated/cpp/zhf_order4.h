@@ -17,16 +17,26 @@
 #include <cmath>
 #include <cstddef>
 
+#ifndef ZHF_HOST_DEVICE
+#if defined(__CUDACC__) || defined(__CUDA__) || defined(__HIPCC__)
+#define ZHF_HOST_DEVICE __host__ __device__
+#else
+#define ZHF_HOST_DEVICE
+#endif
+#endif
+
 #ifndef ZHF_GEN_KERNEL_MATH
 #define ZHF_GEN_KERNEL_MATH
 namespace zhf::gen {
 template <class T>
-inline T reciprocal_sqrt(const T& x) {
+ZHF_HOST_DEVICE inline T reciprocal_sqrt(const T& x) {
+#if !defined(__CUDA_ARCH__) && !defined(__HIP_DEVICE_COMPILE__)
   using std::sqrt;
+#endif
   return T(1) / sqrt(x);
 }
 template <class T>
-inline T select_positive(const T& x, const T& if_positive, const T& otherwise) {
+ZHF_HOST_DEVICE inline T select_positive(const T& x, const T& if_positive, const T& otherwise) {
   return x > T(0) ? if_positive : otherwise;
 }
 }  // namespace zhf::gen
@@ -62,7 +72,7 @@ inline constexpr double kLobesOrder4[7][3] = {
 
 // sh_eval_order4: y[index(l,m)] = y_l^m(dir) for every band, dir a unit vector.
 template <class T>
-inline void sh_eval_order4(const T dir[3], T y[16]) {
+ZHF_HOST_DEVICE inline void sh_eval_order4(const T dir[3], T y[16]) {
   const T t5 = T(0.4886025119029199) * dir[1];
   const T t6 = T(0.4886025119029199) * dir[2];
   const T t7 = T(0.4886025119029199) * dir[0];
@@ -121,7 +131,7 @@ inline void sh_eval_order4(const T dir[3], T y[16]) {
 
 // lobe_weights_order4: lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied.
 template <class T>
-inline void lobe_weights_order4(const T f[16], T z[16]) {
+ZHF_HOST_DEVICE inline void lobe_weights_order4(const T f[16], T z[16]) {
   const T t11 = T(1.5853309190424048) * f[6];
   const T t13 = T(0.9152912328637691) * f[8];
   const T t14 = t11 + t13;
@@ -181,7 +191,7 @@ inline void lobe_weights_order4(const T f[16], T z[16]) {
 
 // coefficients_from_samples_order4: coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied.
 template <class T>
-inline void coefficients_from_samples_order4(const T s[16], T f[16]) {
+ZHF_HOST_DEVICE inline void coefficients_from_samples_order4(const T s[16], T f[16]) {
   const T t10 = s[5] + s[6];
   const T t12 = T(-1.3211090992020038) * t10;
   const T t14 = T(1.0568872793616033) * s[8];
@@ -236,7 +246,7 @@ inline void coefficients_from_samples_order4(const T s[16], T f[16]) {
 
 // rotate_order4: rotated = coefficients of f(R^T w), R row-major mapping v to R v.
 template <class T>
-inline void rotate_order4(const T R[9], const T coeffs[16], T rotated[16]) {
+ZHF_HOST_DEVICE inline void rotate_order4(const T R[9], const T coeffs[16], T rotated[16]) {
   const T t3 = coeffs[1] * R[4];
   const T t6 = coeffs[2] * R[5];
   const T t9 = coeffs[3] * R[3];
@@ -461,7 +471,7 @@ inline void rotate_order4(const T R[9], const T coeffs[16], T rotated[16]) {
 
 // rotate_signal_tailored_order4: rotated = A s, s = each band of f sampled at the inverse-rotated lobes R^T w_d.
 template <class T>
-inline void rotate_signal_tailored_order4(const T R[9], const T coeffs[16], T rotated[16]) {
+ZHF_HOST_DEVICE inline void rotate_signal_tailored_order4(const T R[9], const T coeffs[16], T rotated[16]) {
   const T t3 = coeffs[1] * R[4];
   const T t6 = coeffs[2] * R[5];
   const T t9 = coeffs[3] * R[3];
@@ -875,7 +885,7 @@ inline void rotate_signal_tailored_order4(const T R[9], const T coeffs[16], T ro
 
 // rotate_rgb_order4: rotated = coefficients of f(R^T w), R row-major mapping v to R v, for three channels.
 template <class T>
-inline void rotate_rgb_order4(const T R[9], const T coeffs[3][16], T rotated[3][16]) {
+ZHF_HOST_DEVICE inline void rotate_rgb_order4(const T R[9], const T coeffs[3][16], T rotated[3][16]) {
   const T t3_r = coeffs[0][1] * R[4];
   const T t3_g = coeffs[1][1] * R[4];
   const T t3_b = coeffs[2][1] * R[4];
@@ -1440,7 +1450,7 @@ inline void rotate_rgb_order4(const T R[9], const T coeffs[3][16], T rotated[3][
 
 // rotate_batch_order4: rotated = coefficients of f(R^T w), R row-major mapping v to R v, for count vectors each with its own R (structure of arrays; the arrays must not overlap).
 template <class T>
-inline void rotate_batch_order4(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) {
+ZHF_HOST_DEVICE inline void rotate_batch_order4(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) {
   for (std::size_t v = 0; v < count; ++v) {
     const T t3 = coeffs[1 * count + v] * R[4 * count + v];
     const T t6 = coeffs[2 * count + v] * R[5 * count + v];
@@ -1667,7 +1677,7 @@ inline void rotate_batch_order4(std::size_t count, const T* __restrict R, const 
 
 // shade_order4: result[0] = integral of the lighting rotated by R (f(R^T w)) times transfer.
 template <class T>
-inline void shade_order4(const T R[9], const T light[16], const T transfer[16], T result[1]) {
+ZHF_HOST_DEVICE inline void shade_order4(const T R[9], const T light[16], const T transfer[16], T result[1]) {
   const T t2 = transfer[0] * light[0];
   const T t5 = light[1] * R[4];
   const T t8 = light[2] * R[5];
@@ -1908,7 +1918,7 @@ inline void shade_order4(const T R[9], const T light[16], const T transfer[16], 
 
 // shade_lobes_order4: result[0] = integral of the lighting rotated by R (f(R^T w)) times transfer, the lighting given as lobe weights z (lobe_weights).
 template <class T>
-inline void shade_lobes_order4(const T R[9], const T z[16], const T transfer[16], T result[1]) {
+ZHF_HOST_DEVICE inline void shade_lobes_order4(const T R[9], const T z[16], const T transfer[16], T result[1]) {
   const T t2 = transfer[0] * z[0];
   const T t5 = z[1] * R[4];
   const T t8 = z[2] * R[5];
@@ -2312,7 +2322,7 @@ inline void shade_lobes_order4(const T R[9], const T z[16], const T transfer[16]
 
 // product_order4: h = f g projected to order 4 (SH product; factoring: pairs).
 template <class T>
-inline void product_order4(const T f[16], const T g[16], T h[16]) {
+ZHF_HOST_DEVICE inline void product_order4(const T f[16], const T g[16], T h[16]) {
   const T t2 = T(0.28209479177387814) * f[0];
   const T t4 = T(0.28209479177387814) * g[0];
   const T t5 = t2 * g[0];
@@ -2950,7 +2960,7 @@ inline void product_order4(const T f[16], const T g[16], T h[16]) {
 
 // square_order4: h = f^2 projected to order 4 (SH product; factoring: gauss-fourier).
 template <class T>
-inline void square_order4(const T f[16], T h[16]) {
+ZHF_HOST_DEVICE inline void square_order4(const T f[16], T h[16]) {
   const T t3 = T(0.41722382363278404) * f[9];
   const T t5 = T(0.24963371067969772) * f[9];
   const T t7 = T(0.031554341515626264) * f[9];
@@ -3521,27 +3531,27 @@ struct Kernels<4> {
   static constexpr int kOrder = 4;
   static constexpr int kLobeStage = 0;  // runtime::LobeStage of rotate and rotate_batch: float
   template <class T>
-  static void sh_eval(const T dir[3], T y[16]) { sh_eval_order4<T>(dir, y); }
+  ZHF_HOST_DEVICE static void sh_eval(const T dir[3], T y[16]) { sh_eval_order4<T>(dir, y); }
   template <class T>
-  static void lobe_weights(const T f[16], T z[16]) { lobe_weights_order4<T>(f, z); }
+  ZHF_HOST_DEVICE static void lobe_weights(const T f[16], T z[16]) { lobe_weights_order4<T>(f, z); }
   template <class T>
-  static void coefficients_from_samples(const T s[16], T f[16]) { coefficients_from_samples_order4<T>(s, f); }
+  ZHF_HOST_DEVICE static void coefficients_from_samples(const T s[16], T f[16]) { coefficients_from_samples_order4<T>(s, f); }
   template <class T>
-  static void rotate(const T R[9], const T coeffs[16], T rotated[16]) { rotate_order4<T>(R, coeffs, rotated); }
+  ZHF_HOST_DEVICE static void rotate(const T R[9], const T coeffs[16], T rotated[16]) { rotate_order4<T>(R, coeffs, rotated); }
   template <class T>
-  static void rotate_signal_tailored(const T R[9], const T coeffs[16], T rotated[16]) { rotate_signal_tailored_order4<T>(R, coeffs, rotated); }
+  ZHF_HOST_DEVICE static void rotate_signal_tailored(const T R[9], const T coeffs[16], T rotated[16]) { rotate_signal_tailored_order4<T>(R, coeffs, rotated); }
   template <class T>
-  static void rotate_rgb(const T R[9], const T coeffs[3][16], T rotated[3][16]) { rotate_rgb_order4<T>(R, coeffs, rotated); }
+  ZHF_HOST_DEVICE static void rotate_rgb(const T R[9], const T coeffs[3][16], T rotated[3][16]) { rotate_rgb_order4<T>(R, coeffs, rotated); }
   template <class T>
-  static void rotate_batch(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) { rotate_batch_order4<T>(count, R, coeffs, rotated); }
+  ZHF_HOST_DEVICE static void rotate_batch(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) { rotate_batch_order4<T>(count, R, coeffs, rotated); }
   template <class T>
-  static void shade(const T R[9], const T light[16], const T transfer[16], T result[1]) { shade_order4<T>(R, light, transfer, result); }
+  ZHF_HOST_DEVICE static void shade(const T R[9], const T light[16], const T transfer[16], T result[1]) { shade_order4<T>(R, light, transfer, result); }
   template <class T>
-  static void shade_lobes(const T R[9], const T z[16], const T transfer[16], T result[1]) { shade_lobes_order4<T>(R, z, transfer, result); }
+  ZHF_HOST_DEVICE static void shade_lobes(const T R[9], const T z[16], const T transfer[16], T result[1]) { shade_lobes_order4<T>(R, z, transfer, result); }
   template <class T>
-  static void product(const T f[16], const T g[16], T h[16]) { product_order4<T>(f, g, h); }
+  ZHF_HOST_DEVICE static void product(const T f[16], const T g[16], T h[16]) { product_order4<T>(f, g, h); }
   template <class T>
-  static void square(const T f[16], T h[16]) { square_order4<T>(f, h); }
+  ZHF_HOST_DEVICE static void square(const T f[16], T h[16]) { square_order4<T>(f, h); }
 };
 
 }  // namespace zhf::gen

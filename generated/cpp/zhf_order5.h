@@ -17,16 +17,26 @@
 #include <cmath>
 #include <cstddef>
 
+#ifndef ZHF_HOST_DEVICE
+#if defined(__CUDACC__) || defined(__CUDA__) || defined(__HIPCC__)
+#define ZHF_HOST_DEVICE __host__ __device__
+#else
+#define ZHF_HOST_DEVICE
+#endif
+#endif
+
 #ifndef ZHF_GEN_KERNEL_MATH
 #define ZHF_GEN_KERNEL_MATH
 namespace zhf::gen {
 template <class T>
-inline T reciprocal_sqrt(const T& x) {
+ZHF_HOST_DEVICE inline T reciprocal_sqrt(const T& x) {
+#if !defined(__CUDA_ARCH__) && !defined(__HIP_DEVICE_COMPILE__)
   using std::sqrt;
+#endif
   return T(1) / sqrt(x);
 }
 template <class T>
-inline T select_positive(const T& x, const T& if_positive, const T& otherwise) {
+ZHF_HOST_DEVICE inline T select_positive(const T& x, const T& if_positive, const T& otherwise) {
   return x > T(0) ? if_positive : otherwise;
 }
 }  // namespace zhf::gen
@@ -69,7 +79,7 @@ inline constexpr double kLobesOrder5[9][3] = {
 
 // sh_eval_order5: y[index(l,m)] = y_l^m(dir) for every band, dir a unit vector.
 template <class T>
-inline void sh_eval_order5(const T dir[3], T y[25]) {
+ZHF_HOST_DEVICE inline void sh_eval_order5(const T dir[3], T y[25]) {
   const T t5 = T(0.4886025119029199) * dir[1];
   const T t6 = T(0.4886025119029199) * dir[2];
   const T t7 = T(0.4886025119029199) * dir[0];
@@ -165,7 +175,7 @@ inline void sh_eval_order5(const T dir[3], T y[25]) {
 
 // lobe_weights_order5: lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied.
 template <class T>
-inline void lobe_weights_order5(const T f[25], T z[25]) {
+ZHF_HOST_DEVICE inline void lobe_weights_order5(const T f[25], T z[25]) {
   const T t11 = T(1.3211090992020031) * f[4];
   const T t13 = T(-2.2882280821594216) * f[7];
   const T t14 = t11 + t13;
@@ -299,7 +309,7 @@ inline void lobe_weights_order5(const T f[25], T z[25]) {
 
 // coefficients_from_samples_order5: coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied.
 template <class T>
-inline void coefficients_from_samples_order5(const T s[25], T f[25]) {
+ZHF_HOST_DEVICE inline void coefficients_from_samples_order5(const T s[25], T f[25]) {
   const T t10 = s[4] + s[7];
   const T t12 = T(1.3211090992020031) * t10;
   const T t14 = T(-1.0568872793616026) * s[5];
@@ -415,7 +425,7 @@ inline void coefficients_from_samples_order5(const T s[25], T f[25]) {
 
 // rotate_order5: rotated = coefficients of f(R^T w), R row-major mapping v to R v.
 template <class T>
-inline void rotate_order5(const T R[9], const T coeffs[25], T rotated[25]) {
+ZHF_HOST_DEVICE inline void rotate_order5(const T R[9], const T coeffs[25], T rotated[25]) {
   const T t3 = coeffs[1] * R[4];
   const T t6 = coeffs[2] * R[5];
   const T t9 = coeffs[3] * R[3];
@@ -802,7 +812,7 @@ inline void rotate_order5(const T R[9], const T coeffs[25], T rotated[25]) {
 
 // rotate_signal_tailored_order5: rotated = A s, s = each band of f sampled at the inverse-rotated lobes R^T w_d.
 template <class T>
-inline void rotate_signal_tailored_order5(const T R[9], const T coeffs[25], T rotated[25]) {
+ZHF_HOST_DEVICE inline void rotate_signal_tailored_order5(const T R[9], const T coeffs[25], T rotated[25]) {
   using W = std::common_type_t<T, double>;  // the lobe stage's type
   const T t3 = coeffs[1] * R[4];
   const T t6 = coeffs[2] * R[5];
@@ -1736,7 +1746,7 @@ inline void rotate_signal_tailored_order5(const T R[9], const T coeffs[25], T ro
 
 // rotate_rgb_order5: rotated = coefficients of f(R^T w), R row-major mapping v to R v, for three channels.
 template <class T>
-inline void rotate_rgb_order5(const T R[9], const T coeffs[3][25], T rotated[3][25]) {
+ZHF_HOST_DEVICE inline void rotate_rgb_order5(const T R[9], const T coeffs[3][25], T rotated[3][25]) {
   const T t3_r = coeffs[0][1] * R[4];
   const T t3_g = coeffs[1][1] * R[4];
   const T t3_b = coeffs[2][1] * R[4];
@@ -2757,7 +2767,7 @@ inline void rotate_rgb_order5(const T R[9], const T coeffs[3][25], T rotated[3][
 
 // rotate_batch_order5: rotated = coefficients of f(R^T w), R row-major mapping v to R v, for count vectors each with its own R (structure of arrays; the arrays must not overlap).
 template <class T>
-inline void rotate_batch_order5(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) {
+ZHF_HOST_DEVICE inline void rotate_batch_order5(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) {
   for (std::size_t v = 0; v < count; ++v) {
     const T t3 = coeffs[1 * count + v] * R[4 * count + v];
     const T t6 = coeffs[2 * count + v] * R[5 * count + v];
@@ -3146,7 +3156,7 @@ inline void rotate_batch_order5(std::size_t count, const T* __restrict R, const 
 
 // shade_order5: result[0] = integral of the lighting rotated by R (f(R^T w)) times transfer.
 template <class T>
-inline void shade_order5(const T R[9], const T light[25], const T transfer[25], T result[1]) {
+ZHF_HOST_DEVICE inline void shade_order5(const T R[9], const T light[25], const T transfer[25], T result[1]) {
   const T t2 = transfer[0] * light[0];
   const T t5 = light[1] * R[4];
   const T t8 = light[2] * R[5];
@@ -3558,7 +3568,7 @@ inline void shade_order5(const T R[9], const T light[25], const T transfer[25], 
 
 // shade_lobes_order5: result[0] = integral of the lighting rotated by R (f(R^T w)) times transfer, the lighting given as lobe weights z (lobe_weights).
 template <class T>
-inline void shade_lobes_order5(const T R[9], const T z[25], const T transfer[25], T result[1]) {
+ZHF_HOST_DEVICE inline void shade_lobes_order5(const T R[9], const T z[25], const T transfer[25], T result[1]) {
   using W = std::common_type_t<T, double>;  // the lobe stage's type
   const T t2 = transfer[0] * z[0];
   const T t5 = z[1] * R[4];
@@ -4445,7 +4455,7 @@ inline void shade_lobes_order5(const T R[9], const T z[25], const T transfer[25]
 
 // product_order5: h = f g projected to order 5 (SH product; factoring: gauss-fourier).
 template <class T>
-inline void product_order5(const T f[25], const T g[25], T h[25]) {
+ZHF_HOST_DEVICE inline void product_order5(const T f[25], const T g[25], T h[25]) {
   const T t3 = T(0.4425326924449826) * f[16];
   const T t5 = T(0.3087590001912666) * f[16];
   const T t7 = T(0.08966525192881143) * f[16];
@@ -6277,7 +6287,7 @@ inline void product_order5(const T f[25], const T g[25], T h[25]) {
 
 // square_order5: h = f^2 projected to order 5 (SH product; factoring: gauss-fourier).
 template <class T>
-inline void square_order5(const T f[25], T h[25]) {
+ZHF_HOST_DEVICE inline void square_order5(const T f[25], T h[25]) {
   const T t3 = T(0.4425326924449826) * f[16];
   const T t5 = T(0.3087590001912666) * f[16];
   const T t7 = T(0.08966525192881143) * f[16];
@@ -7603,27 +7613,27 @@ struct Kernels<5> {
   static constexpr int kOrder = 5;
   static constexpr int kLobeStage = 0;  // runtime::LobeStage of rotate and rotate_batch: float
   template <class T>
-  static void sh_eval(const T dir[3], T y[25]) { sh_eval_order5<T>(dir, y); }
+  ZHF_HOST_DEVICE static void sh_eval(const T dir[3], T y[25]) { sh_eval_order5<T>(dir, y); }
   template <class T>
-  static void lobe_weights(const T f[25], T z[25]) { lobe_weights_order5<T>(f, z); }
+  ZHF_HOST_DEVICE static void lobe_weights(const T f[25], T z[25]) { lobe_weights_order5<T>(f, z); }
   template <class T>
-  static void coefficients_from_samples(const T s[25], T f[25]) { coefficients_from_samples_order5<T>(s, f); }
+  ZHF_HOST_DEVICE static void coefficients_from_samples(const T s[25], T f[25]) { coefficients_from_samples_order5<T>(s, f); }
   template <class T>
-  static void rotate(const T R[9], const T coeffs[25], T rotated[25]) { rotate_order5<T>(R, coeffs, rotated); }
+  ZHF_HOST_DEVICE static void rotate(const T R[9], const T coeffs[25], T rotated[25]) { rotate_order5<T>(R, coeffs, rotated); }
   template <class T>
-  static void rotate_signal_tailored(const T R[9], const T coeffs[25], T rotated[25]) { rotate_signal_tailored_order5<T>(R, coeffs, rotated); }
+  ZHF_HOST_DEVICE static void rotate_signal_tailored(const T R[9], const T coeffs[25], T rotated[25]) { rotate_signal_tailored_order5<T>(R, coeffs, rotated); }
   template <class T>
-  static void rotate_rgb(const T R[9], const T coeffs[3][25], T rotated[3][25]) { rotate_rgb_order5<T>(R, coeffs, rotated); }
+  ZHF_HOST_DEVICE static void rotate_rgb(const T R[9], const T coeffs[3][25], T rotated[3][25]) { rotate_rgb_order5<T>(R, coeffs, rotated); }
   template <class T>
-  static void rotate_batch(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) { rotate_batch_order5<T>(count, R, coeffs, rotated); }
+  ZHF_HOST_DEVICE static void rotate_batch(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) { rotate_batch_order5<T>(count, R, coeffs, rotated); }
   template <class T>
-  static void shade(const T R[9], const T light[25], const T transfer[25], T result[1]) { shade_order5<T>(R, light, transfer, result); }
+  ZHF_HOST_DEVICE static void shade(const T R[9], const T light[25], const T transfer[25], T result[1]) { shade_order5<T>(R, light, transfer, result); }
   template <class T>
-  static void shade_lobes(const T R[9], const T z[25], const T transfer[25], T result[1]) { shade_lobes_order5<T>(R, z, transfer, result); }
+  ZHF_HOST_DEVICE static void shade_lobes(const T R[9], const T z[25], const T transfer[25], T result[1]) { shade_lobes_order5<T>(R, z, transfer, result); }
   template <class T>
-  static void product(const T f[25], const T g[25], T h[25]) { product_order5<T>(f, g, h); }
+  ZHF_HOST_DEVICE static void product(const T f[25], const T g[25], T h[25]) { product_order5<T>(f, g, h); }
   template <class T>
-  static void square(const T f[25], T h[25]) { square_order5<T>(f, h); }
+  ZHF_HOST_DEVICE static void square(const T f[25], T h[25]) { square_order5<T>(f, h); }
 };
 
 }  // namespace zhf::gen

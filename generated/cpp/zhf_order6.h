@@ -17,16 +17,26 @@
 #include <cmath>
 #include <cstddef>
 
+#ifndef ZHF_HOST_DEVICE
+#if defined(__CUDACC__) || defined(__CUDA__) || defined(__HIPCC__)
+#define ZHF_HOST_DEVICE __host__ __device__
+#else
+#define ZHF_HOST_DEVICE
+#endif
+#endif
+
 #ifndef ZHF_GEN_KERNEL_MATH
 #define ZHF_GEN_KERNEL_MATH
 namespace zhf::gen {
 template <class T>
-inline T reciprocal_sqrt(const T& x) {
+ZHF_HOST_DEVICE inline T reciprocal_sqrt(const T& x) {
+#if !defined(__CUDA_ARCH__) && !defined(__HIP_DEVICE_COMPILE__)
   using std::sqrt;
+#endif
   return T(1) / sqrt(x);
 }
 template <class T>
-inline T select_positive(const T& x, const T& if_positive, const T& otherwise) {
+ZHF_HOST_DEVICE inline T select_positive(const T& x, const T& if_positive, const T& otherwise) {
   return x > T(0) ? if_positive : otherwise;
 }
 }  // namespace zhf::gen
@@ -73,7 +83,7 @@ inline constexpr double kLobesOrder6[11][3] = {
 
 // sh_eval_order6: y[index(l,m)] = y_l^m(dir) for every band, dir a unit vector.
 template <class T>
-inline void sh_eval_order6(const T dir[3], T y[36]) {
+ZHF_HOST_DEVICE inline void sh_eval_order6(const T dir[3], T y[36]) {
   const T t5 = T(0.4886025119029199) * dir[1];
   const T t6 = T(0.4886025119029199) * dir[2];
   const T t7 = T(0.4886025119029199) * dir[0];
@@ -215,7 +225,7 @@ inline void sh_eval_order6(const T dir[3], T y[36]) {
 
 // lobe_weights_order6: lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied.
 template <class T>
-inline void lobe_weights_order6(const T f[36], T z[36]) {
+ZHF_HOST_DEVICE inline void lobe_weights_order6(const T f[36], T z[36]) {
   const T t10 = f[5] + f[7];
   const T t12 = T(1.3729368492956537) * t10;
   const T t14 = T(1.8305824657275378) * f[8];
@@ -465,7 +475,7 @@ inline void lobe_weights_order6(const T f[36], T z[36]) {
 
 // coefficients_from_samples_order6: coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied.
 template <class T>
-inline void coefficients_from_samples_order6(const T s[36], T f[36]) {
+ZHF_HOST_DEVICE inline void coefficients_from_samples_order6(const T s[36], T f[36]) {
   const T t11 = T(1.8305824657275378) * s[7];
   const T t13 = T(0.9152912328637693) * s[8];
   const T t14 = t11 + t13;
@@ -703,7 +713,7 @@ inline void coefficients_from_samples_order6(const T s[36], T f[36]) {
 
 // rotate_order6: rotated = coefficients of f(R^T w), R row-major mapping v to R v.
 template <class T>
-inline void rotate_order6(const T R[9], const T coeffs[36], T rotated[36]) {
+ZHF_HOST_DEVICE inline void rotate_order6(const T R[9], const T coeffs[36], T rotated[36]) {
   const T t3 = coeffs[1] * R[4];
   const T t6 = coeffs[2] * R[5];
   const T t9 = coeffs[3] * R[3];
@@ -1311,7 +1321,7 @@ inline void rotate_order6(const T R[9], const T coeffs[36], T rotated[36]) {
 
 // rotate_signal_tailored_order6: rotated = A s, s = each band of f sampled at the inverse-rotated lobes R^T w_d.
 template <class T>
-inline void rotate_signal_tailored_order6(const T R[9], const T coeffs[36], T rotated[36]) {
+ZHF_HOST_DEVICE inline void rotate_signal_tailored_order6(const T R[9], const T coeffs[36], T rotated[36]) {
   using W = std::common_type_t<T, double>;  // the lobe stage's type
   const T t3 = coeffs[1] * R[4];
   const T t6 = coeffs[2] * R[5];
@@ -2956,7 +2966,7 @@ inline void rotate_signal_tailored_order6(const T R[9], const T coeffs[36], T ro
 
 // rotate_rgb_order6: rotated = coefficients of f(R^T w), R row-major mapping v to R v, for three channels.
 template <class T>
-inline void rotate_rgb_order6(const T R[9], const T coeffs[3][36], T rotated[3][36]) {
+ZHF_HOST_DEVICE inline void rotate_rgb_order6(const T R[9], const T coeffs[3][36], T rotated[3][36]) {
   const T t3_r = coeffs[0][1] * R[4];
   const T t3_g = coeffs[1][1] * R[4];
   const T t3_b = coeffs[2][1] * R[4];
@@ -4604,7 +4614,7 @@ inline void rotate_rgb_order6(const T R[9], const T coeffs[3][36], T rotated[3][
 
 // rotate_batch_order6: rotated = coefficients of f(R^T w), R row-major mapping v to R v, for count vectors each with its own R (structure of arrays; the arrays must not overlap).
 template <class T>
-inline void rotate_batch_order6(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) {
+ZHF_HOST_DEVICE inline void rotate_batch_order6(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) {
   for (std::size_t v = 0; v < count; ++v) {
     const T t3 = coeffs[1 * count + v] * R[4 * count + v];
     const T t6 = coeffs[2 * count + v] * R[5 * count + v];
@@ -5214,7 +5224,7 @@ inline void rotate_batch_order6(std::size_t count, const T* __restrict R, const 
 
 // shade_order6: result[0] = integral of the lighting rotated by R (f(R^T w)) times transfer.
 template <class T>
-inline void shade_order6(const T R[9], const T light[36], const T transfer[36], T result[1]) {
+ZHF_HOST_DEVICE inline void shade_order6(const T R[9], const T light[36], const T transfer[36], T result[1]) {
   const T t2 = transfer[0] * light[0];
   const T t5 = light[1] * R[4];
   const T t8 = light[2] * R[5];
@@ -5858,7 +5868,7 @@ inline void shade_order6(const T R[9], const T light[36], const T transfer[36], 
 
 // shade_lobes_order6: result[0] = integral of the lighting rotated by R (f(R^T w)) times transfer, the lighting given as lobe weights z (lobe_weights).
 template <class T>
-inline void shade_lobes_order6(const T R[9], const T z[36], const T transfer[36], T result[1]) {
+ZHF_HOST_DEVICE inline void shade_lobes_order6(const T R[9], const T z[36], const T transfer[36], T result[1]) {
   using W = std::common_type_t<T, double>;  // the lobe stage's type
   const T t2 = transfer[0] * z[0];
   const T t5 = z[1] * R[4];
@@ -7368,7 +7378,7 @@ inline void shade_lobes_order6(const T R[9], const T z[36], const T transfer[36]
 
 // product_order6: h = f g projected to order 6 (SH product; factoring: gauss-fourier).
 template <class T>
-inline void product_order6(const T f[36], const T g[36], T h[36]) {
+ZHF_HOST_DEVICE inline void product_order6(const T f[36], const T g[36], T h[36]) {
   const T t3 = T(0.4260688421803233) * f[25];
   const T t5 = T(0.2068767473304847) * f[25];
   const T t7 = T(0.03743974013770432) * f[25];
@@ -10503,7 +10513,7 @@ inline void product_order6(const T f[36], const T g[36], T h[36]) {
 
 // square_order6: h = f^2 projected to order 6 (SH product; factoring: gauss-fourier).
 template <class T>
-inline void square_order6(const T f[36], T h[36]) {
+ZHF_HOST_DEVICE inline void square_order6(const T f[36], T h[36]) {
   const T t3 = T(0.4260688421803233) * f[25];
   const T t5 = T(0.2068767473304847) * f[25];
   const T t7 = T(0.03743974013770432) * f[25];
@@ -12743,27 +12753,27 @@ struct Kernels<6> {
   static constexpr int kOrder = 6;
   static constexpr int kLobeStage = 0;  // runtime::LobeStage of rotate and rotate_batch: float
   template <class T>
-  static void sh_eval(const T dir[3], T y[36]) { sh_eval_order6<T>(dir, y); }
+  ZHF_HOST_DEVICE static void sh_eval(const T dir[3], T y[36]) { sh_eval_order6<T>(dir, y); }
   template <class T>
-  static void lobe_weights(const T f[36], T z[36]) { lobe_weights_order6<T>(f, z); }
+  ZHF_HOST_DEVICE static void lobe_weights(const T f[36], T z[36]) { lobe_weights_order6<T>(f, z); }
   template <class T>
-  static void coefficients_from_samples(const T s[36], T f[36]) { coefficients_from_samples_order6<T>(s, f); }
+  ZHF_HOST_DEVICE static void coefficients_from_samples(const T s[36], T f[36]) { coefficients_from_samples_order6<T>(s, f); }
   template <class T>
-  static void rotate(const T R[9], const T coeffs[36], T rotated[36]) { rotate_order6<T>(R, coeffs, rotated); }
+  ZHF_HOST_DEVICE static void rotate(const T R[9], const T coeffs[36], T rotated[36]) { rotate_order6<T>(R, coeffs, rotated); }
   template <class T>
-  static void rotate_signal_tailored(const T R[9], const T coeffs[36], T rotated[36]) { rotate_signal_tailored_order6<T>(R, coeffs, rotated); }
+  ZHF_HOST_DEVICE static void rotate_signal_tailored(const T R[9], const T coeffs[36], T rotated[36]) { rotate_signal_tailored_order6<T>(R, coeffs, rotated); }
   template <class T>
-  static void rotate_rgb(const T R[9], const T coeffs[3][36], T rotated[3][36]) { rotate_rgb_order6<T>(R, coeffs, rotated); }
+  ZHF_HOST_DEVICE static void rotate_rgb(const T R[9], const T coeffs[3][36], T rotated[3][36]) { rotate_rgb_order6<T>(R, coeffs, rotated); }
   template <class T>
-  static void rotate_batch(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) { rotate_batch_order6<T>(count, R, coeffs, rotated); }
+  ZHF_HOST_DEVICE static void rotate_batch(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) { rotate_batch_order6<T>(count, R, coeffs, rotated); }
   template <class T>
-  static void shade(const T R[9], const T light[36], const T transfer[36], T result[1]) { shade_order6<T>(R, light, transfer, result); }
+  ZHF_HOST_DEVICE static void shade(const T R[9], const T light[36], const T transfer[36], T result[1]) { shade_order6<T>(R, light, transfer, result); }
   template <class T>
-  static void shade_lobes(const T R[9], const T z[36], const T transfer[36], T result[1]) { shade_lobes_order6<T>(R, z, transfer, result); }
+  ZHF_HOST_DEVICE static void shade_lobes(const T R[9], const T z[36], const T transfer[36], T result[1]) { shade_lobes_order6<T>(R, z, transfer, result); }
   template <class T>
-  static void product(const T f[36], const T g[36], T h[36]) { product_order6<T>(f, g, h); }
+  ZHF_HOST_DEVICE static void product(const T f[36], const T g[36], T h[36]) { product_order6<T>(f, g, h); }
   template <class T>
-  static void square(const T f[36], T h[36]) { square_order6<T>(f, h); }
+  ZHF_HOST_DEVICE static void square(const T f[36], T h[36]) { square_order6<T>(f, h); }
 };
 
 }  // namespace zhf::gen

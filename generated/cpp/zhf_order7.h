@@ -17,16 +17,26 @@
 #include <cmath>
 #include <cstddef>
 
+#ifndef ZHF_HOST_DEVICE
+#if defined(__CUDACC__) || defined(__CUDA__) || defined(__HIPCC__)
+#define ZHF_HOST_DEVICE __host__ __device__
+#else
+#define ZHF_HOST_DEVICE
+#endif
+#endif
+
 #ifndef ZHF_GEN_KERNEL_MATH
 #define ZHF_GEN_KERNEL_MATH
 namespace zhf::gen {
 template <class T>
-inline T reciprocal_sqrt(const T& x) {
+ZHF_HOST_DEVICE inline T reciprocal_sqrt(const T& x) {
+#if !defined(__CUDA_ARCH__) && !defined(__HIP_DEVICE_COMPILE__)
   using std::sqrt;
+#endif
   return T(1) / sqrt(x);
 }
 template <class T>
-inline T select_positive(const T& x, const T& if_positive, const T& otherwise) {
+ZHF_HOST_DEVICE inline T select_positive(const T& x, const T& if_positive, const T& otherwise) {
   return x > T(0) ? if_positive : otherwise;
 }
 }  // namespace zhf::gen
@@ -77,7 +87,7 @@ inline constexpr double kLobesOrder7[13][3] = {
 
 // sh_eval_order7: y[index(l,m)] = y_l^m(dir) for every band, dir a unit vector.
 template <class T>
-inline void sh_eval_order7(const T dir[3], T y[49]) {
+ZHF_HOST_DEVICE inline void sh_eval_order7(const T dir[3], T y[49]) {
   const T t5 = T(0.4886025119029199) * dir[1];
   const T t6 = T(0.4886025119029199) * dir[2];
   const T t7 = T(0.4886025119029199) * dir[0];
@@ -274,7 +284,7 @@ inline void sh_eval_order7(const T dir[3], T y[49]) {
 
 // lobe_weights_order7: lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied.
 template <class T>
-inline void lobe_weights_order7(const T f[49], T z[49]) {
+ZHF_HOST_DEVICE inline void lobe_weights_order7(const T f[49], T z[49]) {
   const T t11 = T(-1.2944172750371328) * f[5];
   const T t13 = T(-1.8305824657275378) * f[8];
   const T t14 = t11 + t13;
@@ -716,7 +726,7 @@ inline void lobe_weights_order7(const T f[49], T z[49]) {
 
 // coefficients_from_samples_order7: coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied.
 template <class T>
-inline void coefficients_from_samples_order7(const T s[49], T f[49]) {
+ZHF_HOST_DEVICE inline void coefficients_from_samples_order7(const T s[49], T f[49]) {
   const T t11 = T(-1.8305824657275378) * s[7];
   const T t13 = T(-0.9152912328637693) * s[8];
   const T t14 = t11 + t13;
@@ -1100,7 +1110,7 @@ inline void coefficients_from_samples_order7(const T s[49], T f[49]) {
 
 // rotate_order7: rotated = coefficients of f(R^T w), R row-major mapping v to R v.
 template <class T>
-inline void rotate_order7(const T R[9], const T coeffs[49], T rotated[49]) {
+ZHF_HOST_DEVICE inline void rotate_order7(const T R[9], const T coeffs[49], T rotated[49]) {
   const T t3 = coeffs[1] * R[4];
   const T t6 = coeffs[2] * R[5];
   const T t9 = coeffs[3] * R[3];
@@ -1990,7 +2000,7 @@ inline void rotate_order7(const T R[9], const T coeffs[49], T rotated[49]) {
 
 // rotate_signal_tailored_order7: rotated = A s, s = each band of f sampled at the inverse-rotated lobes R^T w_d.
 template <class T>
-inline void rotate_signal_tailored_order7(const T R[9], const T coeffs[49], T rotated[49]) {
+ZHF_HOST_DEVICE inline void rotate_signal_tailored_order7(const T R[9], const T coeffs[49], T rotated[49]) {
   using W = std::common_type_t<T, double>;  // the lobe stage's type
   const T t3 = coeffs[1] * R[4];
   const T t6 = coeffs[2] * R[5];
@@ -4597,7 +4607,7 @@ inline void rotate_signal_tailored_order7(const T R[9], const T coeffs[49], T ro
 
 // rotate_rgb_order7: rotated = coefficients of f(R^T w), R row-major mapping v to R v, for three channels.
 template <class T>
-inline void rotate_rgb_order7(const T R[9], const T coeffs[3][49], T rotated[3][49]) {
+ZHF_HOST_DEVICE inline void rotate_rgb_order7(const T R[9], const T coeffs[3][49], T rotated[3][49]) {
   const T t3_r = coeffs[0][1] * R[4];
   const T t3_g = coeffs[1][1] * R[4];
   const T t3_b = coeffs[2][1] * R[4];
@@ -7061,7 +7071,7 @@ inline void rotate_rgb_order7(const T R[9], const T coeffs[3][49], T rotated[3][
 
 // rotate_batch_order7: rotated = coefficients of f(R^T w), R row-major mapping v to R v, for count vectors each with its own R (structure of arrays; the arrays must not overlap).
 template <class T>
-inline void rotate_batch_order7(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) {
+ZHF_HOST_DEVICE inline void rotate_batch_order7(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) {
   for (std::size_t v = 0; v < count; ++v) {
     const T t3 = coeffs[1 * count + v] * R[4 * count + v];
     const T t6 = coeffs[2 * count + v] * R[5 * count + v];
@@ -7953,7 +7963,7 @@ inline void rotate_batch_order7(std::size_t count, const T* __restrict R, const 
 
 // shade_order7: result[0] = integral of the lighting rotated by R (f(R^T w)) times transfer.
 template <class T>
-inline void shade_order7(const T R[9], const T light[49], const T transfer[49], T result[1]) {
+ZHF_HOST_DEVICE inline void shade_order7(const T R[9], const T light[49], const T transfer[49], T result[1]) {
   const T t2 = transfer[0] * light[0];
   const T t5 = light[1] * R[4];
   const T t8 = light[2] * R[5];
@@ -8892,7 +8902,7 @@ inline void shade_order7(const T R[9], const T light[49], const T transfer[49], 
 
 // shade_lobes_order7: result[0] = integral of the lighting rotated by R (f(R^T w)) times transfer, the lighting given as lobe weights z (lobe_weights).
 template <class T>
-inline void shade_lobes_order7(const T R[9], const T z[49], const T transfer[49], T result[1]) {
+ZHF_HOST_DEVICE inline void shade_lobes_order7(const T R[9], const T z[49], const T transfer[49], T result[1]) {
   using W = std::common_type_t<T, double>;  // the lobe stage's type
   const T t2 = transfer[0] * z[0];
   const T t5 = z[1] * R[4];
@@ -11262,7 +11272,7 @@ inline void shade_lobes_order7(const T R[9], const T z[49], const T transfer[49]
 
 // product_order7: h = f g projected to order 7 (SH product; factoring: gauss-fourier).
 template <class T>
-inline void product_order7(const T f[49], const T g[49], T h[49]) {
+ZHF_HOST_DEVICE inline void product_order7(const T f[49], const T g[49], T h[49]) {
   const T t3 = T(0.4516701573551439) * f[36];
   const T t5 = T(0.25879809266873055) * f[36];
   const T t7 = T(0.07539530360090281) * f[36];
@@ -16749,7 +16759,7 @@ inline void product_order7(const T f[49], const T g[49], T h[49]) {
 
 // square_order7: h = f^2 projected to order 7 (SH product; factoring: gauss-fourier).
 template <class T>
-inline void square_order7(const T f[49], T h[49]) {
+ZHF_HOST_DEVICE inline void square_order7(const T f[49], T h[49]) {
   const T t3 = T(0.4516701573551439) * f[36];
   const T t5 = T(0.25879809266873055) * f[36];
   const T t7 = T(0.07539530360090281) * f[36];
@@ -20656,27 +20666,27 @@ struct Kernels<7> {
   static constexpr int kOrder = 7;
   static constexpr int kLobeStage = 0;  // runtime::LobeStage of rotate and rotate_batch: float
   template <class T>
-  static void sh_eval(const T dir[3], T y[49]) { sh_eval_order7<T>(dir, y); }
+  ZHF_HOST_DEVICE static void sh_eval(const T dir[3], T y[49]) { sh_eval_order7<T>(dir, y); }
   template <class T>
-  static void lobe_weights(const T f[49], T z[49]) { lobe_weights_order7<T>(f, z); }
+  ZHF_HOST_DEVICE static void lobe_weights(const T f[49], T z[49]) { lobe_weights_order7<T>(f, z); }
   template <class T>
-  static void coefficients_from_samples(const T s[49], T f[49]) { coefficients_from_samples_order7<T>(s, f); }
+  ZHF_HOST_DEVICE static void coefficients_from_samples(const T s[49], T f[49]) { coefficients_from_samples_order7<T>(s, f); }
   template <class T>
-  static void rotate(const T R[9], const T coeffs[49], T rotated[49]) { rotate_order7<T>(R, coeffs, rotated); }
+  ZHF_HOST_DEVICE static void rotate(const T R[9], const T coeffs[49], T rotated[49]) { rotate_order7<T>(R, coeffs, rotated); }
   template <class T>
-  static void rotate_signal_tailored(const T R[9], const T coeffs[49], T rotated[49]) { rotate_signal_tailored_order7<T>(R, coeffs, rotated); }
+  ZHF_HOST_DEVICE static void rotate_signal_tailored(const T R[9], const T coeffs[49], T rotated[49]) { rotate_signal_tailored_order7<T>(R, coeffs, rotated); }
   template <class T>
-  static void rotate_rgb(const T R[9], const T coeffs[3][49], T rotated[3][49]) { rotate_rgb_order7<T>(R, coeffs, rotated); }
+  ZHF_HOST_DEVICE static void rotate_rgb(const T R[9], const T coeffs[3][49], T rotated[3][49]) { rotate_rgb_order7<T>(R, coeffs, rotated); }
   template <class T>
-  static void rotate_batch(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) { rotate_batch_order7<T>(count, R, coeffs, rotated); }
+  ZHF_HOST_DEVICE static void rotate_batch(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) { rotate_batch_order7<T>(count, R, coeffs, rotated); }
   template <class T>
-  static void shade(const T R[9], const T light[49], const T transfer[49], T result[1]) { shade_order7<T>(R, light, transfer, result); }
+  ZHF_HOST_DEVICE static void shade(const T R[9], const T light[49], const T transfer[49], T result[1]) { shade_order7<T>(R, light, transfer, result); }
   template <class T>
-  static void shade_lobes(const T R[9], const T z[49], const T transfer[49], T result[1]) { shade_lobes_order7<T>(R, z, transfer, result); }
+  ZHF_HOST_DEVICE static void shade_lobes(const T R[9], const T z[49], const T transfer[49], T result[1]) { shade_lobes_order7<T>(R, z, transfer, result); }
   template <class T>
-  static void product(const T f[49], const T g[49], T h[49]) { product_order7<T>(f, g, h); }
+  ZHF_HOST_DEVICE static void product(const T f[49], const T g[49], T h[49]) { product_order7<T>(f, g, h); }
   template <class T>
-  static void square(const T f[49], T h[49]) { square_order7<T>(f, h); }
+  ZHF_HOST_DEVICE static void square(const T f[49], T h[49]) { square_order7<T>(f, h); }
 };
 
 }  // namespace zhf::gen

@@ -17,16 +17,26 @@
 #include <cmath>
 #include <cstddef>
 
+#ifndef ZHF_HOST_DEVICE
+#if defined(__CUDACC__) || defined(__CUDA__) || defined(__HIPCC__)
+#define ZHF_HOST_DEVICE __host__ __device__
+#else
+#define ZHF_HOST_DEVICE
+#endif
+#endif
+
 #ifndef ZHF_GEN_KERNEL_MATH
 #define ZHF_GEN_KERNEL_MATH
 namespace zhf::gen {
 template <class T>
-inline T reciprocal_sqrt(const T& x) {
+ZHF_HOST_DEVICE inline T reciprocal_sqrt(const T& x) {
+#if !defined(__CUDA_ARCH__) && !defined(__HIP_DEVICE_COMPILE__)
   using std::sqrt;
+#endif
   return T(1) / sqrt(x);
 }
 template <class T>
-inline T select_positive(const T& x, const T& if_positive, const T& otherwise) {
+ZHF_HOST_DEVICE inline T select_positive(const T& x, const T& if_positive, const T& otherwise) {
   return x > T(0) ? if_positive : otherwise;
 }
 }  // namespace zhf::gen
@@ -81,7 +91,7 @@ inline constexpr double kLobesOrder8[15][3] = {
 
 // sh_eval_order8: y[index(l,m)] = y_l^m(dir) for every band, dir a unit vector.
 template <class T>
-inline void sh_eval_order8(const T dir[3], T y[64]) {
+ZHF_HOST_DEVICE inline void sh_eval_order8(const T dir[3], T y[64]) {
   const T t5 = T(0.4886025119029199) * dir[1];
   const T t6 = T(0.4886025119029199) * dir[2];
   const T t7 = T(0.4886025119029199) * dir[0];
@@ -342,7 +352,7 @@ inline void sh_eval_order8(const T dir[3], T y[64]) {
 
 // lobe_weights_order8: lobe weights z = A^T f per band >= 2 (z[l*l + d], lobe position d); bands 0, 1 copied.
 template <class T>
-inline void lobe_weights_order8(const T f[64], T z[64]) {
+ZHF_HOST_DEVICE inline void lobe_weights_order8(const T f[64], T z[64]) {
   const T t11 = T(-1.9416259125556994) * f[5];
   const T t13 = T(1.1209982432795857) * f[7];
   const T t14 = t11 + t13;
@@ -995,7 +1005,7 @@ inline void lobe_weights_order8(const T f[64], T z[64]) {
 
 // coefficients_from_samples_order8: coefficients f = A s per band >= 2 from lobe samples s[l*l + d]; bands 0, 1 copied.
 template <class T>
-inline void coefficients_from_samples_order8(const T s[64], T f[64]) {
+ZHF_HOST_DEVICE inline void coefficients_from_samples_order8(const T s[64], T f[64]) {
   const T t11 = T(-1.8305824657275378) * s[5];
   const T t13 = T(-0.9152912328637693) * s[7];
   const T t14 = t11 + t13;
@@ -1547,7 +1557,7 @@ inline void coefficients_from_samples_order8(const T s[64], T f[64]) {
 
 // rotate_order8: rotated = coefficients of f(R^T w), R row-major mapping v to R v.
 template <class T>
-inline void rotate_order8(const T R[9], const T coeffs[64], T rotated[64]) {
+ZHF_HOST_DEVICE inline void rotate_order8(const T R[9], const T coeffs[64], T rotated[64]) {
   const T t3 = coeffs[1] * R[4];
   const T t6 = coeffs[2] * R[5];
   const T t9 = coeffs[3] * R[3];
@@ -2794,7 +2804,7 @@ inline void rotate_order8(const T R[9], const T coeffs[64], T rotated[64]) {
 
 // rotate_signal_tailored_order8: rotated = A s, s = each band of f sampled at the inverse-rotated lobes R^T w_d.
 template <class T>
-inline void rotate_signal_tailored_order8(const T R[9], const T coeffs[64], T rotated[64]) {
+ZHF_HOST_DEVICE inline void rotate_signal_tailored_order8(const T R[9], const T coeffs[64], T rotated[64]) {
   using W = std::common_type_t<T, double>;  // the lobe stage's type
   const T t3 = coeffs[1] * R[4];
   const T t6 = coeffs[2] * R[5];
@@ -6672,7 +6682,7 @@ inline void rotate_signal_tailored_order8(const T R[9], const T coeffs[64], T ro
 
 // rotate_rgb_order8: rotated = coefficients of f(R^T w), R row-major mapping v to R v, for three channels.
 template <class T>
-inline void rotate_rgb_order8(const T R[9], const T coeffs[3][64], T rotated[3][64]) {
+ZHF_HOST_DEVICE inline void rotate_rgb_order8(const T R[9], const T coeffs[3][64], T rotated[3][64]) {
   const T t3_r = coeffs[0][1] * R[4];
   const T t3_g = coeffs[1][1] * R[4];
   const T t3_b = coeffs[2][1] * R[4];
@@ -10171,7 +10181,7 @@ inline void rotate_rgb_order8(const T R[9], const T coeffs[3][64], T rotated[3][
 
 // rotate_batch_order8: rotated = coefficients of f(R^T w), R row-major mapping v to R v, for count vectors each with its own R (structure of arrays; the arrays must not overlap).
 template <class T>
-inline void rotate_batch_order8(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) {
+ZHF_HOST_DEVICE inline void rotate_batch_order8(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) {
   for (std::size_t v = 0; v < count; ++v) {
     const T t3 = coeffs[1 * count + v] * R[4 * count + v];
     const T t6 = coeffs[2 * count + v] * R[5 * count + v];
@@ -11420,7 +11430,7 @@ inline void rotate_batch_order8(std::size_t count, const T* __restrict R, const 
 
 // shade_order8: result[0] = integral of the lighting rotated by R (f(R^T w)) times transfer.
 template <class T>
-inline void shade_order8(const T R[9], const T light[64], const T transfer[64], T result[1]) {
+ZHF_HOST_DEVICE inline void shade_order8(const T R[9], const T light[64], const T transfer[64], T result[1]) {
   const T t2 = transfer[0] * light[0];
   const T t5 = light[1] * R[4];
   const T t8 = light[2] * R[5];
@@ -12731,7 +12741,7 @@ inline void shade_order8(const T R[9], const T light[64], const T transfer[64], 
 
 // shade_lobes_order8: result[0] = integral of the lighting rotated by R (f(R^T w)) times transfer, the lighting given as lobe weights z (lobe_weights).
 template <class T>
-inline void shade_lobes_order8(const T R[9], const T z[64], const T transfer[64], T result[1]) {
+ZHF_HOST_DEVICE inline void shade_lobes_order8(const T R[9], const T z[64], const T transfer[64], T result[1]) {
   using W = std::common_type_t<T, double>;  // the lobe stage's type
   const T t2 = transfer[0] * z[0];
   const T t5 = z[1] * R[4];
@@ -16239,7 +16249,7 @@ inline void shade_lobes_order8(const T R[9], const T z[64], const T transfer[64]
 
 // product_order8: h = f g projected to order 8 (SH product; factoring: gauss-fourier).
 template <class T>
-inline void product_order8(const T f[64], const T g[64], T h[64]) {
+ZHF_HOST_DEVICE inline void product_order8(const T f[64], const T g[64], T h[64]) {
   const T t3 = T(0.5000395635705507) * f[49];
   const T t5 = T(0.3840179071466784) * f[49];
   const T t7 = T(0.16663135346492017) * f[49];
@@ -24247,7 +24257,7 @@ inline void product_order8(const T f[64], const T g[64], T h[64]) {
 
 // square_order8: h = f^2 projected to order 8 (SH product; factoring: gauss-fourier).
 template <class T>
-inline void square_order8(const T f[64], T h[64]) {
+ZHF_HOST_DEVICE inline void square_order8(const T f[64], T h[64]) {
   const T t3 = T(0.5000395635705507) * f[49];
   const T t5 = T(0.3840179071466784) * f[49];
   const T t7 = T(0.16663135346492017) * f[49];
@@ -29918,27 +29928,27 @@ struct Kernels<8> {
   static constexpr int kOrder = 8;
   static constexpr int kLobeStage = 0;  // runtime::LobeStage of rotate and rotate_batch: float
   template <class T>
-  static void sh_eval(const T dir[3], T y[64]) { sh_eval_order8<T>(dir, y); }
+  ZHF_HOST_DEVICE static void sh_eval(const T dir[3], T y[64]) { sh_eval_order8<T>(dir, y); }
   template <class T>
-  static void lobe_weights(const T f[64], T z[64]) { lobe_weights_order8<T>(f, z); }
+  ZHF_HOST_DEVICE static void lobe_weights(const T f[64], T z[64]) { lobe_weights_order8<T>(f, z); }
   template <class T>
-  static void coefficients_from_samples(const T s[64], T f[64]) { coefficients_from_samples_order8<T>(s, f); }
+  ZHF_HOST_DEVICE static void coefficients_from_samples(const T s[64], T f[64]) { coefficients_from_samples_order8<T>(s, f); }
   template <class T>
-  static void rotate(const T R[9], const T coeffs[64], T rotated[64]) { rotate_order8<T>(R, coeffs, rotated); }
+  ZHF_HOST_DEVICE static void rotate(const T R[9], const T coeffs[64], T rotated[64]) { rotate_order8<T>(R, coeffs, rotated); }
   template <class T>
-  static void rotate_signal_tailored(const T R[9], const T coeffs[64], T rotated[64]) { rotate_signal_tailored_order8<T>(R, coeffs, rotated); }
+  ZHF_HOST_DEVICE static void rotate_signal_tailored(const T R[9], const T coeffs[64], T rotated[64]) { rotate_signal_tailored_order8<T>(R, coeffs, rotated); }
   template <class T>
-  static void rotate_rgb(const T R[9], const T coeffs[3][64], T rotated[3][64]) { rotate_rgb_order8<T>(R, coeffs, rotated); }
+  ZHF_HOST_DEVICE static void rotate_rgb(const T R[9], const T coeffs[3][64], T rotated[3][64]) { rotate_rgb_order8<T>(R, coeffs, rotated); }
   template <class T>
-  static void rotate_batch(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) { rotate_batch_order8<T>(count, R, coeffs, rotated); }
+  ZHF_HOST_DEVICE static void rotate_batch(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) { rotate_batch_order8<T>(count, R, coeffs, rotated); }
   template <class T>
-  static void shade(const T R[9], const T light[64], const T transfer[64], T result[1]) { shade_order8<T>(R, light, transfer, result); }
+  ZHF_HOST_DEVICE static void shade(const T R[9], const T light[64], const T transfer[64], T result[1]) { shade_order8<T>(R, light, transfer, result); }
   template <class T>
-  static void shade_lobes(const T R[9], const T z[64], const T transfer[64], T result[1]) { shade_lobes_order8<T>(R, z, transfer, result); }
+  ZHF_HOST_DEVICE static void shade_lobes(const T R[9], const T z[64], const T transfer[64], T result[1]) { shade_lobes_order8<T>(R, z, transfer, result); }
   template <class T>
-  static void product(const T f[64], const T g[64], T h[64]) { product_order8<T>(f, g, h); }
+  ZHF_HOST_DEVICE static void product(const T f[64], const T g[64], T h[64]) { product_order8<T>(f, g, h); }
   template <class T>
-  static void square(const T f[64], T h[64]) { square_order8<T>(f, h); }
+  ZHF_HOST_DEVICE static void square(const T f[64], T h[64]) { square_order8<T>(f, h); }
 };
 
 }  // namespace zhf::gen

@@ -46,7 +46,7 @@ TEST(ExpressionGraph, FoldsConstantsSignsAndSharesSubexpressions) {
 // printed with spaces around them, negations as "-name".
 std::map<std::string, OpCount> count_operators(const std::string& text) {
   std::map<std::string, OpCount> counts;
-  const std::regex header(R"(^(?:inline )?void (\w+)\()");
+  const std::regex header(R"(^(?:ZHF_HOST_DEVICE )?(?:inline )?void (\w+)\()");
   const std::regex subscript(R"(\[[^\]]*\])");
   std::istringstream in(text);
   std::string line, current;

@@ -13,20 +13,35 @@
 namespace zhf::codegen {
 namespace {
 
-// What the zxzxz bands call beyond + - *, for the scalar types; a vector type brings its own
-// overloads, found by argument-dependent lookup (runtime/pack.h). Guarded: every order's header
+// Every function callable from CUDA and HIP device code as well as from the host: nothing in
+// them allocates, throws or calls the standard library but sqrt. Guarded: every order's header
 // has it.
+constexpr const char* kHostDevice = R"(
+#ifndef ZHF_HOST_DEVICE
+#if defined(__CUDACC__) || defined(__CUDA__) || defined(__HIPCC__)
+#define ZHF_HOST_DEVICE __host__ __device__
+#else
+#define ZHF_HOST_DEVICE
+#endif
+#endif
+)";
+
+// What the zxzxz bands call beyond + - *, for the scalar types; a vector type brings its own
+// overloads, found by argument-dependent lookup (runtime/pack.h). In device code sqrt is the
+// device library's (CUDA's and HIP's math headers overload it for float and double).
 constexpr const char* kKernelMath = R"(
 #ifndef ZHF_GEN_KERNEL_MATH
 #define ZHF_GEN_KERNEL_MATH
 namespace zhf::gen {
 template <class T>
-inline T reciprocal_sqrt(const T& x) {
+ZHF_HOST_DEVICE inline T reciprocal_sqrt(const T& x) {
+#if !defined(__CUDA_ARCH__) && !defined(__HIP_DEVICE_COMPILE__)
   using std::sqrt;
+#endif
   return T(1) / sqrt(x);
 }
 template <class T>
-inline T select_positive(const T& x, const T& if_positive, const T& otherwise) {
+ZHF_HOST_DEVICE inline T select_positive(const T& x, const T& if_positive, const T& otherwise) {
   return x > T(0) ? if_positive : otherwise;
 }
 }  // namespace zhf::gen
@@ -39,7 +54,7 @@ LanguageConfig cpp_config() {
   config.scalar = "T";
   config.wrap_literals_in_type = true;
   config.temp_qualifier = "const ";
-  config.function_prefix = "template <class T>\ninline ";
+  config.function_prefix = "template <class T>\nZHF_HOST_DEVICE inline ";
   config.wide_scalar = "W";
   config.wide_declaration = "using W = std::common_type_t<T, double>;  // the lobe stage's type";
   config.input_array_qualifier = "const ";
@@ -61,7 +76,7 @@ std::string kernels_trait(const Module& module, const LanguageConfig& config) {
       << "  static constexpr int kLobeStage = " << static_cast<int>(module.rotation_lobe_stage())
       << ";  // runtime::LobeStage of rotate and rotate_batch: " << runtime::lobe_stage_name(module.rotation_lobe_stage()) << "\n";
   for (const Function& f : module.functions)
-    out << "  template <class T>\n  static void " << f.member << "(" << print_parameters(f, config) << ") { " << f.name
+    out << "  template <class T>\n  ZHF_HOST_DEVICE static void " << f.member << "(" << print_parameters(f, config) << ") { " << f.name
         << "<T>(" << print_arguments(f) << "); }\n";
   out << "};\n";
   return out.str();
@@ -77,7 +92,7 @@ EmittedFile emit_kernels(const Module& module, const EmitOptions& options) {
   const bool square_roots = std::any_of(file.functions.begin(), file.functions.end(),
                                         [](const EmittedFunction& f) { return f.ops.others > 0; });
   if (square_roots) out << "#include <cmath>\n";
-  out << "#include <cstddef>\n";
+  out << "#include <cstddef>\n" << kHostDevice;
   if (square_roots) out << kKernelMath;
   if (module.lobe_stage != runtime::LobeStage::kFloat) out << "#include <type_traits>\n";
   out << "\nnamespace zhf::gen {\n";
