@@ -61,11 +61,11 @@ inline constexpr bool kHasLanes<7> = true;
 template <>
 inline constexpr bool kHasLanes<8> = true;
 
-// Where runtime/lanes.h is the faster verified path, by measurement: x86-64: lanes at orders 4..5 with AVX2, at 4 on baseline SSE2;
+// Where runtime/lanes.h is the faster verified path, by measurement: x86-64: lanes at order 4, with AVX2 and on baseline SSE2;
 // other architectures unmeasured (the scalar kernels). docs/performance.md has the figures.
 #if defined(__x86_64__) || defined(_M_X64)
 #if defined(__AVX2__)
-inline constexpr int kLanesUpTo = 5;
+inline constexpr int kLanesUpTo = 4;
 #else
 inline constexpr int kLanesUpTo = 4;
 #endif
