@@ -78,7 +78,9 @@ codegen::NeedletLutOptions lut_options(const NeedletOptions& o, const std::strin
 
 codegen::Language language_option(const std::string& option, const std::string& name) {
   codegen::Language language;
-  if (!codegen::parse_language(name, language)) throw UsageError(option + ": '" + io::excerpt(name) + "' is not cpp, glsl or hlsl");
+  const auto& known = codegen::needlet_lut_languages();
+  if (!codegen::parse_language(name, language) || std::find(known.begin(), known.end(), language) == known.end())
+    throw UsageError(option + ": '" + io::excerpt(name) + "' is not cpp, glsl or hlsl");
   return language;
 }
 

@@ -56,6 +56,7 @@ int run_verify_command(const VerifyCommandOptions& o) {
   options.rotations = static_cast<int>(integer_option("--rotations", o.rotations, 1, runtime::kMaxVerifyRotations));
   options.work_dir = o.work_dir;
   options.runtime_include = project.runtime_include;
+  options.naga_wasm = project.naga_wasm();
   options.compiler = o.compiler;
   Progress progress("verify", o.quiet, o.verbose);
   options.progress = [&](int done, int total, const std::string& what) { progress.update(done, total, what); };

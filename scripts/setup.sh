@@ -32,4 +32,24 @@ if [ ${#missing[@]} -gt 0 ]; then
   fi
 fi
 
+# naga (wgpu's shader translator) as WebAssembly, pinned, into the project's own tools/node:
+# zhf verify turns WGSL into SPIR-V with it under Node. Never installed globally.
+naga_version=30.1.0
+naga_dir=$ZHF_ROOT/tools/node
+if ! grep -qs "\"version\": \"$naga_version\"" "$naga_dir/node_modules/naga-wasm/package.json"; then
+  if ! command -v npm >/dev/null 2>&1 && [ "$(id -u)" -eq 0 ]; then
+    echo "zhf setup: installing nodejs npm"
+    export DEBIAN_FRONTEND=noninteractive
+    apt-get update -qq
+    apt-get install -y -qq --no-install-recommends nodejs npm >/dev/null
+  fi
+  if command -v npm >/dev/null 2>&1; then
+    echo "zhf setup: installing naga-wasm@$naga_version into tools/node"
+    mkdir -p "$naga_dir"
+    npm install --prefix "$naga_dir" --no-audit --no-fund --loglevel=error "naga-wasm@$naga_version" >/dev/null
+  else
+    echo "zhf setup: npm missing: WGSL kernels cannot be verified (install nodejs and npm)" >&2
+  fi
+fi
+
 cmake -S "$ZHF_ROOT" -B "$ZHF_BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release -DZHF_WERROR=ON >/dev/null

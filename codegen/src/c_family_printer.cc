@@ -37,7 +37,7 @@ class Printer {
   std::string print(OpCount& ops) {
     std::ostringstream out;
     out << "// " << f_.name << ": " << f_.doc << ".\n";
-    out << c_.function_prefix << "void " << f_.name << "(" << signature() << ") {\n";
+    out << c_.function_prefix << (c_.wgsl ? "fn " : "void ") << f_.name << "(" << signature() << ") {\n";
     std::string indent = "  ";
     const std::vector<int> outputs = f_.output_nodes();
     const std::vector<int> live = f_.graph.live(outputs);
@@ -56,8 +56,10 @@ class Printer {
       if (n.op == Op::kInput || n.op == Op::kConst) continue;
       const int lanes = scalarized(n) ? n.lanes : 1;
       for (int lane = 0; lane < lanes; ++lane) {
-        out << indent << c_.temp_qualifier << type_of(n, n.wide) << " " << temp(i, scalarized(n) ? lane : -1) << " = "
-            << expression(n, scalarized(n) ? lane : -1) << ";\n";
+        const std::string name = temp(i, scalarized(n) ? lane : -1);
+        if (c_.wgsl) out << indent << "let " << name << ": " << type_of(n, n.wide) << " = ";
+        else out << indent << c_.temp_qualifier << type_of(n, n.wide) << " " << name << " = ";
+        out << expression(n, scalarized(n) ? lane : -1) << ";\n";
         if (n.op == Op::kMul) ++ops.multiplies;
         else if (n.op == Op::kRsqrt || n.op == Op::kSelect) ++ops.others;
         else ++ops.adds;
@@ -80,11 +82,10 @@ class Printer {
 
  private:
   bool scalarized(const Node& n) const { return n.lanes > 1 && c_.vector_stem.empty(); }
-  std::string vector_type(int lanes) const { return c_.vector_stem + std::to_string(lanes); }
   // The type of a value of n's lanes computed wide or not.
   std::string type_of(const Node& n, bool wide) const {
     const LanguageConfig& c = wide ? wide_ : c_;
-    return n.lanes > 1 && !c.vector_stem.empty() ? c.vector_stem + std::to_string(n.lanes) : c.scalar;
+    return n.lanes > 1 && !c.vector_stem.empty() ? vector_type_name(c, n.lanes) : c.scalar;
   }
   static std::string temp(int i, int lane) {
     return "t" + std::to_string(i) + (lane < 0 ? "" : std::string("_") + "rgba"[lane]);
@@ -95,6 +96,7 @@ class Printer {
   std::string access(int param, int element, int lane) const {
     const Param& p = f_.params[param];
     if (f_.batch) return p.name + "[" + std::to_string(element) + " * count + v]";
+    if (c_.wgsl && p.output) return "(*" + p.name + ")[" + std::to_string(element) + "]";
     if (p.channels > 1 && c_.planar_channels) return p.name + "[" + std::to_string(lane) + "][" + std::to_string(element) + "]";
     return p.name + "[" + std::to_string(element) + "]";
   }
@@ -121,6 +123,9 @@ class Printer {
       case Op::kNeg: return "-" + operand(n.a, lane, n.wide);
       case Op::kRsqrt: return c_.reciprocal_sqrt + "(" + operand(n.a, lane, n.wide) + ")";
       case Op::kSelect:
+        if (c_.wgsl)
+          return "select(" + operand(n.c, lane, n.wide) + ", " + operand(n.b, lane, n.wide) + ", " + operand(n.a, -1, n.wide) +
+                 " > " + format_literal(0.0, n.wide ? wide_ : c_, n.wide ? Precision::kDouble : p_) + ")";
         if (!c_.select_positive.empty())
           return c_.select_positive + "(" + operand(n.a, -1, n.wide) + ", " + operand(n.b, lane, n.wide) + ", " +
                  operand(n.c, lane, n.wide) + ")";
@@ -150,6 +155,11 @@ std::string print_parameters(const Function& function, const LanguageConfig& c) 
       s += (p.output ? "" : "const ") + c.scalar + "* __restrict " + p.name;
       continue;
     }
+    if (c.wgsl) {
+      const std::string array = "array<" + (p.channels > 1 ? vector_type_name(c, p.channels) : c.scalar) + ", " + std::to_string(p.size) + ">";
+      s += p.name + ": " + (p.output ? "ptr<function, " + array + ">" : array);
+      continue;
+    }
     s += p.output ? c.output_array_qualifier : c.input_array_qualifier;
     if (p.channels > 1 && !c.vector_stem.empty()) {
       s += c.vector_stem + std::to_string(p.channels) + " " + p.name + "[" + std::to_string(p.size) + "]";
@@ -160,6 +170,10 @@ std::string print_parameters(const Function& function, const LanguageConfig& c) 
     }
   }
   return s;
+}
+
+std::string vector_type_name(const LanguageConfig& config, int lanes) {
+  return config.wgsl ? config.vector_stem + std::to_string(lanes) + "<" + config.scalar + ">" : config.vector_stem + std::to_string(lanes);
 }
 
 std::string print_arguments(const Function& function) {

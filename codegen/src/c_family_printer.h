@@ -28,9 +28,14 @@ struct LanguageConfig {
   std::string select_positive; // C++: "select_positive" (x > 0 ? a : b per lane); empty: the ?: operator
   bool batch = false;          // structure-of-arrays batch entry points
   bool planar_channels = false;  // C++: multi-channel parameters are [channels][n]
+  // WGSL's spelling: `fn f(x: array<f32, n>, out: ptr<function, array<f32, n>>)`, `let t: f32 = ..;`,
+  // outputs written through the pointer, vector types vec3<f32>, select(otherwise, if_positive, c).
+  bool wgsl = false;
 };
 
 std::string format_literal(double value, const LanguageConfig& config, Precision precision);
+// A vector of lanes of the config's scalar: float3, vec3, vec3<f32>.
+std::string vector_type_name(const LanguageConfig& config, int lanes);
 // The same config printing the wide type as its scalar (for the wide nodes).
 LanguageConfig widened(const LanguageConfig& config);
 

@@ -43,7 +43,7 @@ ManifestFile code_entry(FileKind kind, Language language, int order, FilePrecisi
   entry.language = language;
   entry.order = order;
   entry.precision = precision;
-  if (module) entry.lobe_stage = module->lobe_stage;
+  if (module) entry.lobe_stage = make_backend(language)->has_double() ? module->lobe_stage : runtime::LobeStage::kFloat;
   if (options) entry.zero_bands = options->zero_bands;
   entry.functions = file.functions;
   return entry;

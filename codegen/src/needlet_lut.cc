@@ -24,6 +24,7 @@ NeedletSpelling spelling(Language language) {
     case Language::kCpp: return {".h", "inline ", "const float beta[%N]", "const float x[3]", "std::fmin(std::fmax(", ", -1.0f), 1.0f)"};
     case Language::kGlsl: return {".glsl", "", "in float beta[%N]", "vec3 x", "clamp(", ", -1.0f, 1.0f)"};
     case Language::kHlsl: return {".hlsl", "", "float beta[%N]", "float3 x", "clamp(", ", -1.0f, 1.0f)"};
+    case Language::kWgsl: break;
   }
   throw std::invalid_argument("no needlet printer for this language");
 }
@@ -52,6 +53,11 @@ DataLayout layout(const frames::NeedletFrame& frame, int table_size) {
 }
 
 }  // namespace
+
+const std::vector<Language>& needlet_lut_languages() {
+  static const std::vector<Language> languages = {Language::kCpp, Language::kGlsl, Language::kHlsl};
+  return languages;
+}
 
 bool valid_prefix(const std::string& prefix, std::string& why) {
   if (prefix.empty() || prefix.size() > 48) {

@@ -94,6 +94,9 @@ Scene parse_scene(const runtime::json::Value& root, const std::string& source) {
   if (const auto precision = top.find("precision")) {
     if (precision->string() == "half") precision->fail("half is not supported yet (float or double)");
     scene.precision = precision->one_of({"float", "double"}) == "double" ? Precision::kDouble : Precision::kFloat;
+    for (Language t : scene.targets)
+      if (scene.precision == Precision::kDouble && !make_backend(t)->has_double())
+        precision->fail(std::string("double, but target ") + language_name(t) + " has no double type");
   }
   if (const auto stage = top.find("lobe_stage")) parse_lobe_stage_choice(stage->one_of({"auto", "float", "double-rotation", "double"}), scene.lobe_stage);
   if (const auto method = top.find("method")) parse_band_method_choice(method->one_of(band_method_choices()), scene.method);

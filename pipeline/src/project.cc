@@ -13,6 +13,12 @@ runtime::LobeTable Project::table(int order) const {
   return runtime::read_lobe_table(runtime::table_path(lobes(), order), order);
 }
 
+std::string Project::naga_wasm() const {
+  const std::string package = "/tools/node/node_modules/naga-wasm";
+  std::error_code ec;
+  return fs::is_directory(root + package, ec) ? root + package : std::string(ZHF_SOURCE_DIR) + package;
+}
+
 namespace {
 
 bool holds_tables(const fs::path& root) {

@@ -46,7 +46,7 @@ TEST(ExpressionGraph, FoldsConstantsSignsAndSharesSubexpressions) {
 // printed with spaces around them, negations as "-name".
 std::map<std::string, OpCount> count_operators(const std::string& text) {
   std::map<std::string, OpCount> counts;
-  const std::regex header(R"(^(?:ZHF_HOST_DEVICE )?(?:inline )?void (\w+)\()");
+  const std::regex header(R"(^(?:(?:ZHF_HOST_DEVICE )?(?:inline )?void|fn) (\w+)\()");
   const std::regex subscript(R"(\[[^\]]*\])");
   std::istringstream in(text);
   std::string line, current;
@@ -94,7 +94,7 @@ TEST(GeneratedFiles, BannerCountsEqualTheOperatorsInTheCode) {
   EXPECT_GT(checked, 100);
 }
 
-// The straight-line zxzxz band 2 with X's zeros and units folded: 56 multiplies (lobes: 70).
+// Band 2 by its quadratic form: 45 multiplies (zxzxz 56, lobes 70).
 TEST(GeneratedFiles, Order3RotationNeedsAtMost57Multiplies) {
   const nlohmann::json manifest = test::read_json((kGenerated / "manifest.json").string());
   for (const auto& file : manifest.at("files"))
@@ -102,6 +102,31 @@ TEST(GeneratedFiles, Order3RotationNeedsAtMost57Multiplies) {
       if (f.at("name") == "rotate_order3") {
         EXPECT_LE(f.at("multiplies").get<int>(), 57) << file.at("path");
       }
+}
+
+// Every language prints the same graph: each function's operation count in a shader file (GLSL,
+// HLSL, WGSL) is its count in the C++ file of that order (WGSL prints every node in f32, which
+// changes types, not operations).
+TEST(GeneratedFiles, EveryLanguageCountsTheSameOperationsAsCpp) {
+  const nlohmann::json manifest = test::read_json((kGenerated / "manifest.json").string());
+  std::map<std::string, std::pair<int, int>> cpp;
+  for (const auto& file : manifest.at("files"))
+    if (file.at("kind") == "kernels" && file.at("language") == "cpp")
+      for (const auto& f : file.at("functions"))
+        cpp[f.at("name").get<std::string>()] = {f.at("multiplies").get<int>(), f.at("adds").get<int>()};
+  std::map<std::string, int> checked;
+  for (const auto& file : manifest.at("files")) {
+    if (file.at("kind") != "kernels" || file.at("language") == "cpp") continue;
+    for (const auto& f : file.at("functions")) {
+      const std::string name = f.at("name");
+      if (f.at("channels").get<int>() > 1) continue;  // shaders count a float3 operation once
+      ASSERT_TRUE(cpp.count(name)) << file.at("path") << ": " << name << " has no C++ counterpart";
+      EXPECT_EQ(f.at("multiplies").get<int>(), cpp.at(name).first) << file.at("path") << " " << name;
+      EXPECT_EQ(f.at("adds").get<int>(), cpp.at(name).second) << file.at("path") << " " << name;
+      ++checked[file.at("language").get<std::string>()];
+    }
+  }
+  for (const char* language : {"glsl", "hlsl", "wgsl"}) EXPECT_GT(checked[language], 40) << language;
 }
 
 // The product kernels against Snyder 2006's greedy pair factoring (multiplies, orders 3..7), and

@@ -40,6 +40,7 @@ verify::VerifyReport verify_dir(const fs::path& dir, std::vector<Language> langu
   options.languages = languages;
   options.rotations = 200;
   options.runtime_include = test::source_path("runtime/include");
+  options.naga_wasm = test::source_path("tools/node/node_modules/naga-wasm");
   return verify::run_verify(options);
 }
 

@@ -27,7 +27,7 @@ TEST(NeedletLut, EveryLanguageMatchesItsMirrorAndTablesConverge) {
       verify::NeedletLutVerify v;
       v.directions = 256;
       const std::vector<verify::NeedletLutResult> results = verify::verify_needlet_lut(frame, lut, v);
-      ASSERT_EQ(results.size(), codegen::all_languages().size());
+      ASSERT_EQ(results.size(), codegen::needlet_lut_languages().size());
       for (const verify::NeedletLutResult& r : results) {
         EXPECT_TRUE(r.pass) << r.language << ", " << name << ", size " << size << ": " << r.vs_mirror << " " << r.error;
         EXPECT_LE(r.vs_mirror, runtime::tolerance::kNeedletLutFloat) << r.language << ", " << name << ", size " << size;
@@ -53,7 +53,7 @@ TEST(NeedletLut, NamesAreIdentifiersAndProvenanceIsEscaped) {
   }
   lut.prefix = "probe_lighting";
   lut.command = "zhf needlets emit --out 'x\n#error injected' */ \\";
-  for (codegen::Language language : codegen::all_languages()) {
+  for (codegen::Language language : codegen::needlet_lut_languages()) {
     const std::string text = codegen::emit_needlet_lut(frame, language, lut).text;
     EXPECT_EQ(text.find("\n#error"), std::string::npos) << codegen::language_name(language);
     EXPECT_EQ(text.find("\\\n"), std::string::npos) << codegen::language_name(language);

@@ -1,4 +1,5 @@
 #include <filesystem>
+#include <map>
 #include <regex>
 
 #include <gtest/gtest.h>
@@ -20,6 +21,7 @@ VerifyOptions options_for(const fs::path& tree) {
   VerifyOptions options;
   options.generated_dir = tree.string();
   options.runtime_include = test::source_path("runtime/include");
+  options.naga_wasm = test::source_path("tools/node/node_modules/naga-wasm");
   return options;
 }
 
@@ -36,7 +38,8 @@ void make_tree_of_order3(const fs::path& dir) {
 // A_2, never a unit, a zero or a threshold that a random rotation might not reach.
 void corrupt_rotation_constant(const fs::path& file) {
   std::string text = test::read_text(file.string());
-  const size_t body = text.find("void rotate_order3(");
+  size_t body = text.find("void rotate_order3(");
+  if (body == std::string::npos) body = text.find("fn rotate_order3(");
   ASSERT_NE(body, std::string::npos) << file;
   std::smatch m;
   const std::string tail = text.substr(body);
@@ -68,7 +71,9 @@ TEST_P(VerifyCorruption, OneWrongCoefficientFailsAndIsNamed) {
   if (language != "cpp" && !have_vulkan(why)) GTEST_SKIP() << "no Vulkan device: " << why;
   const test::TempDir dir;
   make_tree_of_order3(dir);
-  const char* file = language == "cpp" ? "cpp/zhf_order3.h" : language == "glsl" ? "glsl/zhf_order3.glsl" : "hlsl/zhf_order3.hlsli";
+  const std::map<std::string, std::string> files = {
+      {"cpp", "cpp/zhf_order3.h"}, {"glsl", "glsl/zhf_order3.glsl"}, {"hlsl", "hlsl/zhf_order3.hlsli"}, {"wgsl", "wgsl/zhf_order3.wgsl"}};
+  const std::string file = files.at(language);
   corrupt_rotation_constant(dir / "tree" / file);
   VerifyOptions options = options_for(dir / "tree");
   options.orders = {3};
@@ -85,7 +90,7 @@ TEST_P(VerifyCorruption, OneWrongCoefficientFailsAndIsNamed) {
   EXPECT_NE(report.table().find("FAIL: order 3, " + language), std::string::npos) << report.table();
 }
 
-INSTANTIATE_TEST_SUITE_P(EachLanguage, VerifyCorruption, ::testing::Values("cpp", "glsl", "hlsl"));
+INSTANTIATE_TEST_SUITE_P(EachLanguage, VerifyCorruption, ::testing::Values("cpp", "glsl", "hlsl", "wgsl"));
 
 TEST(VerifyCli, BadOrdersGetOneLine) {
   const test::RunResult r = test::run_zhf("verify --orders 11..13");

@@ -24,6 +24,7 @@ struct RunRequest {
   std::string work_dir;         // a private directory for sources, programs and logs
   VulkanDevice* device = nullptr;
   std::vector<std::string> compiler;  // the C++ compiler's argv prefix
+  std::string naga_wasm;        // the naga-wasm package directory (WGSL)
 };
 
 // outputs[p][m]: precision p (precisions[p]), mode m, in the layout of reference_outputs.

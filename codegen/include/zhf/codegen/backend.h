@@ -48,6 +48,9 @@ class Backend {
  public:
   virtual ~Backend() = default;
   virtual Language language() const = 0;
+  // False where the language has no double type: its files print every node in float and run
+  // their lobe stage in float, whatever the module's.
+  virtual bool has_double() const { return true; }
   // Prints a module; a backend refuses (std::invalid_argument) a module kind it has no layout for.
   virtual EmittedFile emit(const Module& module, const EmitOptions& options) const = 0;
 };

@@ -26,6 +26,9 @@ struct NeedletLutOptions {
 // False (and the reason) for a prefix that is not a plain identifier.
 bool valid_prefix(const std::string& prefix, std::string& why);
 
+// The languages with a needlet evaluator: cpp, glsl, hlsl (no WGSL printer for it yet).
+const std::vector<Language>& needlet_lut_languages();
+
 // The file for one language: "<prefix>.h", ".glsl" or ".hlsl". Functions:
 //   float <prefix>_kernel(int level, float t)     K_level(t) from its table
 //   float <prefix>_eval(beta[size], x[3])         the expansion at the unit direction x

@@ -2,7 +2,7 @@
 //
 //   {
 //     "format": "zhf-scene-1",
-//     "targets": ["glsl"],            // any of cpp, hlsl, glsl
+//     "targets": ["glsl"],            // any of cpp, hlsl, glsl, wgsl
 //     "precision": "float",           // float or double (shaders; C++ kernels are templates)
 //     "lobe_stage": "auto",           // auto, float, double-rotation or double: where float
 //                                     // kernels run the lobe stage (runtime/lobe_stage.h); optional

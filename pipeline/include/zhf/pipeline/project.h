@@ -17,6 +17,9 @@ struct Project {
   std::string lobes() const { return root + "/generated/lobes"; }
   std::string designs() const { return root + "/generated/designs"; }
   std::string bench_tables() const { return root + "/bench/tables"; }
+  // The naga-wasm package scripts/setup.sh installs into a checkout's tools/node (verify turns
+  // WGSL into SPIR-V with it): root's when it has one, else the source tree's.
+  std::string naga_wasm() const;
   // generated/lobes/order_N.json (order 2: the lobe-free table).
   runtime::LobeTable table(int order) const;
 };

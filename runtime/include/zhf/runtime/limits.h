@@ -86,6 +86,9 @@ inline constexpr int kMaxVerifyRotations = 1000000;
 // Seconds a command may take to stop after SIGINT or SIGTERM before the watchdog removes its
 // temporaries and ends it (work that polls stops well within this).
 inline constexpr int kInterruptGraceSeconds = 3;
+// Seconds verify gives Node to turn one WGSL wrapper into SPIR-V (naga takes ~0.1 s for order 8)
+// before it is stopped and the order reported as failed.
+inline constexpr double kShaderCompileSeconds = 300;
 
 // Threads a caller may ask for (--threads, threads=): the bound on every thread pool zhf starts.
 inline constexpr int kMaxThreads = 256;

@@ -26,7 +26,7 @@ struct NeedletLutResult {
 };
 
 struct NeedletLutVerify {
-  std::vector<codegen::Language> languages = codegen::all_languages();
+  std::vector<codegen::Language> languages = codegen::needlet_lut_languages();
   int directions = 512;
   std::string compiler;  // as for zhf verify
 };

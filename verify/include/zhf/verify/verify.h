@@ -24,6 +24,7 @@ struct VerifyOptions {
   std::string compiler;        // C++ compiler and its leading arguments, split at spaces; empty: $CXX, else c++
   std::string work_dir;        // kept scratch (made if missing); empty: a private temp dir, removed afterwards
   std::string runtime_include; // runtime/include, for the lanes kernels
+  std::string naga_wasm;       // the naga-wasm package (WGSL to SPIR-V under Node), for WGSL
   // Told before each order and language is run: how many of how many, and which.
   std::function<void(int done, int total, const std::string& what)> progress;
 };
