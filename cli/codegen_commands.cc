@@ -77,6 +77,8 @@ int run_emit(const EmitCommandOptions& o, const std::string& command) {
   emit.table_path = o.table;
   codegen::Language language = codegen::Language::kCpp;
   codegen::parse_language(o.language, language);  // CLI11 has checked the name
+  if (emit.precision == codegen::Precision::kDouble && !codegen::make_backend(language)->has_double())
+    throw UsageError("--precision: double, but " + o.language + " has no double type");
   codegen::ModuleOptions module = channel_options(o.channels, o.lobe_stage);
   module.band_method = band_method(o.method);
   // A frame alone changes nothing in a kernel (a rotation in the system's axes on its own

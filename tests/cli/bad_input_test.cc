@@ -56,6 +56,8 @@ TEST_F(BadInput, OptionsOutOfRangeOrNotNumbers) {
                   "--objective amplification", "amplification without sharing");
   expect_one_line(run_zhf("emit --table " + kTable3.string() + " --lang metal --out " + dir_), 2, "--lang", "lang");
   expect_one_line(run_zhf("emit --table " + kTable3.string() + " --lang cpp --channels 2 --out " + dir_), 2, "--channels", "channels");
+  expect_one_line(run_zhf("emit --table " + kTable3.string() + " --lang wgsl --precision double --out " + dir_), 2,
+                  "--precision: double, but wgsl has no double type", "wgsl double");
   expect_one_line(run_zhf("emit --table " + kTable3.string() + " --lang cpp --convention y-down --out " + dir_), 2,
                   "--convention: 'y-down' is not one of", "convention");
   expect_one_line(run_zhf("verify --langs cpp,cuda"), 2, "--langs", "langs");
