@@ -258,7 +258,7 @@ std::string banner(const std::string& command, const std::vector<EmittedFunction
   return out.str();
 }
 
-std::vector<std::string> lobe_derivation(const Module& module, const EmitOptions& options) {
+std::vector<std::string> lobe_derivation(const Module& module, const EmitOptions& options, runtime::LobeStage stage) {
   std::vector<std::string> lines;
   if (module.lobes.empty()) {
     lines.push_back("Order " + std::to_string(module.order) + " has no lobe bands: band 0 is copied, band 1 rotates as a 3-vector.");
@@ -276,7 +276,7 @@ std::vector<std::string> lobe_derivation(const Module& module, const EmitOptions
   char model[32];
   std::snprintf(model, sizeof model, "%.2g", runtime::tolerance::float_lobe_error_model(module.order, module.table.worst_condition()));
   const std::string float_model = std::string("the float error model eps_f (N-1) k_max = ") + model;
-  switch (module.lobe_stage) {
+  switch (stage) {
     case runtime::LobeStage::kFloat:
       lines.push_back("Lobe stage in the kernel's type (zhf emit --lobe-stage): " + float_model + ".");
       break;

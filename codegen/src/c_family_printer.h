@@ -65,7 +65,11 @@ std::string banner(const std::string& command, const std::vector<EmittedFunction
 std::string lobe_values(const Module& module, const LanguageConfig& config, Precision precision,
                         const std::string& row_open, const std::string& row_close);
 
-// The lobe table derivation comment lines (without comment markers).
-std::vector<std::string> lobe_derivation(const Module& module, const EmitOptions& options);
+// The lobe table derivation comment lines (without comment markers), for a file whose lobe stage
+// is `stage` (the module's, unless the language has no double type).
+std::vector<std::string> lobe_derivation(const Module& module, const EmitOptions& options, runtime::LobeStage stage);
+inline std::vector<std::string> lobe_derivation(const Module& module, const EmitOptions& options) {
+  return lobe_derivation(module, options, module.lobe_stage);
+}
 
 }  // namespace zhf::codegen

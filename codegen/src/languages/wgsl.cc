@@ -29,17 +29,15 @@ class WgslBackend : public Backend {
     config.wide_literal_suffix = "f";
     config.reciprocal_sqrt = "inverseSqrt";
     config.wgsl = true;
-    Module in_float = module;
-    in_float.lobe_stage = runtime::LobeStage::kFloat;
     EmittedFile file;
     file.file_name = "zhf_order" + std::to_string(module.order) + ".wgsl";
-    const std::string body = print_functions(in_float, config, Precision::kFloat, file.functions);
+    const std::string body = print_functions(module, config, Precision::kFloat, file.functions);
     std::ostringstream out;
     out << banner(options.command, file.functions);
     if (!module.lobes.empty()) {
       const std::string type = "array<f32, " + std::to_string(3 * module.lobes.size()) + ">";
       const std::string name = "kLobesOrder" + std::to_string(module.order);
-      out << commented(lobe_derivation(in_float, options)) << "// Flattened: w_d = (" << name << "[3d], [3d+1], [3d+2]).\n";
+      out << commented(lobe_derivation(module, options, runtime::LobeStage::kFloat)) << "// Flattened: w_d = (" << name << "[3d], [3d+1], [3d+2]).\n";
       out << "const " << name << ": " << type << " = " << type << "(\n" << lobe_values(module, config, Precision::kFloat, "", "") << ");\n";
     }
     out << body;
