@@ -27,7 +27,8 @@ namespace {
 struct NeedletOptions {
   std::string dilation = "2", order, lmax, sizes = "64,256,1024,4096,16384";
   bool gauss = false;
-  std::string size = "1024", interpolation = "linear", lang, langs = "cpp,glsl,hlsl", prefix = "zhf_needlets", compiler;
+  std::string size = "1024", interpolation = "linear", lang, langs = "cpp,glsl,hlsl,wgsl", prefix = "zhf_needlets", compiler;
+  std::string set = "0", binding = "0";
   std::string out, data;
   std::string j = "1", cut = "10", margin = "4";
 };
@@ -72,6 +73,8 @@ codegen::NeedletLutOptions lut_options(const NeedletOptions& o, const std::strin
   std::string why;
   if (!codegen::valid_prefix(o.prefix, why)) throw UsageError("--prefix: " + why);
   lut.prefix = o.prefix;
+  lut.storage_set = static_cast<int>(integer_option("--set", o.set, 0, runtime::kMaxStorageSet));
+  lut.storage_binding = static_cast<int>(integer_option("--binding", o.binding, 0, runtime::kMaxStorageBinding));
   lut.command = command;
   return lut;
 }
@@ -79,9 +82,11 @@ codegen::NeedletLutOptions lut_options(const NeedletOptions& o, const std::strin
 codegen::Language language_option(const std::string& option, const std::string& name) {
   codegen::Language language;
   const auto& known = codegen::needlet_lut_languages();
-  if (!codegen::parse_language(name, language) || std::find(known.begin(), known.end(), language) == known.end())
-    throw UsageError(option + ": '" + io::excerpt(name) + "' is not cpp, glsl or hlsl");
-  return language;
+  if (codegen::parse_language(name, language) && std::find(known.begin(), known.end(), language) != known.end()) return language;
+  std::string names;
+  for (std::size_t i = 0; i < known.size(); ++i)
+    names += (i == 0 ? "" : i + 1 == known.size() ? " or " : ", ") + std::string(codegen::language_name(known[i]));
+  throw UsageError(option + ": '" + io::excerpt(name) + "' is not " + names);
 }
 
 int run_needlet_emit(const NeedletOptions& o, const std::string& command) {
@@ -127,6 +132,7 @@ int run_needlet_verify(const NeedletOptions& o) {
     start = comma + 1;
   }
   v.compiler = o.compiler;
+  v.naga_wasm = pipeline::project().naga_wasm();
   std::unique_ptr<io::PendingFile> out;
   if (!o.out.empty()) out = std::make_unique<io::PendingFile>(o.out);
   const frames::NeedletFrame frame = needlet_frame(dilation, lmax, o.gauss);
@@ -349,13 +355,15 @@ void add_needlets_command(CLI::App& app, Action& action, const std::string& comm
   mc->add_flag("--gauss", mk->gauss, "Gauss product cubatures instead of the shipped designs");
   mc->callback([mk, &action] { action = [mk] { return run_needlet_mask(*mk); }; });
   auto e = std::make_shared<NeedletOptions>();
-  CLI::App* ec = nc->add_subcommand("emit", "Emit a needlet expansion's evaluator (kernel look-up tables) as C++, GLSL or HLSL");
+  CLI::App* ec = nc->add_subcommand("emit", "Emit a needlet expansion's evaluator (kernel look-up tables) as C++, GLSL, HLSL or WGSL");
   ec->add_option("--B", e->dilation, kDilationHelp);
   add_band_limit(ec, *e, runtime::kMaxNeedletFrameBand);
   ec->add_option("--size", e->size, kTableSizeHelp);
   ec->add_option("--interpolation", e->interpolation, "linear (default) or quadratic");
-  ec->add_option("--lang", e->lang, "cpp, glsl or hlsl")->required();
+  ec->add_option("--lang", e->lang, "cpp, glsl, hlsl or wgsl")->required();
   ec->add_option("--prefix", e->prefix, "Prefix of every emitted name (default zhf_needlets)");
+  ec->add_option("--set", e->set, "Shaders' data buffer: descriptor set / WGSL group, 0.." + std::to_string(runtime::kMaxStorageSet) + " (default 0)");
+  ec->add_option("--binding", e->binding, "Shaders' data buffer: binding, 0.." + std::to_string(runtime::kMaxStorageBinding) + " (default 0)");
   ec->add_flag("--gauss", e->gauss, "Gauss product cubatures instead of the shipped designs");
   ec->add_option("--out", e->out, "The file to write")->required();
   ec->add_option("--data", e->data, "Also write the nodes, scales and tables as little-endian float32 (the shaders' storage buffer)");
@@ -366,7 +374,7 @@ void add_needlets_command(CLI::App& app, Action& action, const std::string& comm
   add_band_limit(vc, *v, runtime::kMaxNeedletFrameBand);
   vc->add_option("--size", v->size, kTableSizeHelp);
   vc->add_option("--interpolation", v->interpolation, "linear (default) or quadratic");
-  vc->add_option("--langs", v->langs, "Languages, e.g. cpp,glsl (default cpp,glsl,hlsl)");
+  vc->add_option("--langs", v->langs, "Languages, e.g. cpp,glsl (default cpp,glsl,hlsl,wgsl)");
   vc->add_option("--compiler", v->compiler, "C++ compiler and leading arguments (default $CXX, else c++)");
   vc->add_flag("--gauss", v->gauss, "Gauss product cubatures instead of the shipped designs");
   keep_old_spelling(vc, vc->add_option("--out", v->out, "Write the results here (zhf-needlet-verify-1)"), "--json", v->out);

@@ -14,17 +14,31 @@ namespace {
 // How each language spells the few constructs the evaluator needs.
 struct NeedletSpelling {
   std::string extension;
-  std::string function;                              // before the return type
+  std::string int_type, float_type;                  // also the conversions' names
   std::string beta_parameter, direction_parameter;  // with %N for the coefficient count
   std::string clamp_open, clamp_close;               // around t
+  bool wgsl = false;                                 // `fn f(a: T) -> f32`, `var`/`let`
+  std::string inline_keyword;                        // C++: "inline "
+
+  std::string parameter(bool integer, const std::string& name) const {
+    const std::string& type = integer ? int_type : float_type;
+    return wgsl ? name + ": " + type : type + " " + name;
+  }
+  std::string signature(const std::string& name, const std::string& parameters) const {
+    return wgsl ? "fn " + name + "(" + parameters + ") -> f32 {\n" : inline_keyword + "float " + name + "(" + parameters + ") {\n";
+  }
+  // A local: `int i` / `var i: i32` when it changes, `float s` / `let s: f32` when not.
+  std::string local(bool integer, bool changes, const std::string& name) const {
+    return wgsl ? std::string(changes ? "var " : "let ") + parameter(integer, name) : parameter(integer, name);
+  }
 };
 
 NeedletSpelling spelling(Language language) {
   switch (language) {
-    case Language::kCpp: return {".h", "inline ", "const float beta[%N]", "const float x[3]", "std::fmin(std::fmax(", ", -1.0f), 1.0f)"};
-    case Language::kGlsl: return {".glsl", "", "in float beta[%N]", "vec3 x", "clamp(", ", -1.0f, 1.0f)"};
-    case Language::kHlsl: return {".hlsl", "", "float beta[%N]", "float3 x", "clamp(", ", -1.0f, 1.0f)"};
-    case Language::kWgsl: break;
+    case Language::kCpp: return {".h", "int", "float", "const float beta[%N]", "const float x[3]", "std::fmin(std::fmax(", ", -1.0f), 1.0f)", false, "inline "};
+    case Language::kGlsl: return {".glsl", "int", "float", "in float beta[%N]", "vec3 x", "clamp(", ", -1.0f, 1.0f)", false, ""};
+    case Language::kHlsl: return {".hlsl", "int", "float", "float beta[%N]", "float3 x", "clamp(", ", -1.0f, 1.0f)", false, ""};
+    case Language::kWgsl: return {".wgsl", "i32", "f32", "beta: array<f32, %N>", "x: vec3<f32>", "clamp(", ", -1.0f, 1.0f)", true, ""};
   }
   throw std::invalid_argument("no needlet printer for this language");
 }
@@ -55,7 +69,7 @@ DataLayout layout(const frames::NeedletFrame& frame, int table_size) {
 }  // namespace
 
 const std::vector<Language>& needlet_lut_languages() {
-  static const std::vector<Language> languages = {Language::kCpp, Language::kGlsl, Language::kHlsl};
+  static const std::vector<Language> languages = {Language::kCpp, Language::kGlsl, Language::kHlsl, Language::kWgsl};
   return languages;
 }
 
@@ -106,6 +120,9 @@ EmittedFile emit_needlet_lut(const frames::NeedletFrame& frame, Language languag
   if (!valid_prefix(o.prefix, why)) throw std::invalid_argument("prefix: " + why);
   if (o.table_size < runtime::kMinNeedletTableSize || o.table_size > runtime::kMaxNeedletTableSize)
     throw std::invalid_argument("table size must be " + std::to_string(runtime::kMinNeedletTableSize) + ".." + std::to_string(runtime::kMaxNeedletTableSize));
+  if (o.storage_set < 0 || o.storage_set > runtime::kMaxStorageSet || o.storage_binding < 0 || o.storage_binding > runtime::kMaxStorageBinding)
+    throw std::invalid_argument("storage set must be 0.." + std::to_string(runtime::kMaxStorageSet) + " and binding 0.." +
+                                std::to_string(runtime::kMaxStorageBinding));
   const NeedletSpelling s = spelling(language);
   const std::string& p = o.prefix;
   const int size = o.table_size, levels = static_cast<int>(frame.levels().size());
@@ -157,51 +174,69 @@ EmittedFile emit_needlet_lut(const frames::NeedletFrame& frame, Language languag
   } else {
     // Shaders read the numbers from a storage buffer (a constant array this size costs drivers
     // minutes to compile): the application uploads the file `zhf needlets emit --data` writes.
-    const std::string set = upper(p) + "_SET", binding = upper(p) + "_BINDING";
-    out << "// The application binds the " << d.total << " floats (zhf needlets emit --data) as a storage buffer at\n"
-        << "// " << set << " / " << binding << " (default 0 / 0; define them before including this file).\n"
-        << "#ifndef " << set << "\n#define " << set << " 0\n#endif\n"
-        << "#ifndef " << binding << "\n#define " << binding << " 0\n#endif\n";
-    if (language == Language::kGlsl)
-      out << "layout(std430, set = " << set << ", binding = " << binding << ") readonly buffer " << p << "_buffer { float " << data
-          << "[]; };\n\n";
-    else
-      out << "[[vk::binding(" << binding << ", " << set << ")]] StructuredBuffer<float> " << data << ";\n\n";
+    const std::string set_value = std::to_string(o.storage_set), binding_value = std::to_string(o.storage_binding);
+    if (s.wgsl) {
+      // WGSL has no preprocessor: the group and binding are fixed here.
+      out << "// The application binds the " << d.total << " floats (zhf needlets emit --data) as a storage buffer at\n"
+          << "// group " << set_value << ", binding " << binding_value << " (zhf needlets emit --set, --binding).\n"
+          << "@group(" << set_value << ") @binding(" << binding_value << ") var<storage, read> " << data << ": array<f32>;\n\n";
+    } else {
+      const std::string set = upper(p) + "_SET", binding = upper(p) + "_BINDING";
+      out << "// The application binds the " << d.total << " floats (zhf needlets emit --data) as a storage buffer at\n"
+          << "// " << set << " / " << binding << " (default " << set_value << " / " << binding_value
+          << "; define them before including this file).\n"
+          << "#ifndef " << set << "\n#define " << set << " " << set_value << "\n#endif\n"
+          << "#ifndef " << binding << "\n#define " << binding << " " << binding_value << "\n#endif\n";
+      if (language == Language::kGlsl)
+        out << "layout(std430, set = " << set << ", binding = " << binding << ") readonly buffer " << p << "_buffer { float " << data
+            << "[]; };\n\n";
+      else
+        out << "[[vk::binding(" << binding << ", " << set << ")]] StructuredBuffer<float> " << data << ";\n\n";
+    }
   }
+  // `if (c) x = v;`, braced in WGSL.
+  const auto assign_if = [&](const std::string& condition, const std::string& assignment) {
+    return "if (" + condition + ") " + (s.wgsl ? "{ " + assignment + "; }" : assignment + ";");
+  };
+  const std::string& to_int = s.int_type;
+  const std::string& to_float = s.float_type;
   const std::string half_last = std::to_string(0.5 * (size - 1)) + "f", tables = std::to_string(d.tables);
-  out << s.function << "float " << p << "_kernel(int level, float t) {\n"
-      << "  float u = (" << s.clamp_open << "t" << s.clamp_close << " + 1.0f) * " << half_last << ";\n";
+  out << s.signature(p + "_kernel", s.parameter(true, "level") + ", " + s.parameter(false, "t"))
+      << "  " << s.local(false, false, "u") << " = (" << s.clamp_open << "t" << s.clamp_close << " + 1.0f) * " << half_last << ";\n";
   if (linear) {
-    out << "  int i = int(u);\n"
-        << "  if (i > " << size - 2 << ") i = " << size - 2 << ";\n"
-        << "  float s = u - float(i);\n"
-        << "  int base = " << tables << " + level * " << size << " + i;\n"
-        << "  float a = " << data << "[base];\n"
+    out << "  " << s.local(true, true, "i") << " = " << to_int << "(u);\n"
+        << "  " << assign_if("i > " + std::to_string(size - 2), "i = " + std::to_string(size - 2)) << "\n"
+        << "  " << s.local(false, false, "s") << " = u - " << to_float << "(i);\n"
+        << "  " << s.local(true, false, "base") << " = " << tables << " + level * " << size << " + i;\n"
+        << "  " << s.local(false, false, "a") << " = " << data << "[base];\n"
         << "  return a + s * (" << data << "[base + 1] - a);\n";
   } else {
-    out << "  int c = int(u + 0.5f);\n"
-        << "  if (c < 1) c = 1;\n"
-        << "  if (c > " << size - 2 << ") c = " << size - 2 << ";\n"
-        << "  float s = u - float(c);\n"
-        << "  int base = " << tables << " + level * " << size << " + c;\n"
+    out << "  " << s.local(true, true, "c") << " = " << to_int << "(u + 0.5f);\n"
+        << "  " << assign_if("c < 1", "c = 1") << "\n"
+        << "  " << assign_if("c > " + std::to_string(size - 2), "c = " + std::to_string(size - 2)) << "\n"
+        << "  " << s.local(false, false, "s") << " = u - " << to_float << "(c);\n"
+        << "  " << s.local(true, false, "base") << " = " << tables << " + level * " << size << " + c;\n"
         << "  return " << data << "[base - 1] * s * (s - 1.0f) * 0.5f + " << data << "[base] * (1.0f - s) * (1.0f + s) + " << data
         << "[base + 1] * s * (s + 1.0f) * 0.5f;\n";
   }
   out << "}\n\n";
   // The level boundaries as a chain of comparisons: a few integers need no array.
-  out << s.function << "float " << p << "_eval(" << spell(s.beta_parameter, frame.size()) << ", " << s.direction_parameter << ") {\n"
-      << "  float sum = 0.0f;\n"
-      << "  int level = 0;\n"
-      << "  int next = " << (levels > 1 ? frame.levels()[1].offset : frame.size()) << ";\n"
-      << "  for (int k = 0; k < " << frame.size() << "; ++k) {\n";
+  out << s.signature(p + "_eval", spell(s.beta_parameter, frame.size()) + ", " + s.direction_parameter)
+      << "  " << s.local(false, true, "sum") << " = 0.0f;\n"
+      << "  " << s.local(true, true, "level") << " = 0;\n"
+      << "  " << s.local(true, true, "next") << " = " << (levels > 1 ? frame.levels()[1].offset : frame.size()) << ";\n"
+      << "  for (" << s.local(true, true, "k") << " = 0; k < " << frame.size() << "; " << (s.wgsl ? "k++" : "++k") << ") {\n";
   if (levels > 1) {
-    out << "    if (k == next) {\n      ++level;\n";
+    out << "    if (k == next) {\n      " << (s.wgsl ? "level++;" : "++level;") << "\n";
     for (int a = 1; a < levels; ++a)
-      out << "      " << (a > 1 ? "else " : "") << "if (level == " << a << ") next = " << (a + 1 < levels ? frame.levels()[a + 1].offset : frame.size())
-          << ";\n";
+      out << "      " << (a > 1 ? "else " : "")
+          << assign_if("level == " + std::to_string(a),
+                       "next = " + std::to_string(a + 1 < levels ? frame.levels()[a + 1].offset : frame.size()))
+          << "\n";
     out << "    }\n";
   }
-  out << "    float t = x[0] * " << data << "[3 * k] + x[1] * " << data << "[3 * k + 1] + x[2] * " << data << "[3 * k + 2];\n"
+  out << "    " << s.local(false, false, "t") << " = x[0] * " << data << "[3 * k] + x[1] * " << data << "[3 * k + 1] + x[2] * " << data
+      << "[3 * k + 2];\n"
       << "    sum += beta[k] * " << data << "[" << d.scales << " + k] * " << p << "_kernel(level, t);\n"
       << "  }\n"
       << "  return sum;\n"

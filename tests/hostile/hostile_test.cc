@@ -360,6 +360,9 @@ TEST(Hostile, NothingIsInjectedIntoEmittedSource) {
   refused("needlets emit --prefix with a newline", box,
           {"needlets", "emit", "--lmax", "3", "--lang", "glsl", "--prefix", "a\n#error p", "--out", box.path("n.glsl")}, 2,
           "--prefix: must be an identifier");
+  refused("needlets emit --binding out of range", box,
+          {"needlets", "emit", "--lmax", "3", "--lang", "wgsl", "--binding", "1000", "--out", box.path("n.wgsl")}, 2,
+          "--binding: must be 0..999");
   succeeded("needlets emit --out with a newline", box,
             {"needlets", "emit", "--lmax", "3", "--size", "16", "--lang", "cpp", "--out", box.path("n\n#error x.h")});
   EXPECT_TRUE(no_injected_line(read_text(box.path("n\n#error x.h"))));

@@ -1,13 +1,16 @@
-// The emitted needlet evaluators (codegen/needlet_lut.h): compiled and run in C++, GLSL and HLSL
-// (Vulkan) against their CPU mirror by verify_needlet_lut; the table error falling with the size;
+// The emitted needlet evaluators (codegen/needlet_lut.h): compiled and run in C++, GLSL, HLSL and
+// WGSL (Vulkan) against their CPU mirror by verify_needlet_lut; the table error falling with the size;
 // names and provenance that could break out of the source refused or escaped.
 #include <stdexcept>
+#include <utility>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "test_support.h"
 #include "zhf/codegen/needlet_lut.h"
+#include "zhf/runtime/limits.h"
 #include "zhf/runtime/tolerances.h"
 #include "zhf/verify/needlets.h"
 
@@ -26,6 +29,7 @@ TEST(NeedletLut, EveryLanguageMatchesItsMirrorAndTablesConverge) {
       lut.command = "needlet_lut_test";
       verify::NeedletLutVerify v;
       v.directions = 256;
+      v.naga_wasm = test::source_path("tools/node/node_modules/naga-wasm");
       const std::vector<verify::NeedletLutResult> results = verify::verify_needlet_lut(frame, lut, v);
       ASSERT_EQ(results.size(), codegen::needlet_lut_languages().size());
       for (const verify::NeedletLutResult& r : results) {
@@ -57,8 +61,21 @@ TEST(NeedletLut, NamesAreIdentifiersAndProvenanceIsEscaped) {
     const std::string text = codegen::emit_needlet_lut(frame, language, lut).text;
     EXPECT_EQ(text.find("\n#error"), std::string::npos) << codegen::language_name(language);
     EXPECT_EQ(text.find("\\\n"), std::string::npos) << codegen::language_name(language);
-    EXPECT_NE(text.find("float probe_lighting_eval("), std::string::npos) << codegen::language_name(language);
+    EXPECT_NE(text.find(" probe_lighting_eval("), std::string::npos) << codegen::language_name(language);
   }
+  // WGSL has no preprocessor: the data buffer's group and binding are printed as given, in range.
+  lut.storage_set = 2;
+  lut.storage_binding = 17;
+  EXPECT_NE(codegen::emit_needlet_lut(frame, codegen::Language::kWgsl, lut).text.find("@group(2) @binding(17) var<storage, read> probe_lighting_data"),
+            std::string::npos);
+  EXPECT_NE(codegen::emit_needlet_lut(frame, codegen::Language::kGlsl, lut).text.find("#define PROBE_LIGHTING_BINDING 17\n"), std::string::npos);
+  for (const auto& [set, binding] : {std::pair{-1, 0}, std::pair{runtime::kMaxStorageSet + 1, 0}, std::pair{0, -1},
+                                     std::pair{0, runtime::kMaxStorageBinding + 1}}) {
+    lut.storage_set = set;
+    lut.storage_binding = binding;
+    EXPECT_THROW(codegen::emit_needlet_lut(frame, codegen::Language::kWgsl, lut), std::invalid_argument) << set << " " << binding;
+  }
+  lut.storage_set = lut.storage_binding = 0;
   lut.table_size = 2;
   EXPECT_THROW(codegen::emit_needlet_lut(frame, codegen::Language::kCpp, lut), std::invalid_argument);
 }

@@ -115,43 +115,59 @@ std::vector<double> run_cpp(const std::string& dir, const std::string& header, c
   return got;
 }
 
-// The evaluator's data buffer goes at binding 3, after the wrapper's three.
-std::string shader_wrapper(bool glsl, const std::string& kernels, const std::string& prefix, std::size_t count) {
+// The evaluator's data buffer goes at binding kDataBinding, after the wrapper's three.
+constexpr int kDataBinding = 3;
+
+std::string shader_wrapper(ShaderFront front, const std::string& kernels, const std::string& prefix, std::size_t count) {
   std::ostringstream s;
-  const std::string n = std::to_string(count);
-  std::string binding;
-  for (char ch : prefix) binding += (ch >= 'a' && ch <= 'z') ? static_cast<char>(ch - 'a' + 'A') : ch;
-  s << "#define " << binding << "_BINDING 3\n";
-  if (glsl) {
-    s.str("");
-    s << "#version 450\n#define " << binding << "_BINDING 3\nlayout(local_size_x = 64) in;\n"
-      << "layout(std430, set = 0, binding = 0) readonly buffer Beta { float beta_in[]; };\n"
-      << "layout(std430, set = 0, binding = 1) readonly buffer Directions { float directions[]; };\n"
-      << "layout(std430, set = 0, binding = 2) writeonly buffer Results { float results[]; };\n"
-      << "layout(push_constant) uniform Params { uint count; } params;\n\n"
-      << kernels << "\nvoid main() {\n  uint i = gl_GlobalInvocationID.x;\n"
-      << "  if (i >= params.count) return;\n"
-      << "  float beta[" << n << "];\n  for (int k = 0; k < " << n << "; ++k) beta[k] = beta_in[k];\n"
-      << "  vec3 x = vec3(directions[3u * i], directions[3u * i + 1u], directions[3u * i + 2u]);\n"
-      << "  results[i] = " << prefix << "_eval(beta, x);\n}\n";
-  } else {
-    s << "struct Params { uint count; };\n[[vk::push_constant]] ConstantBuffer<Params> params;\n"
-      << "[[vk::binding(0, 0)]] StructuredBuffer<float> beta_in;\n"
-      << "[[vk::binding(1, 0)]] StructuredBuffer<float> directions;\n"
-      << "[[vk::binding(2, 0)]] RWStructuredBuffer<float> results;\n\n"
-      << kernels << "\n[numthreads(64, 1, 1)]\nvoid main(uint3 id : SV_DispatchThreadID) {\n  uint i = id.x;\n"
-      << "  if (i >= params.count) return;\n"
-      << "  float beta[" << n << "];\n  for (int k = 0; k < " << n << "; ++k) beta[k] = beta_in[k];\n"
-      << "  float3 x = float3(directions[3u * i], directions[3u * i + 1u], directions[3u * i + 2u]);\n"
-      << "  results[i] = " << prefix << "_eval(beta, x);\n}\n";
+  const std::string n = std::to_string(count), call = prefix + "_eval(beta, x)";
+  switch (front) {
+    case ShaderFront::kGlsl:
+      s << "#version 450\nlayout(local_size_x = 64) in;\n"
+        << "layout(std430, set = 0, binding = 0) readonly buffer Beta { float beta_in[]; };\n"
+        << "layout(std430, set = 0, binding = 1) readonly buffer Directions { float directions[]; };\n"
+        << "layout(std430, set = 0, binding = 2) writeonly buffer Results { float results[]; };\n"
+        << "layout(push_constant) uniform Params { uint count; } params;\n\n"
+        << kernels << "\nvoid main() {\n  uint i = gl_GlobalInvocationID.x;\n"
+        << "  if (i >= params.count) return;\n"
+        << "  float beta[" << n << "];\n  for (int k = 0; k < " << n << "; ++k) beta[k] = beta_in[k];\n"
+        << "  vec3 x = vec3(directions[3u * i], directions[3u * i + 1u], directions[3u * i + 2u]);\n"
+        << "  results[i] = " << call << ";\n}\n";
+      break;
+    case ShaderFront::kHlsl:
+      s << "struct Params { uint count; };\n[[vk::push_constant]] ConstantBuffer<Params> params;\n"
+        << "[[vk::binding(0, 0)]] StructuredBuffer<float> beta_in;\n"
+        << "[[vk::binding(1, 0)]] StructuredBuffer<float> directions;\n"
+        << "[[vk::binding(2, 0)]] RWStructuredBuffer<float> results;\n\n"
+        << kernels << "\n[numthreads(64, 1, 1)]\nvoid main(uint3 id : SV_DispatchThreadID) {\n  uint i = id.x;\n"
+        << "  if (i >= params.count) return;\n"
+        << "  float beta[" << n << "];\n  for (int k = 0; k < " << n << "; ++k) beta[k] = beta_in[k];\n"
+        << "  float3 x = float3(directions[3u * i], directions[3u * i + 1u], directions[3u * i + 2u]);\n"
+        << "  results[i] = " << call << ";\n}\n";
+      break;
+    case ShaderFront::kWgsl:
+      s << "struct Params { count: u32 }\nvar<immediate> params: Params;\n"
+        << "@group(0) @binding(0) var<storage, read> beta_in: array<f32>;\n"
+        << "@group(0) @binding(1) var<storage, read> directions: array<f32>;\n"
+        << "@group(0) @binding(2) var<storage, read_write> results: array<f32>;\n\n"
+        << kernels << "\n@compute @workgroup_size(64)\nfn main(@builtin(global_invocation_id) id: vec3<u32>) {\n  let i = id.x;\n"
+        << "  if (i >= params.count) { return; }\n"
+        << "  var beta: array<f32, " << n << ">;\n  for (var k = 0u; k < " << n << "u; k++) { beta[k] = beta_in[k]; }\n"
+        << "  let x = vec3<f32>(directions[3u * i], directions[3u * i + 1u], directions[3u * i + 2u]);\n"
+        << "  results[i] = " << call << ";\n}\n";
+      break;
   }
   return s.str();
 }
 
-std::vector<double> run_shader(bool glsl, const std::string& dir, const std::string& kernels, const Case& c, const std::string& prefix,
-                               const std::vector<float>& data, VulkanDevice& device) {
-  const std::vector<std::uint32_t> words =
-      compile_spirv(glsl ? glsl_dialect() : hlsl_dialect(), dir, shader_wrapper(glsl, kernels, prefix, c.beta.size()));
+ShaderDialect dialect(Language language) {
+  return language == Language::kGlsl ? glsl_dialect() : language == Language::kHlsl ? hlsl_dialect() : wgsl_dialect();
+}
+
+std::vector<double> run_shader(Language language, const std::string& dir, const std::string& kernels, const Case& c, const std::string& prefix,
+                               const std::vector<float>& data, VulkanDevice& device, const std::string& naga_wasm) {
+  const ShaderDialect d = dialect(language);
+  const std::vector<std::uint32_t> words = compile_spirv(d, dir, shader_wrapper(d.front, kernels, prefix, c.beta.size()), naga_wasm);
   std::vector<std::vector<std::uint8_t>> buffers = {as_floats(c.beta), as_floats(flat_directions(c)),
                                                      std::vector<std::uint8_t>(c.directions.size() * sizeof(float), 0),
                                                      std::vector<std::uint8_t>(data.size() * sizeof(float))};
@@ -173,8 +189,11 @@ std::vector<double> run_shader(bool glsl, const std::string& dir, const std::str
 
 }  // namespace
 
-std::vector<NeedletLutResult> verify_needlet_lut(const frames::NeedletFrame& frame, const codegen::NeedletLutOptions& lut,
+std::vector<NeedletLutResult> verify_needlet_lut(const frames::NeedletFrame& frame, const codegen::NeedletLutOptions& requested,
                                                  const NeedletLutVerify& options) {
+  codegen::NeedletLutOptions lut = requested;  // the shaders' data buffer where the wrapper leaves room
+  lut.storage_set = 0;
+  lut.storage_binding = kDataBinding;
   const Case c = make_case(frame, lut, options.directions);
   double table_error = 0, peak = 0, magnitude = 0;
   for (std::size_t i = 0; i < c.exact.size(); ++i) {
@@ -202,7 +221,7 @@ std::vector<NeedletLutResult> verify_needlet_lut(const frames::NeedletFrame& fra
       } else {
         if (!device && no_device.empty()) device = VulkanDevice::open(no_device);
         if (!device) throw RunFailure("no Vulkan device: " + no_device);
-        got = run_shader(language == Language::kGlsl, dir, file.text, c, lut.prefix, codegen::needlet_lut_data(frame, lut.table_size), *device);
+        got = run_shader(language, dir, file.text, c, lut.prefix, codegen::needlet_lut_data(frame, lut.table_size), *device, options.naga_wasm);
       }
       for (std::size_t i = 0; i < got.size(); ++i) {
         const double error = std::abs(got[i] - c.mirror[i]) / magnitude;

@@ -71,6 +71,9 @@ inline constexpr double kMinDilation = 1.05, kMaxDilation = 64;
 inline constexpr int kMaxNeedletBand = 4096;
 inline constexpr int kMaxNeedletFrameBand = 63;
 inline constexpr int kMinNeedletTableSize = 3, kMaxNeedletTableSize = 1 << 20;
+// The descriptor set (WebGPU: bind group) and binding a shader evaluator's data is read from:
+// Vulkan guarantees only 4 sets, WebGPU 4 groups of up to 1000 bindings.
+inline constexpr int kMaxStorageSet = 3, kMaxStorageBinding = 999;
 inline constexpr int kMaxProfileBand = 63;
 
 // candidates --json up to this order: its 174242 directions take about 400 MiB to write (order 20

@@ -1,7 +1,8 @@
 // zhf needlets verify: the emitted needlet evaluators (codegen/needlet_lut.h) compiled and run —
-// C++ with the host compiler, GLSL and HLSL through glslang to SPIR-V on a Vulkan device — at
-// random directions, against the CPU mirror (the same tables read in double) and against the
-// exact expansion (each kernel by its Legendre series), which measures the tables' own error.
+// C++ with the host compiler, GLSL and HLSL through glslang and WGSL through naga to SPIR-V on a
+// Vulkan device — at random directions, against the CPU mirror (the same tables read in double)
+// and against the exact expansion (each kernel by its Legendre series), which measures the
+// tables' own error.
 #pragma once
 
 #include <string>
@@ -28,7 +29,8 @@ struct NeedletLutResult {
 struct NeedletLutVerify {
   std::vector<codegen::Language> languages = codegen::needlet_lut_languages();
   int directions = 512;
-  std::string compiler;  // as for zhf verify
+  std::string compiler;   // as for zhf verify
+  std::string naga_wasm;  // the naga-wasm package directory (WGSL), as for zhf verify
 };
 
 // Shader languages are reported as failed with the reason when no Vulkan device can run them.
