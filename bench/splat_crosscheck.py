@@ -1,11 +1,13 @@
 """zhf splat against @playcanvas/splat-transform on the same scene: the rotation splat-transform
 applied (fitted from its positions), then zhf splat with that matrix, compared field by field:
-positions, orientations (up to sign) and SH per band, the largest absolute difference of each.
+positions, orientations (up to sign), log-scales, colour, opacity and SH per band, the largest
+absolute difference of each. Both write .ply, whatever the scene's format.
 
-    /usr/bin/python3 bench/splat_crosscheck.py SCENE.ply SPLAT_TRANSFORM ZHF [--rotate 10,20,30]
+    /usr/bin/python3 bench/splat_crosscheck.py SCENE SPLAT_TRANSFORM ZHF [--rotate 10,20,30]
 
-SCENE.ply: binary 3DGS scene (examples/make_splats.py); SPLAT_TRANSFORM: its executable (npm
-install @playcanvas/splat-transform); ZHF: the zhf binary.
+SCENE: a binary 3DGS .ply (examples/make_splats.py) or a .splat (zhf splat --in X.ply --out
+X.splat); SPLAT_TRANSFORM: its executable (npm install @playcanvas/splat-transform); ZHF: the zhf
+binary.
 """
 
 import argparse
@@ -28,6 +30,13 @@ def read_ply(path):
     return {name: records[name].astype(np.float64) for name, _ in dtype}
 
 
+def read_splat(path):
+    """antimatter15's .splat: 32 bytes a splat; only the positions are needed here."""
+    records = np.fromfile(path, dtype=np.uint8).reshape(-1, 32)
+    xyz = records[:, :12].copy().view("<f4").astype(np.float64)
+    return {"x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2]}
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("scene")
@@ -38,7 +47,8 @@ def main():
     with tempfile.TemporaryDirectory() as work:
         peer_out, zhf_out = f"{work}/peer.ply", f"{work}/zhf.ply"
         subprocess.run([args.splat_transform, args.scene, "-r", args.rotate, peer_out], check=True, capture_output=True)
-        a, b = read_ply(args.scene), read_ply(peer_out)
+        a = read_splat(args.scene) if args.scene.endswith(".splat") else read_ply(args.scene)
+        b = read_ply(peer_out)
         p_in = np.stack([a["x"], a["y"], a["z"]], axis=1)
         p_out = np.stack([b["x"], b["y"], b["z"]], axis=1)
         r = np.linalg.lstsq(p_in, p_out, rcond=None)[0].T  # p_out = R p_in
@@ -58,7 +68,11 @@ def main():
     sign = np.sign(np.sum(qc * qb, axis=1, keepdims=True))
     print(f"| orientations (unit, up to sign) | {np.abs(qc - sign * qb).max():.3g} |")
     print(f"| log-scales | {max(np.abs(c[f'scale_{i}'] - b[f'scale_{i}']).max() for i in range(3)):.3g} |")
+    print(f"| colour (f_dc) | {max(np.abs(c[f'f_dc_{i}'] - b[f'f_dc_{i}']).max() for i in range(3)):.3g} |")
+    print(f"| opacity | {np.abs(c['opacity'] - b['opacity']).max():.3g} |")
     for band, (first, last) in enumerate([(0, 3), (3, 8), (8, 15)], start=1):
+        if f"f_rest_{15 * 2 + last - 1}" not in c:
+            break
         diff = max(np.abs(c[f"f_rest_{15 * ch + j}"] - b[f"f_rest_{15 * ch + j}"]).max() for ch in range(3) for j in range(first, last))
         print(f"| SH band {band} | {diff:.3g} |")
 

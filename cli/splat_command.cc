@@ -1,6 +1,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 #include <unistd.h>
 
@@ -19,7 +20,7 @@ namespace {
 struct SplatOptions {
   std::string in, out;
   TransformOptions transform;
-  std::string translate, scale = "1", convention = "3dgs", threads = "0";
+  std::string translate, scale = "1", convention = "3dgs", threads = "0", format, in_format;
   bool identity = false, quiet = false;
 };
 
@@ -33,6 +34,13 @@ std::array<double, 3> translation(const std::string& text) {
   }
 }
 
+std::optional<splat::FileFormat> format_option(const std::string& option, const std::string& name) {
+  if (name.empty()) return std::nullopt;
+  splat::FileFormat format;
+  if (!splat::parse_file_format(name, format)) throw UsageError(option + ": '" + runtime::excerpt(name) + "' is not ply or splat");
+  return format;
+}
+
 int run_splat(const SplatOptions& o) {
   const runtime::Convention* convention = runtime::find_convention(o.convention);
   if (!convention)
@@ -43,16 +51,27 @@ int run_splat(const SplatOptions& o) {
   t.translation = translation(o.translate);
   t.convention = convention;
   const int threads = static_cast<int>(integer_option("--threads", o.threads, 0, runtime::kMaxThreads));
+  const splat::Formats formats{format_option("--in-format", o.in_format), format_option("--format", o.format)};
   const bool bar = !o.quiet && isatty(STDERR_FILENO);
   const splat::Summary summary = splat::transform_file(o.in, o.out, t, threads, [bar](std::uint64_t done, std::uint64_t total) {
     if (bar) std::fprintf(stderr, "\rzhf splat: %3d%% (%llu of %llu splats)", int(100.0 * done / total), (unsigned long long)done,
                           (unsigned long long)total);
-  });
+  }, formats);
   if (bar) std::fprintf(stderr, "\n");
-  if (!o.quiet)
-    std::printf("transformed %llu splats (%s, SH degree %s) into %s\n", (unsigned long long)summary.splats,
-                summary.ascii ? "ascii" : "binary", summary.sh_degree < 0 ? "none" : std::to_string(summary.sh_degree).c_str(),
-                o.out.c_str());
+  // What a lossy format could not hold is said even with --quiet.
+  if (summary.dropped_degree > 0)
+    std::fprintf(stderr, "zhf splat: %s: .%s keeps SH degree 0 only; degrees 1..%d were dropped\n", io::excerpt(o.out).c_str(),
+                 splat::file_format_name(summary.out), summary.dropped_degree);
+  if (summary.clamped > 0)
+    std::fprintf(stderr, "zhf splat: %s: %llu values beyond the .%s format's range were written as its nearest\n",
+                 io::excerpt(o.out).c_str(), (unsigned long long)summary.clamped, splat::file_format_name(summary.out));
+  if (!o.quiet) {
+    const std::string from = summary.in == splat::FileFormat::kPly ? (summary.ascii ? "ascii .ply" : "binary .ply")
+                                                                   : std::string(".") + splat::file_format_name(summary.in);
+    std::printf("transformed %llu splats (%s, SH degree %s) into %s (.%s)\n", (unsigned long long)summary.splats, from.c_str(),
+                summary.sh_degree < 0 ? "none" : std::to_string(summary.sh_degree).c_str(), o.out.c_str(),
+                splat::file_format_name(summary.out));
+  }
   return kExitOk;
 }
 
@@ -62,10 +81,12 @@ void add_splat_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<SplatOptions>();
   CLI::App* c = app.add_subcommand(
       "splat",
-      "Transform a 3D Gaussian Splatting scene (.ply): p' = s R p + t (rotate and scale about the origin, then translate), "
-      "orientations, normals, log-scales and SH colours with it; in the file's own axes");
-  c->add_option("--in", o->in, "The scene: binary little-endian or ASCII .ply")->required();
-  c->add_option("--out", o->out, "Write the transformed scene here (same format, columns and comments)")->required();
+      "Transform a 3D Gaussian Splatting scene (.ply, .splat): p' = s R p + t (rotate and scale about the origin, then translate), "
+      "orientations, normals, log-scales and SH colours with it; in the file's own axes; or convert it to another format");
+  c->add_option("--in", o->in, "The scene: binary little-endian or ASCII .ply, or .splat")->required();
+  c->add_option("--out", o->out, "Write the transformed scene here (.ply to .ply: same format, columns and comments)")->required();
+  c->add_option("--format", o->format, "The output's format, ply or splat (default: --out's extension, else ply)");
+  c->add_option("--in-format", o->in_format, "The input's format, ply or splat (default: --in's extension, else ply)");
   add_transform_options(c, o->transform);
   c->add_flag("--identity", o->identity, "No rotation (with --translate or --scale alone)");
   c->add_option("--translate", o->translate, "x y z: added after rotating and scaling");

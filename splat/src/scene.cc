@@ -15,6 +15,8 @@
 #include <string_view>
 #include <vector>
 
+#include "formats.h"
+#include "splat_math.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/io/numbers.h"
@@ -23,7 +25,6 @@
 #include "zhf/runtime/finite.h"
 #include "zhf/runtime/orthogonal.h"
 #include "zhf/runtime/rotator.h"
-#include "zhf_kernels.h"
 
 namespace zhf::splat {
 namespace {
@@ -31,124 +32,6 @@ namespace {
 namespace ply = io::ply;
 using io::InputError;
 
-
-// Where the transformed properties are (indices into the header's properties; -1: absent).
-struct Layout {
-  std::array<int, 3> position{-1, -1, -1}, normal{-1, -1, -1}, dc{-1, -1, -1}, log_scale{-1, -1, -1};
-  std::array<int, 4> rotation{-1, -1, -1, -1};  // w, x, y, z
-  std::vector<int> rest;                         // f_rest_0..K-1, channel-major (K / 3 per channel)
-  int degree = -1;
-  std::vector<int> changed;  // every property a transform may change
-};
-
-// The named properties, all float or double: all present, or none (false).
-template <std::size_t K>
-bool group(const ply::Header& header, const std::array<const char*, K>& names, std::array<int, K>& out, const std::string& source) {
-  int present = 0;
-  for (std::size_t i = 0; i < K; ++i) {
-    out[i] = header.find(names[i]);
-    if (out[i] < 0) continue;
-    ++present;
-    if (!ply::is_float(header.properties[out[i]].type))
-      throw InputError(source + ": property " + names[i] + " is not float or double");
-  }
-  if (present != 0 && present != int(K))
-    throw InputError(source + ": property " + names[0] + " and its " + std::to_string(K - 1) + " companions must all be present, or none");
-  return present == int(K);
-}
-
-Layout layout_of(const ply::Header& header, const std::string& source) {
-  Layout layout;
-  if (!group<3>(header, {"x", "y", "z"}, layout.position, source)) throw InputError(source + ": no x, y, z properties");
-  group<3>(header, {"nx", "ny", "nz"}, layout.normal, source);
-  group<4>(header, {"rot_0", "rot_1", "rot_2", "rot_3"}, layout.rotation, source);
-  group<3>(header, {"scale_0", "scale_1", "scale_2"}, layout.log_scale, source);
-  const bool colour = group<3>(header, {"f_dc_0", "f_dc_1", "f_dc_2"}, layout.dc, source);
-  std::size_t rest = 0;
-  for (const ply::Property& p : header.properties) rest += p.name.rfind("f_rest_", 0) == 0;
-  if (rest != 0 && rest != 9 && rest != 24 && rest != 45)
-    throw InputError(source + ": " + std::to_string(rest) + " f_rest properties; SH degree 1, 2, 3 has 9, 24, 45");
-  if (rest > 0 && !colour) throw InputError(source + ": f_rest properties without f_dc_0..2");
-  for (std::size_t i = 0; i < rest; ++i) {
-    const std::string name = "f_rest_" + std::to_string(i);
-    const int index = header.find(name);
-    if (index < 0) throw InputError(source + ": " + std::to_string(rest) + " f_rest properties, but no " + name);
-    if (!ply::is_float(header.properties[index].type)) throw InputError(source + ": property " + name + " is not float or double");
-    layout.rest.push_back(index);
-  }
-  layout.degree = !colour ? -1 : rest == 0 ? 0 : rest == 9 ? 1 : rest == 24 ? 2 : 3;
-  for (int i : layout.position) layout.changed.push_back(i);
-  for (const auto* g : {&layout.normal, &layout.log_scale})
-    if ((*g)[0] >= 0) layout.changed.insert(layout.changed.end(), g->begin(), g->end());
-  if (layout.rotation[0] >= 0) layout.changed.insert(layout.changed.end(), layout.rotation.begin(), layout.rotation.end());
-  layout.changed.insert(layout.changed.end(), layout.rest.begin(), layout.rest.end());
-  return layout;
-}
-
-// One splat's transform, on the values of all its properties.
-class SplatMath {
- public:
-  // splats: how many there are (three colour vectors each decide how the SH is applied).
-  SplatMath(const Layout& layout, const Transform& t, std::uint64_t splats) : layout_(layout), t_(t) {
-    const runtime::Matrix3& r = t.r;
-    reflection_ = runtime::determinant(r.data()) < 0;
-    runtime::Matrix3 proper = r;
-    if (reflection_)
-      for (double& x : proper) x = -x;
-    turn_ = runtime::quaternion_from_rotation(proper);
-    log_scale_ = std::log(t.scale);
-    if (layout.degree >= 1) {
-      const runtime::Convention& convention = t.convention ? *t.convention : *runtime::find_convention("3dgs");
-      const runtime::Matrix3 q = convention.rotation_in_zhf_terms(r);
-      rotator_ = std::make_unique<runtime::Rotator<double>>(
-          runtime::Rotator<double>::with(gen::fastest_kernels<double>(layout.degree + 1)));
-      sh_ = std::make_unique<runtime::OrthogonalTransform<double>>(*rotator_, q.data());
-      prepared_.emplace(sh_->prepare(3 * splats));
-    }
-  }
-
-  void apply(double* v) const {
-    const runtime::Matrix3& r = t_.r;
-    const auto& p = layout_.position;
-    const double x = v[p[0]], y = v[p[1]], z = v[p[2]];
-    for (int i = 0; i < 3; ++i)
-      v[p[i]] = t_.scale * (r[3 * i] * x + r[3 * i + 1] * y + r[3 * i + 2] * z) + t_.translation[i];
-    const auto& n = layout_.normal;
-    if (n[0] >= 0) {
-      const double a = v[n[0]], b = v[n[1]], c = v[n[2]];
-      for (int i = 0; i < 3; ++i) v[n[i]] = r[3 * i] * a + r[3 * i + 1] * b + r[3 * i + 2] * c;
-    }
-    const auto& q = layout_.rotation;
-    if (q[0] >= 0) {
-      // Q' = R Q, or for a reflection R Q F = (-R) Q Rz(pi): the quaternion of Rz(pi) is (0, 0, 0, 1).
-      std::array<double, 4> turned = runtime::quaternion_product(turn_, {v[q[0]], v[q[1]], v[q[2]], v[q[3]]});
-      if (reflection_) turned = runtime::quaternion_product(turned, {0, 0, 0, 1});
-      for (int i = 0; i < 4; ++i) v[q[i]] = turned[i];
-    }
-    if (layout_.log_scale[0] >= 0)
-      for (int i : layout_.log_scale) v[i] += log_scale_;
-    if (prepared_) {
-      const int n2 = (layout_.degree + 1) * (layout_.degree + 1), per = n2 - 1;
-      double in[16], out[16];
-      for (int c = 0; c < 3; ++c) {
-        in[0] = v[layout_.dc[c]];
-        for (int j = 0; j < per; ++j) in[1 + j] = v[layout_.rest[c * per + j]];
-        prepared_->apply(in, out);
-        for (int j = 0; j < per; ++j) v[layout_.rest[c * per + j]] = out[1 + j];
-      }
-    }
-  }
-
- private:
-  const Layout& layout_;
-  const Transform& t_;
-  bool reflection_ = false;
-  std::array<double, 4> turn_{};
-  double log_scale_ = 0;
-  std::unique_ptr<runtime::Rotator<double>> rotator_;
-  std::unique_ptr<runtime::OrthogonalTransform<double>> sh_;
-  std::optional<runtime::OrthogonalTransform<double>::Prepared> prepared_;
-};
 
 // The first failing splat of a chunk, found by the workers; its message is made once, after.
 class FirstFailure {
@@ -364,9 +247,67 @@ void transform_ascii(std::istream& file, io::PendingFile& pending, const ply::He
 
 }  // namespace
 
+namespace {
+
+// Any pair of formats but .ply to .ply: through the canonical record, a chunk at a time.
+Summary convert(const std::string& in, const std::string& out, FileFormat from, FileFormat to, const Transform& transform,
+                int threads, const std::function<void(std::uint64_t, std::uint64_t)>& progress) {
+  const std::unique_ptr<SceneReader> reader = open_reader(from, in);
+  const ply::Header header = canonical_header(reader->degree(), reader->splats());
+  const Layout layout = layout_of(header, "canonical record");
+  const SplatMath math(layout, transform, reader->splats());
+  io::PendingFile pending(out);
+  const std::unique_ptr<SceneWriter> writer = open_writer(to, pending, reader->degree(), reader->splats());
+  const std::size_t size = header.properties.size();
+  std::vector<double> records;
+  for (std::uint64_t done = 0; done < reader->splats();) {
+    const std::uint64_t count = std::min(kChunkSplats, reader->splats() - done);
+    records.resize(count * size);
+    reader->read(done, count, records.data());
+    runtime::parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t s = begin; s < end; ++s) math.apply(&records[s * size]);
+    });
+    writer->write(count, records.data());
+    done += count;
+    io::throw_if_interrupted();
+    progress(done, reader->splats());
+  }
+  reader->finish();
+  pending.commit();
+  Summary summary{reader->splats(), reader->degree(), false, from, to};
+  if (writer->kept_degree(reader->degree()) < reader->degree()) summary.dropped_degree = reader->degree();
+  summary.clamped = writer->clamped();
+  return summary;
+}
+
+}  // namespace
+
+bool parse_file_format(const std::string& name, FileFormat& format) {
+  if (name == "ply") format = FileFormat::kPly;
+  else if (name == "splat") format = FileFormat::kSplat;
+  else return false;
+  return true;
+}
+
+const char* file_format_name(FileFormat format) { return format == FileFormat::kSplat ? "splat" : "ply"; }
+
+bool file_format_of(const std::string& path, FileFormat& format) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  if (extension.empty()) return false;
+  for (char& c : extension) c = static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
+  return parse_file_format(extension.substr(1), format);
+}
+
 Summary transform_file(const std::string& in, const std::string& out, const Transform& transform, int threads,
-                       const std::function<void(std::uint64_t, std::uint64_t)>& progress) {
+                       const std::function<void(std::uint64_t, std::uint64_t)>& progress, const Formats& formats) {
   if (!(transform.scale > 0) || !std::isfinite(transform.scale)) throw InputError("scale: must be a finite number above 0");
+  // A name without a known extension (a device, a pipe) is a .ply, the format zhf splat began with.
+  FileFormat from = FileFormat::kPly, to = FileFormat::kPly;
+  if (formats.in) from = *formats.in;
+  else file_format_of(in, from);
+  if (formats.out) to = *formats.out;
+  else file_format_of(out, to);
+  if (from != FileFormat::kPly || to != FileFormat::kPly) return convert(in, out, from, to, transform, threads, progress);
   std::ifstream file(in, std::ios::binary);
   if (!file) throw InputError(in + ": cannot open: " + std::strerror(errno));
   const ply::Header header = ply::read_header(file, in);

@@ -2,7 +2,9 @@
 // transformed by rotations and reflections with scale and translation. The oracle: the colour
 // (3DGS's own basis formula) seen from R d after equals the colour seen from d before; positions,
 // orientations and log-scales as stated; every other column, the comments and the types as
-// they were. Malformed files are refused with exit 3 and nothing written.
+// they were. Malformed files are refused with exit 3 and nothing written. .splat files: each byte
+// as the published layout says, read back exactly as written, transformed as their .ply is.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -18,6 +20,7 @@
 #include "test_support.h"
 #include "zhf/io/ply.h"
 #include "zhf/runtime/rotation.h"
+#include "zhf/runtime/sh_eval.h"
 #include "zhf/runtime/tolerances.h"
 #include "zhf/sh/random.h"
 #include "zhf/sh/rotation_matrix.h"
@@ -26,6 +29,7 @@ namespace zhf {
 namespace {
 
 namespace fs = std::filesystem;
+using namespace std::string_literals;
 using runtime::Matrix3;
 
 // Float32 storage: each value is rounded to float once on the way in and once on the way out.
@@ -251,6 +255,172 @@ TEST(Splat, MalformedScenesAreRefusedAndNothingIsWritten) {
     EXPECT_EQ(run.exit_code, 2) << options << ": " << run.err;
     EXPECT_NE(run.err.find(message), std::string::npos) << options << ": " << run.err;
   }
+}
+
+
+// antimatter15's .splat, 32 bytes a splat: position and linear scale as float32, colour and
+// alpha and the quaternion as bytes (the formulas written out here, independently of zhf).
+struct SplatRecord {
+  float position[3], scale[3];
+  unsigned char rgba[4], rot[4];
+};
+static_assert(sizeof(SplatRecord) == 32, "the .splat record");
+
+std::vector<SplatRecord> read_splats(const std::string& path) {
+  const std::string bytes = test::read_text(path);
+  std::vector<SplatRecord> out(bytes.size() / 32);
+  std::memcpy(out.data(), bytes.data(), out.size() * 32);
+  return out;
+}
+
+int expected_byte(double x) { return int(std::clamp(std::nearbyint(x), 0.0, 255.0)); }
+
+TEST(Splat, SplatFilesHoldThePublishedBytesAndReadBackExactly) {
+  const test::TempDir dir;
+  std::mt19937_64 rng(31);
+  Scene scene = random_scene(3, 70000, rng);  // more than one chunk
+  const std::string in = (dir / "in.ply").string(), splat = (dir / "out.splat").string(), back = (dir / "back.ply").string();
+  write_scene(scene, in, false);
+  test::RunResult run = test::run_zhf("splat --in '" + in + "' --out '" + splat + "' --identity --quiet --threads 2");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  // Lossy, and said so: the SH above degree 0, and colours beyond 0..255 (N(0, 1) f_dc reaches them).
+  EXPECT_NE(run.err.find("keeps SH degree 0 only; degrees 1..3 were dropped"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("values beyond the .splat format's range were written as its nearest"), std::string::npos) << run.err;
+  const std::vector<SplatRecord> records = read_splats(splat);
+  ASSERT_EQ(records.size(), scene.rows.size());
+  const double c0 = runtime::kInvSqrt4Pi;
+  for (std::size_t k = 0; k < records.size(); ++k) {
+    const std::vector<double>& row = scene.rows[k];
+    const SplatRecord& r = records[k];
+    const std::string at = "splat " + std::to_string(k);
+    for (int i = 0; i < 3; ++i) {
+      ASSERT_EQ(r.position[i], float(row[index_of(scene, "xyz"s.substr(i, 1))])) << at;
+      ASSERT_EQ(r.scale[i], float(std::exp(row[index_of(scene, "scale_" + std::to_string(i))]))) << at;
+      ASSERT_EQ(r.rgba[i], expected_byte(255 * (0.5 + c0 * row[index_of(scene, "f_dc_" + std::to_string(i))]))) << at;
+    }
+    ASSERT_EQ(r.rgba[3], expected_byte(255 / (1 + std::exp(-row[index_of(scene, "opacity")])))) << at;
+    double norm = 0;
+    for (int i = 0; i < 4; ++i) norm += row[index_of(scene, "rot_" + std::to_string(i))] * row[index_of(scene, "rot_" + std::to_string(i))];
+    for (int i = 0; i < 4; ++i)
+      ASSERT_EQ(r.rot[i], expected_byte(128 * row[index_of(scene, "rot_" + std::to_string(i))] / std::sqrt(norm) + 128)) << at;
+  }
+  // Read back: exactly the quantised values (the colour and alpha decoded, the quaternion as stored).
+  run = test::run_zhf("splat --in '" + splat + "' --out '" + back + "' --identity --quiet");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::ifstream file(back, std::ios::binary);
+  const io::ply::Header h = io::ply::read_header(file, back);
+  ASSERT_EQ(h.vertices, records.size());
+  std::vector<unsigned char> record(h.record_bytes);
+  for (std::size_t k = 0; k < records.size(); ++k) {
+    file.read(reinterpret_cast<char*>(record.data()), std::streamsize(record.size()));
+    const SplatRecord& r = records[k];
+    auto value = [&](const char* name) { return io::ply::read_binary(record.data(), h.properties[h.find(name)]); };
+    const std::string at = "splat " + std::to_string(k);
+    for (int i = 0; i < 3; ++i) {
+      ASSERT_EQ(value(("xyz"s.substr(i, 1)).c_str()), r.position[i]) << at;
+      ASSERT_EQ(value(("scale_" + std::to_string(i)).c_str()), float(std::log(double(r.scale[i])))) << at;
+      ASSERT_EQ(value(("f_dc_" + std::to_string(i)).c_str()), float((r.rgba[i] / 255.0 - 0.5) / c0)) << at;
+      ASSERT_EQ(value(("n" + "xyz"s.substr(i, 1)).c_str()), 0.0) << at;
+    }
+    const double alpha = std::clamp(r.rgba[3] / 255.0, 0.25 / 255, 254.75 / 255);
+    ASSERT_EQ(value("opacity"), float(std::log(alpha / (1 - alpha)))) << at;
+    for (int i = 0; i < 4; ++i) ASSERT_EQ(value(("rot_" + std::to_string(i)).c_str()), (r.rot[i] - 128.0) / 128) << at;
+  }
+  EXPECT_EQ(h.find("f_rest_0"), -1);
+}
+
+TEST(Splat, TransformingASplatFileMatchesTransformingItsPly) {
+  const test::TempDir dir;
+  std::mt19937_64 rng(32);
+  const std::string in = (dir / "in.ply").string(), splat = (dir / "in.splat").string();
+  write_scene(random_scene(0, 3000, rng), in, false);
+  const std::string turn = " --zyz '0.3 0.5 0.7' --scale 2 --translate '1 2 3' --quiet";
+  ASSERT_EQ(test::run_zhf("splat --in '" + in + "' --out '" + splat + "' --identity --quiet").exit_code, 0);
+  // .splat in, .splat out (by the extension) against .ply transformed, then converted.
+  ASSERT_EQ(test::run_zhf("splat --in '" + splat + "' --out '" + (dir / "a.splat").string() + "'" + turn).exit_code, 0);
+  ASSERT_EQ(test::run_zhf("splat --in '" + in + "' --out '" + (dir / "b.ply").string() + "'" + turn).exit_code, 0);
+  ASSERT_EQ(test::run_zhf("splat --in '" + (dir / "b.ply").string() + "' --out '" + (dir / "b.bin").string() + "' --format splat --identity --quiet")
+                .exit_code,
+            0);
+  const std::vector<SplatRecord> a = read_splats((dir / "a.splat").string()), b = read_splats((dir / "b.bin").string());
+  ASSERT_EQ(a.size(), 3000u);
+  ASSERT_EQ(b.size(), a.size());
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_EQ(a[k].position[i], b[k].position[i]) << "splat " << k;  // float positions rotate the same
+      EXPECT_NEAR(a[k].scale[i], b[k].scale[i], 1e-6 * b[k].scale[i]) << "splat " << k;
+    }
+    for (int i = 0; i < 4; ++i) {
+      EXPECT_EQ(a[k].rgba[i], b[k].rgba[i]) << "splat " << k;  // degree 0: rotation leaves colour alone
+      // The quaternion: rotated from its bytes, or from the float it came from: a step at most.
+      EXPECT_LE(std::abs(int(a[k].rot[i]) - int(b[k].rot[i])), 1) << "splat " << k << ", rot " << i;
+    }
+  }
+}
+
+TEST(Splat, MalformedSplatFilesAreRefusedAndNothingIsWritten) {
+  const test::TempDir dir;
+  SplatRecord good{{1, 2, 3}, {0.5f, 0.25f, 1}, {10, 20, 30, 200}, {255, 128, 128, 128}};
+  auto bytes = [](std::vector<SplatRecord> records) {
+    std::string s(records.size() * 32, '\0');
+    std::memcpy(s.data(), records.data(), s.size());
+    return s;
+  };
+  auto with = [&](auto change) {
+    SplatRecord r = good;
+    change(r);
+    return bytes({good, r});
+  };
+  std::mt19937_64 rng(33);
+  Scene no_opacity = random_scene(1, 2, rng);
+  const std::string no_opacity_path = (dir / "no_opacity.ply").string();
+  {
+    std::string text = header_text(no_opacity, false);
+    text.replace(text.find("property float opacity\n"), 23, "property float alpha\n");
+    test::write_text(no_opacity_path, text + std::string(2 * (no_opacity.names.size() + 1) * 4, '\0'));
+  }
+  Scene zero_turn = random_scene(0, 2, rng);
+  for (const char* q : {"rot_0", "rot_1", "rot_2", "rot_3"}) zero_turn.rows[1][index_of(zero_turn, q)] = 0;
+  const std::string zero_turn_path = (dir / "zero_turn.ply").string(), ascii_path = (dir / "ascii.ply").string();
+  write_scene(zero_turn, zero_turn_path, false);
+  write_scene(zero_turn, ascii_path, true);
+  struct Bad {
+    std::string in, content, message;  // content empty: `in` exists already
+  };
+  const std::vector<Bad> cases = {
+      {"short.splat", bytes({good}).substr(0, 31), "31 bytes: not a whole number of 32-byte splats"},
+      {"long.splat", bytes({good}) + "x", "33 bytes: not a whole number of 32-byte splats"},
+      {"nan.splat", with([](SplatRecord& r) { r.position[1] = NAN; }), "splat 1: y is nan"},
+      {"inf.splat", with([](SplatRecord& r) { r.position[2] = -INFINITY; }), "splat 1: z is -inf"},
+      {"inf_scale.splat", with([](SplatRecord& r) { r.scale[0] = INFINITY; }), "splat 1: scale_0 is inf"},
+      {"zero_scale.splat", with([](SplatRecord& r) { r.scale[1] = 0; }), "splat 1: scale_1 is 0, not above 0"},
+      {"negative_scale.splat", with([](SplatRecord& r) { r.scale[2] = -1; }), "splat 1: scale_2 is -1, not above 0"},
+      {"zero_turn.splat", with([](SplatRecord& r) { std::fill(r.rot, r.rot + 4, 128); }), "splat 1: rotation bytes all 128"},
+      {"missing.splat", "", "cannot open"},
+      {"dir.splat", "", "not a regular file"},
+      {"no_opacity.ply", "", "no property opacity: converting to another format needs it"},
+      {"zero_turn.ply", "", "splat 1: rot_0..3 are all zero"},
+      {"ascii.ply", "", "ASCII .ply converts to .ply only"},
+  };
+  fs::create_directory(dir / "dir.splat");
+  for (const Bad& bad : cases) {
+    const std::string in = (dir / bad.in).string();
+    if (!bad.content.empty()) test::write_text(in, bad.content);
+    const bool to_splat = bad.in.size() > 4 && bad.in.substr(bad.in.size() - 4) == ".ply";
+    const std::string out = (dir / (to_splat ? "out.splat" : "out.ply")).string();
+    const test::RunResult run = test::run_zhf("splat --in '" + in + "' --out '" + out + "' --zyz '1 2 3' --quiet");
+    EXPECT_EQ(run.exit_code, 3) << bad.message << ": " << run.err;
+    EXPECT_NE(run.err.find(bad.message), std::string::npos) << bad.message << ": " << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+    EXPECT_FALSE(fs::exists(out)) << bad.message;
+  }
+  // A FIFO has no size to count 32-byte records by.
+  const test::RunResult fifo = test::run_zhf("splat --in /dev/stdin --in-format splat --out '" + (dir / "o.ply").string() + "' --identity");
+  EXPECT_EQ(fifo.exit_code, 3) << fifo.err;
+  EXPECT_NE(fifo.err.find("not a regular file"), std::string::npos) << fifo.err;
+  const test::RunResult format = test::run_zhf("splat --in '" + zero_turn_path + "' --out x --format gltf --identity");
+  EXPECT_EQ(format.exit_code, 2) << format.err;
+  EXPECT_NE(format.err.find("--format: 'gltf' is not ply or splat"), std::string::npos) << format.err;
 }
 
 }  // namespace

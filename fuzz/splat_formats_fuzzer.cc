@@ -1,0 +1,31 @@
+// zhf splat's format readers on arbitrary bytes: the first byte picks .splat -> .ply or binary
+// .ply -> .splat (the readers behind every conversion), the rest is the file. They may refuse,
+// never crash; a .splat the reader accepts converts every one of its 32-byte records.
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+
+#include "zhf/io/errors.h"
+#include "zhf/io/private_dir.h"
+#include "zhf/splat/scene.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  if (size == 0) return 0;
+  static const zhf::io::PrivateDir dir("zhf-fuzz-splat");
+  const bool from_splat = data[0] & 1;
+  const std::string in = dir.path() + (from_splat ? "/in.splat" : "/in.ply"), out = dir.path() + (from_splat ? "/out.ply" : "/out.splat");
+  {
+    std::ofstream file(in, std::ios::binary | std::ios::trunc);
+    file.write(reinterpret_cast<const char*>(data + 1), std::streamsize(size - 1));
+  }
+  zhf::splat::Transform turn;
+  turn.r = {0, -1, 0, 1, 0, 0, 0, 0, 1};
+  try {
+    const zhf::splat::Summary summary = zhf::splat::transform_file(in, out, turn, 1, [](std::uint64_t, std::uint64_t) {});
+    if (from_splat && summary.splats != (size - 1) / 32) std::abort();
+  } catch (const zhf::io::InputError&) {
+  }
+  return 0;
+}

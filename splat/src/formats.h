@@ -1,0 +1,51 @@
+// Scenes as streams of the canonical record, the 3DGS tools' binary .ply properties in double
+// (x y z nx ny nz f_dc_0..2 f_rest_* opacity scale_0..2 rot_0..3): how zhf splat converts
+// between formats. Readers check sizes before reading and every value as they read it.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "zhf/io/files.h"
+#include "zhf/io/ply.h"
+#include "zhf/splat/scene.h"
+
+namespace zhf::splat {
+
+// The canonical record's header for SH degree 0..3 and that many splats.
+io::ply::Header canonical_header(int degree, std::uint64_t splats);
+
+class SceneReader {
+ public:
+  virtual ~SceneReader() = default;
+  std::uint64_t splats() const { return splats_; }
+  int degree() const { return degree_; }
+  // The next `count` records (canonical_header(degree()) properties each); `first` is the first
+  // one's index, for messages. Throws io::InputError naming the file, splat and field.
+  virtual void read(std::uint64_t first, std::uint64_t count, double* records) = 0;
+  // Throws when bytes follow the last splat.
+  virtual void finish() = 0;
+
+ protected:
+  std::uint64_t splats_ = 0;
+  int degree_ = 0;
+};
+
+class SceneWriter {
+ public:
+  virtual ~SceneWriter() = default;
+  virtual void write(std::uint64_t count, const double* records) = 0;
+  std::uint64_t clamped() const { return clamped_; }
+  // The SH degree this writer keeps of a scene of `degree`.
+  virtual int kept_degree(int degree) const = 0;
+
+ protected:
+  std::uint64_t clamped_ = 0;
+};
+
+std::unique_ptr<SceneReader> open_reader(FileFormat format, const std::string& path);
+// Records of SH degree `degree` into `out`.
+std::unique_ptr<SceneWriter> open_writer(FileFormat format, io::PendingFile& out, int degree, std::uint64_t splats);
+
+}  // namespace zhf::splat

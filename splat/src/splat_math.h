@@ -1,0 +1,49 @@
+// One splat's transform on the values of its properties (scene.h says what changes and how),
+// and where those properties sit in a PLY header: what every format's path shares.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "zhf/io/ply.h"
+#include "zhf/runtime/orthogonal.h"
+#include "zhf/runtime/rotator.h"
+#include "zhf/splat/scene.h"
+
+namespace zhf::splat {
+
+// Where the transformed properties are (indices into the header's properties; -1: absent).
+struct Layout {
+  std::array<int, 3> position{-1, -1, -1}, normal{-1, -1, -1}, dc{-1, -1, -1}, log_scale{-1, -1, -1};
+  std::array<int, 4> rotation{-1, -1, -1, -1};  // w, x, y, z
+  int opacity = -1;                              // a logit; never transformed
+  std::vector<int> rest;                         // f_rest_0..K-1, channel-major (K / 3 per channel)
+  int degree = -1;
+  std::vector<int> changed;  // every property a transform may change
+};
+
+// Throws io::InputError "<source>: ..." for a layout no transform can use.
+Layout layout_of(const io::ply::Header& header, const std::string& source);
+
+class SplatMath {
+ public:
+  // splats: how many there are (three colour vectors each decide how the SH is applied).
+  SplatMath(const Layout& layout, const Transform& t, std::uint64_t splats);
+  void apply(double* values) const;
+
+ private:
+  const Layout& layout_;
+  const Transform& t_;
+  bool reflection_ = false;
+  std::array<double, 4> turn_{};
+  double log_scale_ = 0;
+  std::unique_ptr<runtime::Rotator<double>> rotator_;
+  std::unique_ptr<runtime::OrthogonalTransform<double>> sh_;
+  std::optional<runtime::OrthogonalTransform<double>::Prepared> prepared_;
+};
+
+}  // namespace zhf::splat
