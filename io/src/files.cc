@@ -110,6 +110,19 @@ PendingFile::~PendingFile() {
 void PendingFile::write(const std::string& text) { write_all(fd_, text.data(), text.size(), destination_); }
 void PendingFile::write(const char* data, std::size_t size) { write_all(fd_, data, size, destination_); }
 
+void PendingFile::write_at(std::uint64_t offset, const char* data, std::size_t size) {
+  while (size > 0) {
+    const ssize_t written = ::pwrite(fd_, data, size, static_cast<off_t>(offset));
+    if (written < 0) {
+      if (errno == EINTR) continue;
+      throw OutputError(destination_ + ": write failed: " + error_text());
+    }
+    data += written;
+    offset += static_cast<std::uint64_t>(written);
+    size -= static_cast<size_t>(written);
+  }
+}
+
 void PendingFile::commit() {
   // fsync flushes the file whoever wrote it: zhf through fd_, or another program by name.
   const bool flushed = fsync(fd_) == 0;

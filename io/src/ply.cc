@@ -35,11 +35,18 @@ T load(const unsigned char* p) {
 
 }  // namespace
 
-int Header::find(std::string_view name) const {
+namespace {
+
+int find_property(const std::vector<Property>& properties, std::string_view name) {
   for (std::size_t i = 0; i < properties.size(); ++i)
     if (properties[i].name == name) return static_cast<int>(i);
   return -1;
 }
+
+}  // namespace
+
+int Header::find(std::string_view name) const { return find_property(properties, name); }
+int Element::find(std::string_view name) const { return find_property(properties, name); }
 
 std::size_t type_size(Type type) {
   switch (type) {
@@ -57,9 +64,13 @@ std::size_t type_size(Type type) {
 
 bool is_float(Type type) { return type == Type::kFloat32 || type == Type::kFloat64; }
 
-Header read_header(std::istream& in, const std::string& source) {
+namespace {
+
+// Both readers: `any_elements` false keeps a splat file's rule of one element, "vertex".
+Header parse_header(std::istream& in, const std::string& source, bool any_elements) {
   Header header;
-  bool format_seen = false, vertex_seen = false;
+  bool format_seen = false;
+  std::size_t properties = 0;
   for (int number = 1;; ++number) {
     std::string line;
     // A line ends at '\n'; the header's size is bounded before any line is kept.
@@ -97,35 +108,59 @@ Header read_header(std::istream& in, const std::string& source) {
       }
       format_seen = true;
     } else if (keyword == "element") {
-      if (vertex_seen) throw InputError(where + ": a second element ('" + excerpt(line) + "'); a splat file has vertices only");
-      if (w.size() != 3 || w[1] != "vertex") throw InputError(where + ": expected 'element vertex <count>'");
+      if (!any_elements) {
+        if (!header.elements.empty())
+          throw InputError(where + ": a second element ('" + excerpt(line) + "'); a splat file has vertices only");
+        if (w.size() != 3 || w[1] != "vertex") throw InputError(where + ": expected 'element vertex <count>'");
+      }
+      if (w.size() != 3) throw InputError(where + ": expected 'element <name> <count>'");
+      if (header.elements.size() == kMaxPlyElements)
+        throw InputError(where + ": more than " + std::to_string(kMaxPlyElements) + " elements");
+      for (const Element& e : header.elements)
+        if (e.name == w[1]) throw InputError(where + ": element '" + excerpt(w[1]) + "' appears twice");
       const std::string& count = w[2];
       if (count.empty() || count.size() > 10 || count.find_first_not_of("0123456789") != std::string::npos ||
           std::stoull(count) > kMaxPlyVertices)
-        throw InputError(where + ": the vertex count '" + excerpt(count) + "' is not a count up to 2^31");
-      header.vertices = std::stoull(count);
-      vertex_seen = true;
+        throw InputError(where + ": the " + (any_elements ? "'" + excerpt(w[1]) + "'" : std::string("vertex")) + " count '" +
+                         excerpt(count) + "' is not a count up to 2^31");
+      header.elements.push_back({w[1], std::stoull(count), {}, 0});
     } else if (keyword == "property") {
-      if (!vertex_seen) throw InputError(where + ": a property before 'element vertex'");
+      if (header.elements.empty()) throw InputError(where + ": a property before 'element vertex'");
       if (w.size() >= 2 && w[1] == "list") throw InputError(where + ": list properties are not supported in a splat file");
       if (w.size() != 3) throw InputError(where + ": expected 'property <type> <name>'");
-      if (header.properties.size() == kMaxPlyProperties)
-        throw InputError(where + ": more than " + std::to_string(kMaxPlyProperties) + " properties");
+      if (properties == kMaxPlyProperties) throw InputError(where + ": more than " + std::to_string(kMaxPlyProperties) + " properties");
       const TypeName* type = nullptr;
       for (const TypeName& t : kTypeNames)
         if (t.name == w[1]) type = &t;
       if (!type) throw InputError(where + ": unknown property type '" + excerpt(w[1]) + "'");
-      if (header.find(w[2]) >= 0) throw InputError(where + ": property '" + excerpt(w[2]) + "' appears twice");
-      header.properties.push_back({w[2], type->type, header.record_bytes});
-      header.record_bytes += type_size(type->type);
+      Element& element = header.elements.back();
+      if (element.find(w[2]) >= 0) throw InputError(where + ": property '" + excerpt(w[2]) + "' appears twice");
+      element.properties.push_back({w[2], type->type, element.record_bytes});
+      element.record_bytes += type_size(type->type);
+      ++properties;
     } else {
       throw InputError(where + ": unknown header line '" + excerpt(line) + "'");
     }
   }
   if (!format_seen) throw InputError(source + ": the header has no format line");
-  if (!vertex_seen || header.properties.empty()) throw InputError(source + ": the header has no vertex element with properties");
+  for (const Element& e : header.elements)
+    if (e.properties.empty()) throw InputError(source + ": element '" + excerpt(e.name) + "' has no properties");
+  for (const Element& e : header.elements)
+    if (e.name == "vertex") {
+      header.vertices = e.count;
+      header.properties = e.properties;
+      header.record_bytes = e.record_bytes;
+    }
+  if (!any_elements && header.properties.empty()) throw InputError(source + ": the header has no vertex element with properties");
+  if (any_elements && header.elements.empty()) throw InputError(source + ": the header has no element");
   return header;
 }
+
+}  // namespace
+
+Header read_header(std::istream& in, const std::string& source) { return parse_header(in, source, false); }
+
+Header read_header_elements(std::istream& in, const std::string& source) { return parse_header(in, source, true); }
 
 double read_binary(const unsigned char* record, const Property& property) {
   const unsigned char* p = record + property.offset;

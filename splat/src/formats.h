@@ -45,6 +45,11 @@ class SceneWriter {
 };
 
 std::unique_ptr<SceneReader> open_reader(FileFormat format, const std::string& path);
+// Each format's own (splat_file.cc, compressed_ply.cc), behind open_reader and open_writer.
+std::unique_ptr<SceneReader> open_splat_reader(const std::string& path);
+std::unique_ptr<SceneWriter> open_splat_writer(io::PendingFile& out, int degree);
+std::unique_ptr<SceneReader> open_compressed_ply_reader(const std::string& path);
+std::unique_ptr<SceneWriter> open_compressed_ply_writer(io::PendingFile& out, int degree, std::uint64_t splats);
 // Records of SH degree `degree` into `out`.
 std::unique_ptr<SceneWriter> open_writer(FileFormat format, io::PendingFile& out, int degree, std::uint64_t splats);
 

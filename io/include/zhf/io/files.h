@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -38,6 +39,9 @@ class PendingFile {
   // Writes all of text to the file (for zhf's own outputs; another program writes by path()).
   void write(const std::string& text);
   void write(const char* data, std::size_t size);
+  // At a byte offset of the file (always a regular file until commit), for a format whose
+  // sections are filled out of order.
+  void write_at(std::uint64_t offset, const char* data, std::size_t size);
   // Flushes to disk, closes and moves (or copies) the bytes to the destination.
   void commit();
 

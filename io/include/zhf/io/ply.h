@@ -1,7 +1,8 @@
 // PLY headers, as 3D Gaussian Splatting tools write them: one element "vertex" of scalar
 // properties, ascii or binary_little_endian 1.0, with comments and obj_info lines kept as they
-// are. Limits are checked before any data is read: a header of at most 64 KiB, at most 1024
-// properties, at most 2^31 vertices; list properties, other elements and big-endian data are
+// are; or, for PlayCanvas's compressed splat files, several elements. Limits are checked before
+// any data is read: a header of at most 64 KiB, at most 1024 properties and 8 elements, at most
+// 2^31 rows an element; list properties, elements where one is expected and big-endian data are
 // refused with the line that says so.
 #pragma once
 
@@ -18,6 +19,7 @@ namespace zhf::io::ply {
 enum class Format { kAscii, kBinaryLittleEndian };
 enum class Type { kInt8, kUint8, kInt16, kUint16, kInt32, kUint32, kFloat32, kFloat64 };
 
+using runtime::kMaxPlyElements;
 using runtime::kMaxPlyHeaderBytes;
 using runtime::kMaxPlyProperties;
 using runtime::kMaxPlyVertices;
@@ -28,14 +30,25 @@ struct Property {
   std::size_t offset = 0;  // in a binary record
 };
 
+struct Element {
+  std::string name;
+  std::uint64_t count = 0;
+  std::vector<Property> properties;
+  std::size_t record_bytes = 0;  // binary: bytes per row
+
+  // The property's position, or -1.
+  int find(std::string_view name) const;
+};
+
 struct Header {
   Format format = Format::kBinaryLittleEndian;
   std::string text;  // the header's bytes, from "ply" through "end_header\n", written back as they are
   std::uint64_t vertices = 0;
   std::vector<Property> properties;
   std::size_t record_bytes = 0;  // binary: bytes per vertex
+  std::vector<Element> elements;   // every element, in the file's order (the vertex one included)
 
-  // The property's position, or -1.
+  // The vertex property's position, or -1.
   int find(std::string_view name) const;
 };
 
@@ -43,7 +56,10 @@ std::size_t type_size(Type type);
 bool is_float(Type type);
 
 // Reads the header from the start of the stream; throws InputError "<source>: header line K: ...".
+// One element, "vertex".
 Header read_header(std::istream& in, const std::string& source);
+// Any elements (vertices, properties and record_bytes then describe the "vertex" one, if any).
+Header read_header_elements(std::istream& in, const std::string& source);
 
 // A binary little-endian value of the property in a record, as a double, and back (rounded to
 // the property's type; integer properties are never written by zhf).

@@ -108,9 +108,11 @@ inline constexpr std::size_t kMaxManifestFunctions = 256;
 inline constexpr std::size_t kMaxManifestFiles = 4096;
 inline constexpr int kMaxSceneSignals = 256;
 inline constexpr std::size_t kMaxPlyAsciiLine = 64 << 10;
-// .ply scenes: header size, properties per element, vertices (splats).
+// .ply scenes: header size, properties (all elements together), elements, rows of an element
+// (splats).
 inline constexpr std::size_t kMaxPlyHeaderBytes = std::size_t(64) << 10;
 inline constexpr std::size_t kMaxPlyProperties = 1024;
+inline constexpr std::size_t kMaxPlyElements = 8;
 inline constexpr std::uint64_t kMaxPlyVertices = std::uint64_t(1) << 31;
 // Radiance .hdr images: file and header size, width and height, pixels.
 inline constexpr std::size_t kMaxHdrBytes = std::size_t(256) << 20;
