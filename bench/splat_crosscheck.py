@@ -5,8 +5,8 @@ absolute difference of each. Both write .ply, whatever the scene's format.
 
     /usr/bin/python3 bench/splat_crosscheck.py SCENE SPLAT_TRANSFORM ZHF [--rotate 10,20,30]
 
-SCENE: a binary 3DGS .ply (examples/make_splats.py) or a .splat (zhf splat --in X.ply --out
-X.splat); SPLAT_TRANSFORM: its executable (npm install @playcanvas/splat-transform); ZHF: the zhf
+SCENE: a binary 3DGS .ply (examples/make_splats.py), a .compressed.ply or a .splat (zhf splat
+--in X.ply --out X.compressed.ply); SPLAT_TRANSFORM: its executable (npm install @playcanvas/splat-transform); ZHF: the zhf
 binary.
 """
 
@@ -30,13 +30,6 @@ def read_ply(path):
     return {name: records[name].astype(np.float64) for name, _ in dtype}
 
 
-def read_splat(path):
-    """antimatter15's .splat: 32 bytes a splat; only the positions are needed here."""
-    records = np.fromfile(path, dtype=np.uint8).reshape(-1, 32)
-    xyz = records[:, :12].copy().view("<f4").astype(np.float64)
-    return {"x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2]}
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("scene")
@@ -47,7 +40,11 @@ def main():
     with tempfile.TemporaryDirectory() as work:
         peer_out, zhf_out = f"{work}/peer.ply", f"{work}/zhf.ply"
         subprocess.run([args.splat_transform, args.scene, "-r", args.rotate, peer_out], check=True, capture_output=True)
-        a = read_splat(args.scene) if args.scene.endswith(".splat") else read_ply(args.scene)
+        if args.scene.endswith(".ply") and not args.scene.endswith(".compressed.ply"):
+            a = read_ply(args.scene)
+        else:  # decoded by zhf (zhf and splat-transform decode these formats alike: docs/formats.md)
+            subprocess.run([args.zhf, "splat", "--in", args.scene, "--out", f"{work}/in.ply", "--identity", "--quiet"], check=True)
+            a = read_ply(f"{work}/in.ply")
         b = read_ply(peer_out)
         p_in = np.stack([a["x"], a["y"], a["z"]], axis=1)
         p_out = np.stack([b["x"], b["y"], b["z"]], axis=1)

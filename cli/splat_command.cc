@@ -37,7 +37,8 @@ std::array<double, 3> translation(const std::string& text) {
 std::optional<splat::FileFormat> format_option(const std::string& option, const std::string& name) {
   if (name.empty()) return std::nullopt;
   splat::FileFormat format;
-  if (!splat::parse_file_format(name, format)) throw UsageError(option + ": '" + runtime::excerpt(name) + "' is not ply or splat");
+  if (!splat::parse_file_format(name, format))
+    throw UsageError(option + ": '" + runtime::excerpt(name) + "' is not " + splat::file_format_names());
   return format;
 }
 
@@ -60,17 +61,17 @@ int run_splat(const SplatOptions& o) {
   if (bar) std::fprintf(stderr, "\n");
   // What a lossy format could not hold is said even with --quiet.
   if (summary.dropped_degree > 0)
-    std::fprintf(stderr, "zhf splat: %s: .%s keeps SH degree 0 only; degrees 1..%d were dropped\n", io::excerpt(o.out).c_str(),
-                 splat::file_format_name(summary.out), summary.dropped_degree);
+    std::fprintf(stderr, "zhf splat: %s: %s keeps SH degree 0 only; degrees 1..%d were dropped\n", io::excerpt(o.out).c_str(),
+                 splat::file_format_extension(summary.out), summary.dropped_degree);
   if (summary.clamped > 0)
-    std::fprintf(stderr, "zhf splat: %s: %llu values beyond the .%s format's range were written as its nearest\n",
-                 io::excerpt(o.out).c_str(), (unsigned long long)summary.clamped, splat::file_format_name(summary.out));
+    std::fprintf(stderr, "zhf splat: %s: %llu values beyond the %s format's range were written as its nearest\n",
+                 io::excerpt(o.out).c_str(), (unsigned long long)summary.clamped, splat::file_format_extension(summary.out));
   if (!o.quiet) {
     const std::string from = summary.in == splat::FileFormat::kPly ? (summary.ascii ? "ascii .ply" : "binary .ply")
-                                                                   : std::string(".") + splat::file_format_name(summary.in);
-    std::printf("transformed %llu splats (%s, SH degree %s) into %s (.%s)\n", (unsigned long long)summary.splats, from.c_str(),
+                                                                   : splat::file_format_extension(summary.in);
+    std::printf("transformed %llu splats (%s, SH degree %s) into %s (%s)\n", (unsigned long long)summary.splats, from.c_str(),
                 summary.sh_degree < 0 ? "none" : std::to_string(summary.sh_degree).c_str(), o.out.c_str(),
-                splat::file_format_name(summary.out));
+                splat::file_format_extension(summary.out));
   }
   return kExitOk;
 }
@@ -81,12 +82,12 @@ void add_splat_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<SplatOptions>();
   CLI::App* c = app.add_subcommand(
       "splat",
-      "Transform a 3D Gaussian Splatting scene (.ply, .splat): p' = s R p + t (rotate and scale about the origin, then translate), "
+      "Transform a 3D Gaussian Splatting scene (.ply, .compressed.ply, .splat): p' = s R p + t (rotate and scale about the origin, then translate), "
       "orientations, normals, log-scales and SH colours with it; in the file's own axes; or convert it to another format");
-  c->add_option("--in", o->in, "The scene: binary little-endian or ASCII .ply, or .splat")->required();
+  c->add_option("--in", o->in, "The scene: binary little-endian or ASCII .ply, compressed .ply, or .splat")->required();
   c->add_option("--out", o->out, "Write the transformed scene here (.ply to .ply: same format, columns and comments)")->required();
-  c->add_option("--format", o->format, "The output's format, ply or splat (default: --out's extension, else ply)");
-  c->add_option("--in-format", o->in_format, "The input's format, ply or splat (default: --in's extension, else ply)");
+  c->add_option("--format", o->format, "The output's format, " + splat::file_format_names() + " (default: --out's extension, else ply)");
+  c->add_option("--in-format", o->in_format, "The input's format, " + splat::file_format_names() + " (default: --in's extension and header, else ply)");
   add_transform_options(c, o->transform);
   c->add_flag("--identity", o->identity, "No rotation (with --translate or --scale alone)");
   c->add_option("--translate", o->translate, "x y z: added after rotating and scaling");

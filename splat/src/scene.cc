@@ -282,20 +282,67 @@ Summary convert(const std::string& in, const std::string& out, FileFormat from, 
 
 }  // namespace
 
-bool parse_file_format(const std::string& name, FileFormat& format) {
-  if (name == "ply") format = FileFormat::kPly;
-  else if (name == "splat") format = FileFormat::kSplat;
-  else return false;
-  return true;
+namespace {
+
+struct FormatName {
+  FileFormat format;
+  const char* name;
+  const char* extension;
+};
+constexpr FormatName kFormatNames[] = {{FileFormat::kPly, "ply", ".ply"},
+                                       {FileFormat::kCompressedPly, "compressed-ply", ".compressed.ply"},
+                                       {FileFormat::kSplat, "splat", ".splat"}};
+
+const FormatName& named(FileFormat format) {
+  for (const FormatName& f : kFormatNames)
+    if (f.format == format) return f;
+  return kFormatNames[0];
 }
 
-const char* file_format_name(FileFormat format) { return format == FileFormat::kSplat ? "splat" : "ply"; }
+// A .ply whose header starts with the element "chunk": PlayCanvas's compressed layout.
+bool looks_compressed(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  try {
+    const ply::Header header = ply::read_header_elements(file, path);
+    return header.elements.front().name == "chunk";
+  } catch (const InputError&) {
+    return false;  // the .ply reader says what is wrong
+  }
+}
+
+}  // namespace
+
+bool parse_file_format(const std::string& name, FileFormat& format) {
+  for (const FormatName& f : kFormatNames)
+    if (name == f.name) {
+      format = f.format;
+      return true;
+    }
+  return false;
+}
+
+const char* file_format_name(FileFormat format) { return named(format).name; }
+const char* file_format_extension(FileFormat format) { return named(format).extension; }
+
+std::string file_format_names() {
+  std::string names;
+  for (std::size_t i = 0; i < std::size(kFormatNames); ++i)
+    names += (i == 0 ? "" : i + 1 == std::size(kFormatNames) ? " or " : ", ") + std::string(kFormatNames[i].name);
+  return names;
+}
 
 bool file_format_of(const std::string& path, FileFormat& format) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  if (extension.empty()) return false;
-  for (char& c : extension) c = static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
-  return parse_file_format(extension.substr(1), format);
+  std::string lower = std::filesystem::path(path).filename().string();
+  for (char& c : lower) c = static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
+  std::size_t best = 0;
+  for (const FormatName& f : kFormatNames) {
+    const std::string extension = f.extension;
+    if (lower.size() > extension.size() && extension.size() > best && lower.compare(lower.size() - extension.size(), extension.size(), extension) == 0) {
+      format = f.format;
+      best = extension.size();
+    }
+  }
+  return best > 0;
 }
 
 Summary transform_file(const std::string& in, const std::string& out, const Transform& transform, int threads,
@@ -304,7 +351,7 @@ Summary transform_file(const std::string& in, const std::string& out, const Tran
   // A name without a known extension (a device, a pipe) is a .ply, the format zhf splat began with.
   FileFormat from = FileFormat::kPly, to = FileFormat::kPly;
   if (formats.in) from = *formats.in;
-  else file_format_of(in, from);
+  else if (file_format_of(in, from) && from == FileFormat::kPly && looks_compressed(in)) from = FileFormat::kCompressedPly;
   if (formats.out) to = *formats.out;
   else file_format_of(out, to);
   if (from != FileFormat::kPly || to != FileFormat::kPly) return convert(in, out, from, to, transform, threads, progress);

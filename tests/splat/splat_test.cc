@@ -2,8 +2,9 @@
 // transformed by rotations and reflections with scale and translation. The oracle: the colour
 // (3DGS's own basis formula) seen from R d after equals the colour seen from d before; positions,
 // orientations and log-scales as stated; every other column, the comments and the types as
-// they were. Malformed files are refused with exit 3 and nothing written. .splat files: each byte
-// as the published layout says, read back exactly as written, transformed as their .ply is.
+// they were. Malformed files are refused with exit 3 and nothing written. .splat and compressed
+// .ply files: each field as the published layout says (decoded here independently), read back
+// exactly as written, within the format's step of the scene, transformed as their .ply is.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -420,7 +421,156 @@ TEST(Splat, MalformedSplatFilesAreRefusedAndNothingIsWritten) {
   EXPECT_NE(fifo.err.find("not a regular file"), std::string::npos) << fifo.err;
   const test::RunResult format = test::run_zhf("splat --in '" + zero_turn_path + "' --out x --format gltf --identity");
   EXPECT_EQ(format.exit_code, 2) << format.err;
-  EXPECT_NE(format.err.find("--format: 'gltf' is not ply or splat"), std::string::npos) << format.err;
+  EXPECT_NE(format.err.find("--format: 'gltf' is not ply, compressed-ply or splat"), std::string::npos) << format.err;
+}
+
+// PlayCanvas's compressed .ply, decoded here from its layout: elements chunk (18 floats: position,
+// log-scale and colour bounds), vertex (4 packed uint32) and sh (uint8).
+struct Compressed {
+  std::vector<std::array<float, 18>> chunks;
+  std::vector<std::array<std::uint32_t, 4>> packed;
+  std::vector<std::vector<unsigned char>> sh;
+};
+
+Compressed read_compressed(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const io::ply::Header h = io::ply::read_header_elements(in, path);
+  Compressed c;
+  for (const io::ply::Element& e : h.elements)
+    for (std::uint64_t row = 0; row < e.count; ++row) {
+      std::vector<unsigned char> bytes(e.record_bytes);
+      in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(bytes.size()));
+      if (e.name == "chunk") std::memcpy(c.chunks.emplace_back().data(), bytes.data(), 72);
+      if (e.name == "vertex") std::memcpy(c.packed.emplace_back().data(), bytes.data(), 16);
+      if (e.name == "sh") c.sh.push_back(bytes);
+    }
+  return c;
+}
+
+double unorm(std::uint32_t word, int shift, int bits) { return double((word >> shift) & ((1u << bits) - 1)) / ((1u << bits) - 1); }
+
+TEST(Splat, CompressedPlyHoldsTheLayoutAndReadsBackExactly) {
+  const test::TempDir dir;
+  std::mt19937_64 rng(34);
+  Scene scene = random_scene(3, 70000, rng);
+  for (auto& row : scene.rows) {  // SH within the format's [-4, 4]
+    for (int i = 0; i < 45; ++i) row[index_of(scene, "f_rest_" + std::to_string(i))] *= 0.5;
+  }
+  const std::string in = (dir / "in.ply").string(), packed = (dir / "out.compressed.ply").string(), back = (dir / "back.ply").string();
+  write_scene(scene, in, false);
+  test::RunResult run = test::run_zhf("splat --in '" + in + "' --out '" + packed + "' --identity --quiet");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(run.err, "");  // nothing dropped, nothing beyond the format's range
+  const Compressed c = read_compressed(packed);
+  ASSERT_EQ(c.chunks.size(), (scene.rows.size() + 255) / 256);
+  ASSERT_EQ(c.packed.size(), scene.rows.size());
+  ASSERT_EQ(c.sh.size(), scene.rows.size());
+  // Read back against the layout decoded here.
+  run = test::run_zhf("splat --in '" + packed + "' --out '" + back + "' --identity --quiet");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::string header;
+  const Scene got = read_scene(back, scene, header);
+  const double c0 = runtime::kInvSqrt4Pi;
+  for (std::size_t k = 0; k < scene.rows.size(); ++k) {
+    const std::array<float, 18>& b = c.chunks[k / 256];
+    const std::array<std::uint32_t, 4>& w = c.packed[k];
+    const std::vector<double>& row = got.rows[k];
+    const std::vector<double>& original = scene.rows[k];
+    const std::string at = "splat " + std::to_string(k);
+    const int shifts[3] = {21, 11, 0}, bits[3] = {11, 10, 11};
+    auto lerp = [](double lo, double hi, double t) { return lo * (1 - t) + hi * t; };
+    for (int i = 0; i < 3; ++i) {
+      const std::string axis = "xyz"s.substr(i, 1), n = std::to_string(i);
+      const double x = lerp(b[i], b[3 + i], unorm(w[0], shifts[i], bits[i]));
+      ASSERT_EQ(row[index_of(scene, axis)], float(x)) << at;
+      // Within half a step of the chunk's range (and the float rounding of its bounds).
+      const double step = (double(b[3 + i]) - b[i]) / ((1 << bits[i]) - 1);
+      ASSERT_LE(std::abs(x - original[index_of(scene, axis)]), 0.5 * step + 1e-6 * std::abs(x) + 1e-30) << at;
+      ASSERT_EQ(row[index_of(scene, "scale_" + n)], float(lerp(b[6 + i], b[9 + i], unorm(w[2], shifts[i], bits[i])))) << at;
+      const double colour = lerp(b[12 + i], b[15 + i], unorm(w[3], 24 - 8 * i, 8));
+      ASSERT_EQ(row[index_of(scene, "f_dc_" + n)], float((colour - 0.5) / c0)) << at;
+    }
+    const double alpha = std::clamp(unorm(w[3], 0, 8), 0.25 / 255, 254.75 / 255);
+    ASSERT_EQ(row[index_of(scene, "opacity")], float(std::log(alpha / (1 - alpha)))) << at;
+    // The quaternion: three of 10 bits, the largest (named by the top 2) from the unit norm; the
+    // same rotation as the original, within a step.
+    const int largest = int(w[1] >> 30);
+    double q[4], norm = 0, original_norm = 0;
+    for (int i = 0, j = 0; i < 4; ++i) {
+      if (i == largest) continue;
+      q[i] = (unorm(w[1], 20 - 10 * j++, 10) - 0.5) * std::sqrt(2.0);
+      norm += q[i] * q[i];
+    }
+    q[largest] = std::sqrt(std::max(0.0, 1 - norm));
+    double dot = 0;
+    for (int i = 0; i < 4; ++i) {
+      const double o = original[index_of(scene, "rot_" + std::to_string(i))];
+      ASSERT_EQ(row[index_of(scene, "rot_" + std::to_string(i))], float(q[i])) << at;
+      dot += q[i] * o;
+      original_norm += o * o;
+    }
+    ASSERT_GT(std::abs(dot) / std::sqrt(original_norm), 1 - 1e-4) << at;
+    for (int i = 0; i < 45; ++i) {
+      const unsigned char v = c.sh[k][i];
+      const double value = v == 0 ? -4.0 : v == 255 ? 4.0 : 8 * ((v + 0.5) / 256 - 0.5);
+      ASSERT_EQ(row[index_of(scene, "f_rest_" + std::to_string(i))], float(value)) << at;
+      ASSERT_LE(std::abs(value - original[index_of(scene, "f_rest_" + std::to_string(i))]), 1.0 / 64 + 1e-12) << at << ", f_rest " << i;
+    }
+  }
+  // Named plain .ply, the file is known by its header.
+  fs::copy_file(packed, dir / "plain.ply");
+  run = test::run_zhf("splat --in '" + (dir / "plain.ply").string() + "' --out '" + (dir / "plain_back.ply").string() + "' --identity --quiet");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(test::read_text((dir / "plain_back.ply").string()), test::read_text(back));
+  // Transformed straight from the compressed file, as its decoded .ply is.
+  const std::string turn = " --zyz '0.3 0.5 0.7' --scale 2 --translate '1 2 3' --quiet";
+  ASSERT_EQ(test::run_zhf("splat --in '" + packed + "' --out '" + (dir / "a.ply").string() + "'" + turn).exit_code, 0);
+  ASSERT_EQ(test::run_zhf("splat --in '" + back + "' --out '" + (dir / "b.ply").string() + "'" + turn).exit_code, 0);
+  const Scene a = read_scene((dir / "a.ply").string(), scene, header), bb = read_scene((dir / "b.ply").string(), scene, header);
+  for (std::size_t k = 0; k < a.rows.size(); ++k)
+    for (std::size_t i = 0; i + 1 < a.rows[k].size(); ++i)  // the last column: scene's "custom", not in the canonical record
+      ASSERT_NEAR(a.rows[k][i], bb.rows[k][i], kFloatStorage * (1 + std::abs(bb.rows[k][i]))) << "splat " << k << ", " << scene.names[i];
+}
+
+TEST(Splat, MalformedCompressedPlyIsRefusedAndNothingIsWritten) {
+  const test::TempDir dir;
+  std::mt19937_64 rng(35);
+  const std::string in = (dir / "in.ply").string(), good = (dir / "good.compressed.ply").string();
+  write_scene(random_scene(1, 300, rng), in, false);  // two chunks
+  ASSERT_EQ(test::run_zhf("splat --in '" + in + "' --out '" + good + "' --identity --quiet").exit_code, 0);
+  const std::string text = test::read_text(good);
+  const std::size_t data = text.find("end_header\n") + 11;
+  auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string s = text;
+    s.replace(s.find(from), from.size(), to);
+    return s;
+  };
+  std::string nan_bound = text;
+  const float nan = NAN;
+  std::memcpy(&nan_bound[data + 72 + 4], &nan, 4);  // chunk 1: min_y
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {text.substr(0, text.size() - 1), "truncated"},
+      {text + "x", "bytes after the last splat"},
+      {replaced("element chunk 2", "element chunk 3"), "3 chunks for 300 splats; expected 2"},
+      {replaced("property uint packed_scale", "property float packed_scale"), "element vertex has no uint property packed_scale"},
+      {replaced("property float max_b\n", ""), "element chunk has 17 properties, not 12 or 18"},
+      {replaced("property float min_r", "property float min_red"), "element chunk has no float property min_r"},
+      {replaced("property uchar f_rest_8\n", ""), "element sh has 8 properties"},
+      {replaced("element sh 300", "element sh 299"), "299 sh rows for 300 splats"},
+      {replaced("end_header", "element extra 0\nproperty float e\nend_header"), "an element other than chunk, vertex and sh"},
+      {replaced("binary_little_endian", "ascii"), "a compressed .ply is binary little-endian"},
+      {replaced("element vertex 300\n", "element vertex 300\nproperty uint packed_extra\n"), "element vertex has 5 properties"},
+      {nan_bound, "chunk 1: min_y is nan"},
+  };
+  for (const auto& [content, message] : cases) {
+    const std::string bad = (dir / "bad.compressed.ply").string(), out = (dir / "out.ply").string();
+    test::write_text(bad, content);
+    const test::RunResult run = test::run_zhf("splat --in '" + bad + "' --out '" + out + "' --zyz '1 2 3' --quiet");
+    EXPECT_EQ(run.exit_code, 3) << message << ": " << run.err;
+    EXPECT_NE(run.err.find(message), std::string::npos) << message << ": " << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+    EXPECT_FALSE(fs::exists(out)) << message;
+  }
 }
 
 }  // namespace

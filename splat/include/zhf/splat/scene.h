@@ -1,5 +1,5 @@
-// 3D Gaussian Splatting scenes (.ply, as the 3DGS tools write them, and antimatter15's .splat)
-// transformed as a whole, and converted from one format to the other:
+// 3D Gaussian Splatting scenes (.ply, as the 3DGS tools write them; PlayCanvas's compressed .ply;
+// antimatter15's .splat) transformed as a whole, and converted from one format to another:
 // p' = s R p + t for positions (rotate and scale about the origin, then translate), the
 // Gaussians' orientations and normals turned by R, log-scales plus log s, and each splat's
 // view-dependent colour (SH of degree 0..3 in the file's convention, 3dgs by default) turned
@@ -35,12 +35,16 @@ struct Transform {
   const runtime::Convention* convention = nullptr;  // the SH's; nullptr: 3dgs
 };
 
-enum class FileFormat { kPly, kSplat };
+enum class FileFormat { kPly, kCompressedPly, kSplat };
 
-// "ply" or "splat", or false.
+// "ply", "compressed-ply", "splat", or false.
 bool parse_file_format(const std::string& name, FileFormat& format);
 const char* file_format_name(FileFormat format);
-// From the name's extension (.ply, .splat; any case), or false.
+// ".ply", ".compressed.ply", ".splat".
+const char* file_format_extension(FileFormat format);
+// "ply, compressed-ply or splat", for messages.
+std::string file_format_names();
+// From the name's ending (any case; the longest that fits), or false.
 bool file_format_of(const std::string& path, FileFormat& format);
 
 struct Summary {
@@ -56,7 +60,8 @@ struct Summary {
 inline constexpr std::uint64_t kChunkSplats = 1 << 16;
 
 // progress(done, total) after each chunk; threads 0: all cores. Formats from the files' names
-// unless given (.ply when the name says neither).
+// unless given (.ply when the name says none); a .ply input whose first element is "chunk" is
+// read as compressed.
 struct Formats {
   std::optional<FileFormat> in, out;
 };
