@@ -1,6 +1,7 @@
 // zhf splat's format readers on arbitrary bytes: the first byte picks the reader (binary .ply to
-// .splat, .splat to .ply, compressed .ply to compressed .ply), the rest is the file. They may
-// refuse, never crash; a .splat the reader accepts converts every one of its 32-byte records.
+// .splat, .splat to .ply, compressed .ply to compressed .ply, .spz to .spz), the rest is the file.
+// They may refuse, never crash; a .splat the reader accepts converts every one of its 32-byte
+// records.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -14,9 +15,11 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
   static const zhf::io::PrivateDir dir("zhf-fuzz-splat");
-  static const char* const kPaths[][2] = {{"/in.ply", "/out.splat"}, {"/in.splat", "/out.ply"},
-                                          {"/in.compressed.ply", "/out.compressed.ply"}};
-  const int path = data[0] % 3;
+  static const char* const kPaths[][2] = {{"/in.ply", "/out.splat"},
+                                          {"/in.splat", "/out.ply"},
+                                          {"/in.compressed.ply", "/out.compressed.ply"},
+                                          {"/in.spz", "/out.spz"}};
+  const int path = data[0] % 4;
   const bool from_splat = path == 1;
   const std::string in = dir.path() + kPaths[path][0], out = dir.path() + kPaths[path][1];
   {

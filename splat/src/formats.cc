@@ -114,12 +114,14 @@ ply::Header canonical_header(int degree, std::uint64_t splats) {
 std::unique_ptr<SceneReader> open_reader(FileFormat format, const std::string& path) {
   if (format == FileFormat::kSplat) return open_splat_reader(path);
   if (format == FileFormat::kCompressedPly) return open_compressed_ply_reader(path);
+  if (format == FileFormat::kSpz) return open_spz_reader(path);
   return std::make_unique<PlyReader>(path);
 }
 
 std::unique_ptr<SceneWriter> open_writer(FileFormat format, io::PendingFile& out, int degree, std::uint64_t splats) {
   if (format == FileFormat::kSplat) return open_splat_writer(out, degree);
   if (format == FileFormat::kCompressedPly) return open_compressed_ply_writer(out, degree, splats);
+  if (format == FileFormat::kSpz) return open_spz_writer(out, degree, splats);
   return std::make_unique<PlyWriter>(out, degree, splats);
 }
 

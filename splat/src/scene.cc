@@ -273,6 +273,7 @@ Summary convert(const std::string& in, const std::string& out, FileFormat from, 
     progress(done, reader->splats());
   }
   reader->finish();
+  writer->finish();
   pending.commit();
   Summary summary{reader->splats(), reader->degree(), false, from, to};
   if (writer->kept_degree(reader->degree()) < reader->degree()) summary.dropped_degree = reader->degree();
@@ -291,7 +292,8 @@ struct FormatName {
 };
 constexpr FormatName kFormatNames[] = {{FileFormat::kPly, "ply", ".ply"},
                                        {FileFormat::kCompressedPly, "compressed-ply", ".compressed.ply"},
-                                       {FileFormat::kSplat, "splat", ".splat"}};
+                                       {FileFormat::kSplat, "splat", ".splat"},
+                                       {FileFormat::kSpz, "spz", ".spz"}};
 
 const FormatName& named(FileFormat format) {
   for (const FormatName& f : kFormatNames)

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <zlib.h>
 
 #include "sh_bases.h"
 #include "test_support.h"
@@ -421,7 +422,7 @@ TEST(Splat, MalformedSplatFilesAreRefusedAndNothingIsWritten) {
   EXPECT_NE(fifo.err.find("not a regular file"), std::string::npos) << fifo.err;
   const test::RunResult format = test::run_zhf("splat --in '" + zero_turn_path + "' --out x --format gltf --identity");
   EXPECT_EQ(format.exit_code, 2) << format.err;
-  EXPECT_NE(format.err.find("--format: 'gltf' is not ply, compressed-ply or splat"), std::string::npos) << format.err;
+  EXPECT_NE(format.err.find("--format: 'gltf' is not ply, compressed-ply, splat or spz"), std::string::npos) << format.err;
 }
 
 // PlayCanvas's compressed .ply, decoded here from its layout: elements chunk (18 floats: position,
@@ -571,6 +572,175 @@ TEST(Splat, MalformedCompressedPlyIsRefusedAndNothingIsWritten) {
     EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
     EXPECT_FALSE(fs::exists(out)) << message;
   }
+}
+
+// gzip of bytes, and back (zlib, as a writer of .spz would).
+std::string gzip(const std::string& bytes) {
+  z_stream z{};
+  EXPECT_EQ(deflateInit2(&z, 6, Z_DEFLATED, 16 + MAX_WBITS, 8, Z_DEFAULT_STRATEGY), Z_OK);
+  std::string out(deflateBound(&z, uLong(bytes.size())), '\0');
+  z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(bytes.data()));
+  z.avail_in = uInt(bytes.size());
+  z.next_out = reinterpret_cast<Bytef*>(out.data());
+  z.avail_out = uInt(out.size());
+  EXPECT_EQ(deflate(&z, Z_FINISH), Z_STREAM_END);
+  out.resize(z.total_out);
+  deflateEnd(&z);
+  return out;
+}
+
+std::string gunzip(const std::string& bytes) {
+  z_stream z{};
+  EXPECT_EQ(inflateInit2(&z, 16 + MAX_WBITS), Z_OK);
+  z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(bytes.data()));
+  z.avail_in = uInt(bytes.size());
+  std::string out;
+  char buffer[1 << 16];
+  int result = Z_OK;
+  while (result == Z_OK) {
+    z.next_out = reinterpret_cast<Bytef*>(buffer);
+    z.avail_out = sizeof buffer;
+    result = inflate(&z, Z_NO_FLUSH);
+    out.append(buffer, sizeof buffer - z.avail_out);
+  }
+  EXPECT_EQ(result, Z_STREAM_END);
+  inflateEnd(&z);
+  return out;
+}
+
+std::string spz_header(std::uint32_t version, std::uint32_t splats, int degree, int fractional_bits = 12, int reserved = 0) {
+  std::string h(16, '\0');
+  const std::uint32_t words[3] = {0x5053474e, version, splats};
+  std::memcpy(h.data(), words, 12);
+  h[12] = char(degree);
+  h[13] = char(fractional_bits);
+  h[15] = char(reserved);
+  return h;
+}
+
+TEST(Splat, SpzHoldsTheLayoutInItsAxesAndReadsBackExactly) {
+  const test::TempDir dir;
+  std::mt19937_64 rng(36);
+  Scene scene = random_scene(3, 70000, rng);
+  for (auto& row : scene.rows) {  // within the format's ranges: f_dc to 3.3, SH to 1, log-scales -10..5.9
+    for (int i = 0; i < 3; ++i) row[index_of(scene, "f_dc_" + std::to_string(i))] *= 0.5;
+    for (int i = 0; i < 45; ++i) row[index_of(scene, "f_rest_" + std::to_string(i))] *= 0.15;
+  }
+  const std::string in = (dir / "in.ply").string(), spz = (dir / "out.spz").string(), back = (dir / "back.ply").string();
+  write_scene(scene, in, false);
+  test::RunResult run = test::run_zhf("splat --in '" + in + "' --out '" + spz + "' --identity --quiet");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(run.err, "");
+  const std::string data = gunzip(test::read_text(spz));
+  const std::size_t n = scene.rows.size();
+  ASSERT_EQ(data.size(), 16 + n * (9 + 1 + 3 + 3 + 4 + 45));
+  EXPECT_EQ(data.substr(0, 16), spz_header(3, std::uint32_t(n), 3));
+  run = test::run_zhf("splat --in '" + spz + "' --out '" + back + "' --identity --quiet");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::string header;
+  const Scene got = read_scene(back, scene, header);
+  auto byte = [&](std::size_t at) { return static_cast<unsigned char>(data[at]); };
+  // The file's axes are RUB, the .ply's RDF: y and z flip.
+  const double flip[3] = {1, -1, -1};
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::vector<double>& row = got.rows[k];
+    const std::vector<double>& original = scene.rows[k];
+    const std::string at = "splat " + std::to_string(k);
+    for (int i = 0; i < 3; ++i) {
+      const std::size_t p = 16 + 9 * k + 3 * i;
+      std::int32_t fixed = byte(p) | (byte(p + 1) << 8) | (byte(p + 2) << 16);
+      if (fixed & 0x800000) fixed -= 1 << 24;
+      const double x = flip[i] * fixed / 4096.0;
+      ASSERT_EQ(row[index_of(scene, "xyz"s.substr(i, 1))], float(x)) << at;
+      ASSERT_LE(std::abs(x - original[index_of(scene, "xyz"s.substr(i, 1))]), 0.5 / 4096 + 1e-12) << at;
+      const double colour = (byte(16 + 10 * n + 3 * k + i) / 255.0 - 0.5) / 0.15;
+      ASSERT_EQ(row[index_of(scene, "f_dc_" + std::to_string(i))], float(colour)) << at;
+      ASSERT_LE(std::abs(colour - original[index_of(scene, "f_dc_" + std::to_string(i))]), 0.5 / 255 / 0.15 + 1e-12) << at;
+      const double scale = byte(16 + 13 * n + 3 * k + i) / 16.0 - 10;
+      ASSERT_EQ(row[index_of(scene, "scale_" + std::to_string(i))], float(scale)) << at;
+    }
+    const double alpha = std::clamp(byte(16 + 9 * n + k) / 255.0, 0.25 / 255, 254.75 / 255);
+    ASSERT_EQ(row[index_of(scene, "opacity")], float(std::log(alpha / (1 - alpha)))) << at;
+    std::uint32_t word;
+    std::memcpy(&word, &data[16 + 16 * n + 4 * k], 4);
+    double xyzw[4], squares = 0;
+    const int largest = int(word >> 30);
+    for (int i = 3; i >= 0; --i) {
+      if (i == largest) continue;
+      xyzw[i] = std::sqrt(0.5) * (word & 511u) / 511 * ((word >> 9) & 1u ? -1 : 1);
+      squares += xyzw[i] * xyzw[i];
+      word >>= 10;
+    }
+    xyzw[largest] = std::sqrt(std::max(0.0, 1 - squares));
+    const double wxyz[4] = {xyzw[3], xyzw[0], -xyzw[1], -xyzw[2]};
+    double dot = 0, norm = 0;
+    for (int i = 0; i < 4; ++i) {
+      const double o = original[index_of(scene, "rot_" + std::to_string(i))];
+      ASSERT_EQ(row[index_of(scene, "rot_" + std::to_string(i))], float(wxyz[i])) << at;
+      dot += wxyz[i] * o;
+      norm += o * o;
+    }
+    ASSERT_GT(std::abs(dot) / std::sqrt(norm), 1 - 2e-5) << at;
+    // SH: coefficient-major, channel inner, each odd in (y, z) flipped; 5 bits kept in band 1, 4 above.
+    for (int j = 0; j < 15; ++j) {
+      const int l = j < 3 ? 1 : j < 8 ? 2 : 3, m = j + 1 - l * (l + 1);
+      const double sign = (m >= 0 ? 1 : -1) * ((l + std::abs(m)) % 2 == 0 ? 1 : -1);
+      for (int ch = 0; ch < 3; ++ch) {
+        const double value = sign * (byte(16 + 20 * n + 45 * k + 3 * j + ch) - 128.0) / 128;
+        const std::string name = "f_rest_" + std::to_string(15 * ch + j);
+        ASSERT_EQ(row[index_of(scene, name)], float(value)) << at << ", " << name;
+        ASSERT_LE(std::abs(value - original[index_of(scene, name)]), (l == 1 ? 4.0 : 8.0) / 128 + 0.5 / 128 + 1e-6) << at << ", " << name;
+      }
+    }
+  }
+  // Transformed straight from the .spz, as its decoded .ply is.
+  const std::string turn = " --zyz '0.3 0.5 0.7' --scale 2 --translate '1 2 3' --quiet";
+  ASSERT_EQ(test::run_zhf("splat --in '" + spz + "' --out '" + (dir / "a.ply").string() + "'" + turn).exit_code, 0);
+  ASSERT_EQ(test::run_zhf("splat --in '" + back + "' --out '" + (dir / "b.ply").string() + "'" + turn).exit_code, 0);
+  const Scene a = read_scene((dir / "a.ply").string(), scene, header), b = read_scene((dir / "b.ply").string(), scene, header);
+  for (std::size_t k = 0; k < a.rows.size(); ++k)
+    for (std::size_t i = 0; i + 1 < a.rows[k].size(); ++i)
+      ASSERT_NEAR(a.rows[k][i], b.rows[k][i], kFloatStorage * (1 + std::abs(b.rows[k][i]))) << "splat " << k << ", " << scene.names[i];
+}
+
+TEST(Splat, MalformedSpzIsRefusedAndNothingIsWritten) {
+  const test::TempDir dir;
+  const std::string record(9 + 1 + 3 + 3 + 4, '\x40');  // one splat of degree 0, version 3
+  const std::string good = spz_header(3, 2, 0) + record + record;
+  std::string reordered = spz_header(3, 2, 0);
+  for (std::size_t a : {9, 1, 3, 3, 4}) reordered += std::string(2 * a, '\x40');
+  ASSERT_EQ(reordered.size(), good.size());
+  const std::string gz = gzip(reordered);
+  std::string corrupt = gz;
+  corrupt[gz.size() - 6] ^= 0x55;  // the gzip trailer's CRC
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"PK\x03\x04 not gzip", "not a .spz file (no gzip stream)"},
+      {spz_header(4, 2, 0) + std::string(16, '\0'), ".spz version 4 (zstd streams) is not read here"},
+      {gzip(std::string("NGSX") + reordered.substr(4)), "the magic is not NGSP"},
+      {gzip(spz_header(1, 2, 0) + reordered.substr(16)), ".spz version 1; zhf reads versions 2 and 3"},
+      {gzip(spz_header(3, 2, 4) + reordered.substr(16)), "SH degree 4; zhf splat handles degrees 0..3"},
+      {gzip(spz_header(3, 2, 0, 12, 7) + reordered.substr(16)), "the header's reserved byte is not 0"},
+      {gzip(spz_header(3, 2, 0, 30) + reordered.substr(16)), "30 fractional bits; at most 23"},
+      {gz.substr(0, gz.size() - 9), "truncated: the gzip stream ends early"},
+      {corrupt, "gzip: "},
+      {gz + "x", "bytes after the gzip stream"},
+      {gzip(reordered + "y"), "decompressed bytes after the last splat"},
+      {gzip(reordered.substr(0, reordered.size() - 1)), "the decompressed data ends before the last splat"},
+      {gzip(spz_header(3, 2000000000, 0)), "the header claims 2000000000 splats"},
+  };
+  for (const auto& [content, message] : cases) {
+    const std::string bad = (dir / "bad.spz").string(), out = (dir / "out.ply").string();
+    test::write_text(bad, content);
+    const test::RunResult run = test::run_zhf("splat --in '" + bad + "' --out '" + out + "' --zyz '1 2 3' --quiet");
+    EXPECT_EQ(run.exit_code, 3) << message << ": " << run.err;
+    EXPECT_NE(run.err.find(message), std::string::npos) << message << ": " << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+    EXPECT_FALSE(fs::exists(out)) << message;
+  }
+  // The well-formed file reads.
+  test::write_text((dir / "good.spz").string(), gz);
+  const test::RunResult run = test::run_zhf("splat --in '" + (dir / "good.spz").string() + "' --out '" + (dir / "good.ply").string() + "' --identity --quiet");
+  EXPECT_EQ(run.exit_code, 0) << run.err;
 }
 
 }  // namespace

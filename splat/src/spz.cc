@@ -1,0 +1,350 @@
+// Niantic's .spz, versions 2 and 3 (read) and 3 (written): one gzip stream of a 16-byte header
+//   magic 0x5053474e ("NGSP"), version, splat count (uint32); SH degree, fractional bits, flags,
+//   reserved (uint8)
+// and then each attribute for every splat in turn: positions (x, y, z as 24-bit signed fixed
+// point with that many fractional bits), alphas (255 sigmoid(opacity)), colours (255 (0.5 + 0.15
+// f_dc)), log-scales (16 (s + 10)), rotations and SH (128 + 128 v, coefficient by coefficient,
+// the channel inner). Rotations, quaternion order x y z w: version 3 the smallest three in 32
+// bits (the largest component's index in the top 2, then the other three in order, 10 bits each:
+// a sign and 9 bits of |q| / sqrt(1/2)); version 2 x, y, z as 127.5 (q + 1) with w >= 0 rebuilt.
+// The file's axes are RUB where a .ply's are RDF: a half turn about x (y and z flip) at the edge,
+// on positions, the quaternion's y and z, and each SH coefficient odd in (y, z), so zhf shows the
+// scene in the .ply's axes as the reference library does when asked for RDF.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <vector>
+
+#include <zlib.h>
+
+#include "format_io.h"
+#include "formats.h"
+#include "zhf/io/errors.h"
+#include "zhf/io/private_dir.h"
+#include "zhf/runtime/limits.h"
+
+namespace zhf::splat {
+namespace {
+
+using io::InputError;
+
+constexpr std::uint32_t kMagic = 0x5053474e;
+constexpr std::size_t kHeaderBytes = 16;
+constexpr int kFractionalBits = 12;  // written: positions to +-2048 in steps of 1/4096
+constexpr double kColourScale = 0.15;
+// deflate expands at most about 1032:1; a header claiming more than this is refused unread.
+constexpr double kMaxGzipRatio = 1100;
+const double kSqrtHalf = std::sqrt(0.5);
+
+// The sign a half turn about x (y -> -y, z -> -z) gives SH coefficient k of f_rest (band l,
+// order m, k + 1 = l (l + 1) + m): cos(m phi) terms (-1)^(l + m), sin(|m| phi) terms -(-1)^(l + |m|).
+double half_turn_sign(int k) {
+  const int l = int(std::sqrt(double(k + 1)));
+  const int m = k + 1 - l * (l + 1);
+  const int parity = (l + std::abs(m)) % 2 == 0 ? 1 : -1;
+  return m >= 0 ? parity : -parity;
+}
+
+int coefficients(int degree) { return (degree + 1) * (degree + 1) - 1; }
+
+// Bytes per splat of each attribute, in file order.
+std::array<std::uint64_t, 6> attribute_bytes(int version, int degree) {
+  return {9, 1, 3, 3, std::uint64_t(version >= 3 ? 4 : 3), std::uint64_t(3 * coefficients(degree))};
+}
+
+// A zlib stream, ended however its owner's work ends.
+struct Inflater {
+  z_stream z{};
+  explicit Inflater(const std::string& path) {
+    if (inflateInit2(&z, 16 + MAX_WBITS) != Z_OK) throw InputError(path + ": gzip: cannot start inflating");
+  }
+  ~Inflater() { inflateEnd(&z); }
+  Inflater(const Inflater&) = delete;
+  Inflater& operator=(const Inflater&) = delete;
+};
+
+struct Deflater {
+  z_stream z{};
+  Deflater() {
+    if (deflateInit2(&z, Z_DEFAULT_COMPRESSION, Z_DEFLATED, 16 + MAX_WBITS, 9, Z_DEFAULT_STRATEGY) != Z_OK)
+      throw io::OutputError("gzip: cannot start deflating");
+  }
+  ~Deflater() { deflateEnd(&z); }
+  Deflater(const Deflater&) = delete;
+  Deflater& operator=(const Deflater&) = delete;
+};
+
+// The decompressed stream from some offset on: each attribute is read by its own inflater, so
+// memory stays bounded whatever the count (the earlier bytes are inflated and dropped).
+class GzipReader {
+ public:
+  GzipReader(const std::string& path, std::uint64_t skip) : path_(path), file_(open_input(path)), inflater_(path) {
+    std::vector<unsigned char> scratch(1 << 16);
+    while (skip > 0) {
+      const std::size_t n = std::size_t(std::min<std::uint64_t>(skip, scratch.size()));
+      read(scratch.data(), n);
+      skip -= n;
+    }
+  }
+  void read(unsigned char* out, std::size_t size) {
+    z_.next_out = out;
+    z_.avail_out = static_cast<uInt>(size);
+    while (z_.avail_out > 0) {
+      if (ended_) throw InputError(path_ + ": the decompressed data ends before the last splat");
+      refill();
+      const int result = inflate(&z_, Z_NO_FLUSH);
+      if (result == Z_STREAM_END) ended_ = true;
+      else if (result != Z_OK) throw InputError(path_ + ": gzip: " + (z_.msg ? runtime::excerpt(z_.msg) : "corrupt data"));
+    }
+  }
+
+  // After the last attribute: the stream must end here, and the file with it.
+  void expect_end() {
+    unsigned char extra;
+    z_.next_out = &extra;
+    z_.avail_out = 1;
+    while (!ended_) {
+      refill();
+      const int result = inflate(&z_, Z_NO_FLUSH);
+      if (z_.avail_out == 0) throw InputError(path_ + ": decompressed bytes after the last splat");
+      if (result == Z_STREAM_END) ended_ = true;
+      else if (result != Z_OK) throw InputError(path_ + ": gzip: " + (z_.msg ? runtime::excerpt(z_.msg) : "corrupt data"));
+    }
+    if (z_.avail_in > 0 || file_.peek() != std::char_traits<char>::eof()) throw InputError(path_ + ": bytes after the gzip stream");
+  }
+
+ private:
+  void refill() {
+    if (z_.avail_in > 0) return;
+    file_.read(reinterpret_cast<char*>(in_.data()), std::streamsize(in_.size()));
+    if (file_.gcount() == 0) throw InputError(path_ + ": truncated: the gzip stream ends early");
+    z_.next_in = in_.data();
+    z_.avail_in = static_cast<uInt>(file_.gcount());
+  }
+
+  std::string path_;
+  std::ifstream file_;
+  Inflater inflater_;
+  z_stream& z_ = inflater_.z;
+  std::array<unsigned char, 1 << 16> in_{};
+  bool ended_ = false;
+};
+
+class SpzReader : public SceneReader {
+ public:
+  explicit SpzReader(const std::string& path) : path_(path) {
+    const std::uint64_t size = regular_file_size(path, ".spz is checked against its size first");
+    {
+      std::ifstream file = open_input(path);
+      unsigned char start[4] = {};
+      file.read(reinterpret_cast<char*>(start), 4);
+      if (file.gcount() >= 4 && get_uint32(start) == kMagic)
+        throw InputError(path + ": .spz version 4 (zstd streams) is not read here; write it as version 3 (splat-transform --spz-version 3)");
+      if (file.gcount() < 2 || start[0] != 0x1f || start[1] != 0x8b) throw InputError(path + ": not a .spz file (no gzip stream)");
+    }
+    GzipReader header_stream(path, 0);
+    unsigned char h[kHeaderBytes];
+    header_stream.read(h, kHeaderBytes);
+    if (get_uint32(h) != kMagic) throw InputError(path + ": not a .spz file (the magic is not NGSP)");
+    version_ = get_uint32(h + 4);
+    if (version_ != 2 && version_ != 3)
+      throw InputError(path + ": .spz version " + std::to_string(version_) + "; zhf reads versions 2 and 3");
+    splats_ = get_uint32(h + 8);
+    if (splats_ > runtime::kMaxPlyVertices)
+      throw InputError(path + ": " + std::to_string(splats_) + " splats; at most " + std::to_string(runtime::kMaxPlyVertices));
+    degree_ = h[12];
+    if (degree_ > 3) throw InputError(path + ": SH degree " + std::to_string(degree_) + "; zhf splat handles degrees 0..3");
+    fractional_bits_ = h[13];
+    if (fractional_bits_ > 23) throw InputError(path + ": " + std::to_string(fractional_bits_) + " fractional bits; at most 23");
+    if (h[15] != 0) throw InputError(path + ": the header's reserved byte is not 0");
+    const std::array<std::uint64_t, 6> bytes = attribute_bytes(version_, degree_);
+    std::uint64_t offset = kHeaderBytes;
+    for (std::uint64_t b : bytes) offset += b * splats_;
+    if (double(offset) > kMaxGzipRatio * double(size))
+      throw InputError(path + ": the header claims " + std::to_string(splats_) + " splats (" + std::to_string(offset) +
+                       " bytes), more than " + std::to_string(size) + " compressed bytes can hold");
+    offset = kHeaderBytes;
+    for (std::size_t a = 0; a < bytes.size(); ++a) {
+      attributes_[a] = std::make_unique<GzipReader>(path, offset);
+      offset += bytes[a] * splats_;
+    }
+  }
+
+  void read(std::uint64_t, std::uint64_t count, double* records) override {
+    const Canonical c(degree_);
+    const std::array<std::uint64_t, 6> bytes = attribute_bytes(version_, degree_);
+    for (std::size_t a = 0; a < bytes.size(); ++a) {
+      buffers_[a].resize(count * bytes[a]);
+      attributes_[a]->read(buffers_[a].data(), buffers_[a].size());
+    }
+    const double position_scale = 1.0 / double(1 << fractional_bits_);
+    const int dim = coefficients(degree_);
+    for (std::uint64_t s = 0; s < count; ++s) {
+      double* v = records + s * c.size();
+      const unsigned char* p = &buffers_[0][9 * s];
+      const unsigned char* rgb = &buffers_[2][3 * s];
+      const unsigned char* scale = &buffers_[3][3 * s];
+      for (int i = 0; i < 3; ++i) {
+        std::int32_t fixed = p[3 * i] | (p[3 * i + 1] << 8) | (p[3 * i + 2] << 16);
+        if (fixed & 0x800000) fixed -= 0x1000000;
+        v[Canonical::kPosition + i] = (i == 0 ? 1 : -1) * fixed * position_scale;
+        v[Canonical::kNormal + i] = 0;
+        v[Canonical::kDc + i] = (rgb[i] / 255.0 - 0.5) / kColourScale;
+        v[c.scale() + i] = scale[i] / 16.0 - 10;
+      }
+      // Alpha 0 and 255 read as a quarter step inside, as in .splat: the logit stays finite.
+      v[c.opacity()] = logit(std::clamp(buffers_[1][s] / 255.0, 0.25 / 255, 254.75 / 255));
+      double xyzw[4];
+      if (version_ >= 3) {
+        std::uint32_t word = get_uint32(&buffers_[4][4 * s]);
+        const int largest = int(word >> 30);
+        double squares = 0;
+        for (int i = 3; i >= 0; --i) {
+          if (i == largest) continue;
+          const double magnitude = kSqrtHalf * double(word & 511u) / 511;
+          xyzw[i] = (word >> 9) & 1u ? -magnitude : magnitude;
+          squares += xyzw[i] * xyzw[i];
+          word >>= 10;
+        }
+        xyzw[largest] = std::sqrt(std::max(0.0, 1 - squares));
+      } else {
+        const unsigned char* r = &buffers_[4][3 * s];
+        double squares = 0;
+        for (int i = 0; i < 3; ++i) {
+          xyzw[i] = r[i] / 127.5 - 1;
+          squares += xyzw[i] * xyzw[i];
+        }
+        xyzw[3] = std::sqrt(std::max(0.0, 1 - squares));
+      }
+      double* q = v + c.rotation();  // w x y z, turned: y and z flip
+      q[0] = xyzw[3];
+      q[1] = xyzw[0];
+      q[2] = -xyzw[1];
+      q[3] = -xyzw[2];
+      const unsigned char* sh = &buffers_[5][3 * dim * s];
+      for (int k = 0; k < dim; ++k)
+        for (int ch = 0; ch < 3; ++ch) v[Canonical::kRest + ch * dim + k] = half_turn_sign(k) * (sh[3 * k + ch] - 128.0) / 128;
+    }
+  }
+
+  void finish() override { attributes_.back()->expect_end(); }
+
+ private:
+  std::string path_;
+  std::uint32_t version_ = 3;
+  int fractional_bits_ = 0;
+  std::array<std::unique_ptr<GzipReader>, 6> attributes_;
+  std::array<std::vector<unsigned char>, 6> buffers_;
+};
+
+// SH byte with `bits` kept: 128 + 128 v rounded, then to the nearest multiple of 2^(8 - bits)
+// (the reference library's default: 5 bits for band 1, 4 above, which compress better).
+unsigned char sh_byte(double v, int bits, std::uint64_t& clamped) {
+  const double q = std::nearbyint(128 * v) + 128;
+  if (q < 0 || q > 255) ++clamped;
+  const int bucket = 1 << (8 - bits);
+  const int rounded = (int(std::clamp(q, 0.0, 255.0)) + bucket / 2) / bucket * bucket;
+  return static_cast<unsigned char>(std::min(rounded, 255));
+}
+
+class SpzWriter : public SceneWriter {
+ public:
+  SpzWriter(io::PendingFile& out, int degree, std::uint64_t splats) : out_(out), c_(degree), degree_(degree), splats_(splats) {
+    for (std::size_t a = 0; a < files_.size(); ++a) {
+      files_[a].open(dir_.path() + "/" + std::to_string(a), std::ios::binary);
+      if (!files_[a]) throw io::OutputError(dir_.path() + ": cannot write a temporary file");
+    }
+  }
+
+  void write(std::uint64_t count, const double* records) override {
+    const int dim = coefficients(degree_);
+    std::array<std::vector<unsigned char>, 6> bytes;
+    for (std::uint64_t s = 0; s < count; ++s) {
+      const double* v = records + s * c_.size();
+      for (int i = 0; i < 3; ++i) {
+        const double x = (i == 0 ? 1 : -1) * v[Canonical::kPosition + i] * double(1 << kFractionalBits);
+        const std::uint32_t fixed = std::uint32_t(std::int32_t(clamped_round(x + 0x7fffff, 0xfffffe, clamped_)) - 0x7fffff);
+        for (int b = 0; b < 3; ++b) bytes[0].push_back(static_cast<unsigned char>(fixed >> (8 * b)));
+      }
+      bytes[1].push_back(static_cast<unsigned char>(clamped_round(255 * sigmoid(v[c_.opacity()]), 255, clamped_)));
+      for (int i = 0; i < 3; ++i)
+        bytes[2].push_back(static_cast<unsigned char>(clamped_round(255 * (0.5 + kColourScale * v[Canonical::kDc + i]), 255, clamped_)));
+      for (int i = 0; i < 3; ++i) bytes[3].push_back(static_cast<unsigned char>(clamped_round(16 * (v[c_.scale() + i] + 10), 255, clamped_)));
+      const double* q = v + c_.rotation();
+      const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+      const double xyzw[4] = {q[1] / norm, -q[2] / norm, -q[3] / norm, q[0] / norm};
+      int largest = 0;
+      for (int i = 1; i < 4; ++i)
+        if (std::abs(xyzw[i]) > std::abs(xyzw[largest])) largest = i;
+      const bool negate = xyzw[largest] < 0;
+      std::uint32_t word = std::uint32_t(largest);
+      for (int i = 0; i < 4; ++i) {
+        if (i == largest) continue;
+        const std::uint32_t sign = (xyzw[i] < 0) != negate;
+        const std::uint32_t magnitude = std::min(511u, std::uint32_t(std::nearbyint(511 * std::abs(xyzw[i]) / kSqrtHalf)));
+        word = (word << 10) | (sign << 9) | magnitude;
+      }
+      for (int b = 0; b < 4; ++b) bytes[4].push_back(static_cast<unsigned char>(word >> (8 * b)));
+      for (int k = 0; k < dim; ++k)
+        for (int ch = 0; ch < 3; ++ch)
+          bytes[5].push_back(sh_byte(half_turn_sign(k) * v[Canonical::kRest + ch * dim + k], k < 3 ? 5 : 4, clamped_));
+    }
+    for (std::size_t a = 0; a < files_.size(); ++a) {
+      files_[a].write(reinterpret_cast<const char*>(bytes[a].data()), std::streamsize(bytes[a].size()));
+      if (!files_[a]) throw io::OutputError(dir_.path() + ": cannot write a temporary file");
+    }
+  }
+
+  // The header and the six attributes, one after another, through one gzip stream.
+  void finish() override {
+    Deflater deflater;
+    z_stream& z = deflater.z;
+    std::vector<unsigned char> out(1 << 16);
+    auto feed = [&](const unsigned char* data, std::size_t size, int flush) {
+      z.next_in = const_cast<unsigned char*>(data);
+      z.avail_in = static_cast<uInt>(size);
+      for (;;) {
+        z.next_out = out.data();
+        z.avail_out = static_cast<uInt>(out.size());
+        const int result = deflate(&z, flush);
+        if (result == Z_STREAM_ERROR) throw io::OutputError("gzip: deflate failed");
+        out_.write(reinterpret_cast<const char*>(out.data()), out.size() - z.avail_out);
+        if (flush == Z_FINISH ? result == Z_STREAM_END : z.avail_in == 0 && z.avail_out != 0) break;
+      }
+    };
+    unsigned char header[kHeaderBytes] = {};
+    put_uint32(header, kMagic);
+    put_uint32(header + 4, 3);
+    put_uint32(header + 8, static_cast<std::uint32_t>(splats_));
+    header[12] = static_cast<unsigned char>(degree_);
+    header[13] = kFractionalBits;
+    feed(header, kHeaderBytes, Z_NO_FLUSH);
+    std::vector<unsigned char> chunk(1 << 16);
+    for (std::size_t a = 0; a < files_.size(); ++a) {
+      files_[a].close();
+      std::ifstream in(dir_.path() + "/" + std::to_string(a), std::ios::binary);
+      while (in.read(reinterpret_cast<char*>(chunk.data()), std::streamsize(chunk.size())) || in.gcount() > 0)
+        feed(chunk.data(), std::size_t(in.gcount()), Z_NO_FLUSH);
+    }
+    feed(nullptr, 0, Z_FINISH);
+  }
+  int kept_degree(int degree) const override { return degree; }
+
+ private:
+  io::PendingFile& out_;
+  Canonical c_;
+  int degree_;
+  std::uint64_t splats_;
+  io::PrivateDir dir_{"zhf-spz"};  // each attribute's bytes until the end, in file order
+  std::array<std::ofstream, 6> files_;
+};
+
+}  // namespace
+
+std::unique_ptr<SceneReader> open_spz_reader(const std::string& path) { return std::make_unique<SpzReader>(path); }
+std::unique_ptr<SceneWriter> open_spz_writer(io::PendingFile& out, int degree, std::uint64_t splats) {
+  return std::make_unique<SpzWriter>(out, degree, splats);
+}
+
+}  // namespace zhf::splat
