@@ -72,6 +72,11 @@ int run_splat(const SplatOptions& o) {
     std::printf("transformed %llu splats (%s, SH degree %s) into %s (%s)\n", (unsigned long long)summary.splats, from.c_str(),
                 summary.sh_degree < 0 ? "none" : std::to_string(summary.sh_degree).c_str(), o.out.c_str(),
                 splat::file_format_extension(summary.out));
+    if (summary.sh_error[0] >= 0) {
+      std::printf("the format's error in the colour, largest per SH band:");
+      for (int band = 0; band < 4 && summary.sh_error[band] >= 0; ++band) std::printf(" %d: %.3g", band, summary.sh_error[band]);
+      std::printf("\n");
+    }
   }
   return kExitOk;
 }

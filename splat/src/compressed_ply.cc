@@ -289,7 +289,14 @@ class CompressedPlyWriter : public SceneWriter {
       ++j;
     }
     for (int i = 0; i < 4; ++i) put_uint32(packed + 4 * i, word[i]);
-    for (int i = 0; i < c_.rest; ++i) sh[i] = sh_byte(v[Canonical::kRest + i], clamped_);
+    for (int i = 0; i < 3; ++i) {
+      const double colour = lerp(bounds[12 + i], bounds[15 + i], unorm(word[3] >> (24 - 8 * i), 8));
+      stored(0, v[Canonical::kDc + i], (colour - 0.5) / runtime::kInvSqrt4Pi);
+    }
+    for (int i = 0; i < c_.rest; ++i) {
+      sh[i] = sh_byte(v[Canonical::kRest + i], clamped_);
+      stored(Canonical::band(i % (c_.rest / 3)), v[Canonical::kRest + i], sh_value(sh[i]));
+    }
   }
 
   io::PendingFile& out_;

@@ -2,6 +2,7 @@
 // input, messages, and quantising with the clamps counted.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -18,6 +19,8 @@ struct Canonical {
   int scale() const { return kRest + rest + 1; }
   int rotation() const { return kRest + rest + 4; }
   int size() const { return kRest + rest + 8; }
+  // The SH band of f_rest value k of a channel (k + 1 = l (l + 1) + m).
+  static int band(int k) { return int(std::sqrt(double(k + 1))); }
 };
 
 // The file opened for reading, or io::InputError.

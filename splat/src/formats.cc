@@ -81,19 +81,25 @@ class PlyReader : public SceneReader {
 
 class PlyWriter : public SceneWriter {
  public:
-  PlyWriter(io::PendingFile& out, int degree, std::uint64_t splats) : out_(out), size_(Canonical(degree).size()) {
+  PlyWriter(io::PendingFile& out, int degree, std::uint64_t splats) : out_(out), size_(Canonical(degree).size()), rest_(Canonical(degree).rest) {
     out_.write(canonical_header(degree, splats).text);
   }
   void write(std::uint64_t count, const double* records) override {
     buffer_.resize(count * size_ * sizeof(float));
-    for (std::uint64_t i = 0; i < count * size_; ++i) put_float(&buffer_[i * sizeof(float)], clamped_float(records[i], clamped_));
+    for (std::uint64_t i = 0; i < count * size_; ++i) {
+      const float value = clamped_float(records[i], clamped_);
+      const int field = int(i % size_);
+      if (field >= Canonical::kDc && field < Canonical::kRest + rest_)
+        stored(field < Canonical::kRest ? 0 : Canonical::band((field - Canonical::kRest) % (rest_ / 3)), records[i], value);
+      put_float(&buffer_[i * sizeof(float)], value);
+    }
     out_.write(reinterpret_cast<const char*>(buffer_.data()), buffer_.size());
   }
   int kept_degree(int degree) const override { return degree; }
 
  private:
   io::PendingFile& out_;
-  int size_;
+  int size_, rest_;
   std::vector<unsigned char> buffer_;
 };
 

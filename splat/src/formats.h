@@ -3,6 +3,9 @@
 // between formats. Readers check sizes before reading and every value as they read it.
 #pragma once
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -37,13 +40,17 @@ class SceneWriter {
   virtual ~SceneWriter() = default;
   virtual void write(std::uint64_t count, const double* records) = 0;
   std::uint64_t clamped() const { return clamped_; }
+  // Per SH band (0: f_dc), the largest |stored - given| of the values written: the format's error.
+  const std::array<double, 4>& sh_error() const { return sh_error_; }
   // The SH degree this writer keeps of a scene of `degree`.
   virtual int kept_degree(int degree) const = 0;
   // After the last record, before the file is committed.
   virtual void finish() {}
 
  protected:
+  void stored(int band, double given, double kept) { sh_error_[band] = std::max(sh_error_[band], std::abs(kept - given)); }
   std::uint64_t clamped_ = 0;
+  std::array<double, 4> sh_error_{};
 };
 
 std::unique_ptr<SceneReader> open_reader(FileFormat format, const std::string& path);

@@ -278,6 +278,8 @@ Summary convert(const std::string& in, const std::string& out, FileFormat from, 
   Summary summary{reader->splats(), reader->degree(), false, from, to};
   if (writer->kept_degree(reader->degree()) < reader->degree()) summary.dropped_degree = reader->degree();
   summary.clamped = writer->clamped();
+  for (int band = 0; band <= std::min(reader->degree(), writer->kept_degree(reader->degree())); ++band)
+    summary.sh_error[band] = writer->sh_error()[band];
   return summary;
 }
 

@@ -92,6 +92,7 @@ class SplatFileWriter : public SceneWriter {
         }
         put_float(b + 12 + 4 * i, scale);
         b[24 + i] = static_cast<unsigned char>(clamped_round(255 * (0.5 + runtime::kInvSqrt4Pi * v[Canonical::kDc + i]), 255, clamped_));
+        stored(0, v[Canonical::kDc + i], (b[24 + i] / 255.0 - 0.5) / runtime::kInvSqrt4Pi);
       }
       b[27] = static_cast<unsigned char>(clamped_round(255 * sigmoid(v[c_.opacity()]), 255, clamped_));
       const double* q = v + c_.rotation();

@@ -33,8 +33,6 @@ constexpr std::uint32_t kMagic = 0x5053474e;
 constexpr std::size_t kHeaderBytes = 16;
 constexpr int kFractionalBits = 12;  // written: positions to +-2048 in steps of 1/4096
 constexpr double kColourScale = 0.15;
-// deflate expands at most about 1032:1; a header claiming more than this is refused unread.
-constexpr double kMaxGzipRatio = 1100;
 const double kSqrtHalf = std::sqrt(0.5);
 
 // The sign a half turn about x (y -> -y, z -> -z) gives SH coefficient k of f_rest (band l,
@@ -161,7 +159,7 @@ class SpzReader : public SceneReader {
     const std::array<std::uint64_t, 6> bytes = attribute_bytes(version_, degree_);
     std::uint64_t offset = kHeaderBytes;
     for (std::uint64_t b : bytes) offset += b * splats_;
-    if (double(offset) > kMaxGzipRatio * double(size))
+    if (double(offset) > runtime::kMaxGzipExpansion * double(size))
       throw InputError(path + ": the header claims " + std::to_string(splats_) + " splats (" + std::to_string(offset) +
                        " bytes), more than " + std::to_string(size) + " compressed bytes can hold");
     offset = kHeaderBytes;
@@ -268,8 +266,10 @@ class SpzWriter : public SceneWriter {
         for (int b = 0; b < 3; ++b) bytes[0].push_back(static_cast<unsigned char>(fixed >> (8 * b)));
       }
       bytes[1].push_back(static_cast<unsigned char>(clamped_round(255 * sigmoid(v[c_.opacity()]), 255, clamped_)));
-      for (int i = 0; i < 3; ++i)
+      for (int i = 0; i < 3; ++i) {
         bytes[2].push_back(static_cast<unsigned char>(clamped_round(255 * (0.5 + kColourScale * v[Canonical::kDc + i]), 255, clamped_)));
+        stored(0, v[Canonical::kDc + i], (bytes[2].back() / 255.0 - 0.5) / kColourScale);
+      }
       for (int i = 0; i < 3; ++i) bytes[3].push_back(static_cast<unsigned char>(clamped_round(16 * (v[c_.scale() + i] + 10), 255, clamped_)));
       const double* q = v + c_.rotation();
       const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
@@ -287,8 +287,11 @@ class SpzWriter : public SceneWriter {
       }
       for (int b = 0; b < 4; ++b) bytes[4].push_back(static_cast<unsigned char>(word >> (8 * b)));
       for (int k = 0; k < dim; ++k)
-        for (int ch = 0; ch < 3; ++ch)
-          bytes[5].push_back(sh_byte(half_turn_sign(k) * v[Canonical::kRest + ch * dim + k], k < 3 ? 5 : 4, clamped_));
+        for (int ch = 0; ch < 3; ++ch) {
+          const double given = half_turn_sign(k) * v[Canonical::kRest + ch * dim + k];
+          bytes[5].push_back(sh_byte(given, k < 3 ? 5 : 4, clamped_));
+          stored(Canonical::band(k), given, (bytes[5].back() - 128.0) / 128);
+        }
     }
     for (std::size_t a = 0; a < files_.size(); ++a) {
       files_[a].write(reinterpret_cast<const char*>(bytes[a].data()), std::streamsize(bytes[a].size()));

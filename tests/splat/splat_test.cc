@@ -459,9 +459,19 @@ TEST(Splat, CompressedPlyHoldsTheLayoutAndReadsBackExactly) {
   }
   const std::string in = (dir / "in.ply").string(), packed = (dir / "out.compressed.ply").string(), back = (dir / "back.ply").string();
   write_scene(scene, in, false);
-  test::RunResult run = test::run_zhf("splat --in '" + in + "' --out '" + packed + "' --identity --quiet");
+  test::RunResult run = test::run_zhf("splat --in '" + in + "' --out '" + packed + "' --identity");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(run.err, "");  // nothing dropped, nothing beyond the format's range
+  // The error the format added, per SH band, reported: SH to half a step of 8 / 256.
+  double error[4] = {-1, -1, -1, -1};
+  const std::size_t report = run.out.find("largest per SH band:");
+  ASSERT_NE(report, std::string::npos) << run.out;
+  ASSERT_EQ(std::sscanf(run.out.c_str() + report, "largest per SH band: 0: %lf 1: %lf 2: %lf 3: %lf", &error[0], &error[1], &error[2], &error[3]), 4)
+      << run.out;
+  for (int band = 1; band < 4; ++band) {
+    EXPECT_GT(error[band], 0) << band;
+    EXPECT_LE(error[band], 1.0 / 64 + 1e-12) << band;
+  }
   const Compressed c = read_compressed(packed);
   ASSERT_EQ(c.chunks.size(), (scene.rows.size() + 255) / 256);
   ASSERT_EQ(c.packed.size(), scene.rows.size());

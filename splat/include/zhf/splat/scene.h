@@ -55,6 +55,9 @@ struct Summary {
   FileFormat in = FileFormat::kPly, out = FileFormat::kPly;
   int dropped_degree = -1;     // the SH degree the output format could not hold (-1: none dropped)
   std::uint64_t clamped = 0;   // values outside the output's range, written as its nearest
+  // Converted (any pair but .ply to .ply): per SH band (0: f_dc), the largest |written - exact|
+  // of the transformed values, what the output format's steps cost; -1 for a band not written.
+  std::array<double, 4> sh_error{-1, -1, -1, -1};
 };
 
 // Splats per chunk: the memory bound (a degree-3 binary splat is 248 bytes).
