@@ -425,6 +425,20 @@ TEST(Splat, MalformedSplatFilesAreRefusedAndNothingIsWritten) {
   EXPECT_NE(format.err.find("--format: 'gltf' is not ply, compressed-ply, splat or spz"), std::string::npos) << format.err;
 }
 
+// A quaternion read back: rot_0..3 exactly the decoded q (w x y z, in float), the same rotation
+// as the original's within `tolerance` of |cos| of their angle.
+void expect_quaternion(const Scene& scene, const std::vector<double>& row, const std::vector<double>& original, const double q[4],
+                       double tolerance, const std::string& at) {
+  double dot = 0, norm = 0;
+  for (int i = 0; i < 4; ++i) {
+    const double o = original[index_of(scene, "rot_" + std::to_string(i))];
+    ASSERT_EQ(row[index_of(scene, "rot_" + std::to_string(i))], float(q[i])) << at;
+    dot += q[i] * o;
+    norm += o * o;
+  }
+  ASSERT_GT(std::abs(dot) / std::sqrt(norm), 1 - tolerance) << at;
+}
+
 // PlayCanvas's compressed .ply, decoded here from its layout: elements chunk (18 floats: position,
 // log-scale and colour bounds), vertex (4 packed uint32) and sh (uint8).
 struct Compressed {
@@ -506,21 +520,14 @@ TEST(Splat, CompressedPlyHoldsTheLayoutAndReadsBackExactly) {
     // The quaternion: three of 10 bits, the largest (named by the top 2) from the unit norm; the
     // same rotation as the original, within a step.
     const int largest = int(w[1] >> 30);
-    double q[4], norm = 0, original_norm = 0;
+    double q[4], norm = 0;
     for (int i = 0, j = 0; i < 4; ++i) {
       if (i == largest) continue;
       q[i] = (unorm(w[1], 20 - 10 * j++, 10) - 0.5) * std::sqrt(2.0);
       norm += q[i] * q[i];
     }
     q[largest] = std::sqrt(std::max(0.0, 1 - norm));
-    double dot = 0;
-    for (int i = 0; i < 4; ++i) {
-      const double o = original[index_of(scene, "rot_" + std::to_string(i))];
-      ASSERT_EQ(row[index_of(scene, "rot_" + std::to_string(i))], float(q[i])) << at;
-      dot += q[i] * o;
-      original_norm += o * o;
-    }
-    ASSERT_GT(std::abs(dot) / std::sqrt(original_norm), 1 - 1e-4) << at;
+    expect_quaternion(scene, row, original, q, 1e-4, at);
     for (int i = 0; i < 45; ++i) {
       const unsigned char v = c.sh[k][i];
       const double value = v == 0 ? -4.0 : v == 255 ? 4.0 : 8 * ((v + 0.5) / 256 - 0.5);
@@ -683,14 +690,7 @@ TEST(Splat, SpzHoldsTheLayoutInItsAxesAndReadsBackExactly) {
     }
     xyzw[largest] = std::sqrt(std::max(0.0, 1 - squares));
     const double wxyz[4] = {xyzw[3], xyzw[0], -xyzw[1], -xyzw[2]};
-    double dot = 0, norm = 0;
-    for (int i = 0; i < 4; ++i) {
-      const double o = original[index_of(scene, "rot_" + std::to_string(i))];
-      ASSERT_EQ(row[index_of(scene, "rot_" + std::to_string(i))], float(wxyz[i])) << at;
-      dot += wxyz[i] * o;
-      norm += o * o;
-    }
-    ASSERT_GT(std::abs(dot) / std::sqrt(norm), 1 - 2e-5) << at;
+    expect_quaternion(scene, row, original, wxyz, 2e-5, at);
     // SH: coefficient-major, channel inner, each odd in (y, z) flipped; 5 bits kept in band 1, 4 above.
     for (int j = 0; j < 15; ++j) {
       const int l = j < 3 ? 1 : j < 8 ? 2 : 3, m = j + 1 - l * (l + 1);
