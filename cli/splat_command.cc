@@ -20,7 +20,7 @@ namespace {
 struct SplatOptions {
   std::string in, out;
   TransformOptions transform;
-  std::string translate, scale = "1", convention = "3dgs", threads = "0", format, in_format;
+  std::string translate, scale = "1", convention = "3dgs", threads = "0", format, in_format, spz_version = "4";
   bool identity = false, quiet = false;
 };
 
@@ -52,7 +52,8 @@ int run_splat(const SplatOptions& o) {
   t.translation = translation(o.translate);
   t.convention = convention;
   const int threads = static_cast<int>(integer_option("--threads", o.threads, 0, runtime::kMaxThreads));
-  const splat::Formats formats{format_option("--in-format", o.in_format), format_option("--format", o.format)};
+  splat::Formats formats{format_option("--in-format", o.in_format), format_option("--format", o.format)};
+  formats.spz_version = static_cast<int>(integer_option("--spz-version", o.spz_version, 3, 4));
   const bool bar = !o.quiet && isatty(STDERR_FILENO);
   const splat::Summary summary = splat::transform_file(o.in, o.out, t, threads, [bar](std::uint64_t done, std::uint64_t total) {
     if (bar) std::fprintf(stderr, "\rzhf splat: %3d%% (%llu of %llu splats)", int(100.0 * done / total), (unsigned long long)done,
@@ -92,6 +93,7 @@ void add_splat_command(CLI::App& app, Action& action) {
   c->add_option("--in", o->in, "The scene: binary little-endian or ASCII .ply, compressed .ply, or .splat")->required();
   c->add_option("--out", o->out, "Write the transformed scene here (.ply to .ply: same format, columns and comments)")->required();
   c->add_option("--format", o->format, "The output's format, " + splat::file_format_names() + " (default: --out's extension, else ply)");
+  c->add_option("--spz-version", o->spz_version, "A .spz output's version: 4 (zstd, default) or 3 (gzip, for older readers)");
   c->add_option("--in-format", o->in_format, "The input's format, " + splat::file_format_names() + " (default: --in's extension and header, else ply)");
   add_transform_options(c, o->transform);
   c->add_flag("--identity", o->identity, "No rotation (with --translate or --scale alone)");

@@ -10,7 +10,7 @@ ZHF_JOBS=$(nproc)
 
 packages=(
   cmake ninja-build g++ clang libclang-rt-14-dev pkg-config
-  libeigen3-dev libnlopt-cxx-dev libcli11-dev nlohmann-json3-dev zlib1g-dev
+  libeigen3-dev libnlopt-cxx-dev libcli11-dev nlohmann-json3-dev zlib1g-dev libzstd-dev
   libgtest-dev libbenchmark-dev
   glslang-tools spirv-tools libvulkan-dev mesa-vulkan-drivers
   libhealpix-cxx-dev gnuplot-nox

@@ -124,10 +124,10 @@ std::unique_ptr<SceneReader> open_reader(FileFormat format, const std::string& p
   return std::make_unique<PlyReader>(path);
 }
 
-std::unique_ptr<SceneWriter> open_writer(FileFormat format, io::PendingFile& out, int degree, std::uint64_t splats) {
+std::unique_ptr<SceneWriter> open_writer(FileFormat format, io::PendingFile& out, int degree, std::uint64_t splats, int spz_version) {
   if (format == FileFormat::kSplat) return open_splat_writer(out, degree);
   if (format == FileFormat::kCompressedPly) return open_compressed_ply_writer(out, degree, splats);
-  if (format == FileFormat::kSpz) return open_spz_writer(out, degree, splats);
+  if (format == FileFormat::kSpz) return open_spz_writer(out, degree, splats, spz_version);
   return std::make_unique<PlyWriter>(out, degree, splats);
 }
 

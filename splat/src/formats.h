@@ -60,8 +60,8 @@ std::unique_ptr<SceneWriter> open_splat_writer(io::PendingFile& out, int degree)
 std::unique_ptr<SceneReader> open_compressed_ply_reader(const std::string& path);
 std::unique_ptr<SceneWriter> open_compressed_ply_writer(io::PendingFile& out, int degree, std::uint64_t splats);
 std::unique_ptr<SceneReader> open_spz_reader(const std::string& path);
-std::unique_ptr<SceneWriter> open_spz_writer(io::PendingFile& out, int degree, std::uint64_t splats);
+std::unique_ptr<SceneWriter> open_spz_writer(io::PendingFile& out, int degree, std::uint64_t splats, int version);
 // Records of SH degree `degree` into `out`.
-std::unique_ptr<SceneWriter> open_writer(FileFormat format, io::PendingFile& out, int degree, std::uint64_t splats);
+std::unique_ptr<SceneWriter> open_writer(FileFormat format, io::PendingFile& out, int degree, std::uint64_t splats, int spz_version);
 
 }  // namespace zhf::splat

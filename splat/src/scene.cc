@@ -250,14 +250,14 @@ void transform_ascii(std::istream& file, io::PendingFile& pending, const ply::He
 namespace {
 
 // Any pair of formats but .ply to .ply: through the canonical record, a chunk at a time.
-Summary convert(const std::string& in, const std::string& out, FileFormat from, FileFormat to, const Transform& transform,
-                int threads, const std::function<void(std::uint64_t, std::uint64_t)>& progress) {
+Summary convert(const std::string& in, const std::string& out, FileFormat from, FileFormat to, int spz_version,
+                const Transform& transform, int threads, const std::function<void(std::uint64_t, std::uint64_t)>& progress) {
   const std::unique_ptr<SceneReader> reader = open_reader(from, in);
   const ply::Header header = canonical_header(reader->degree(), reader->splats());
   const Layout layout = layout_of(header, "canonical record");
   const SplatMath math(layout, transform, reader->splats());
   io::PendingFile pending(out);
-  const std::unique_ptr<SceneWriter> writer = open_writer(to, pending, reader->degree(), reader->splats());
+  const std::unique_ptr<SceneWriter> writer = open_writer(to, pending, reader->degree(), reader->splats(), spz_version);
   const std::size_t size = header.properties.size();
   std::vector<double> records;
   for (std::uint64_t done = 0; done < reader->splats();) {
@@ -358,7 +358,7 @@ Summary transform_file(const std::string& in, const std::string& out, const Tran
   else if (file_format_of(in, from) && from == FileFormat::kPly && looks_compressed(in)) from = FileFormat::kCompressedPly;
   if (formats.out) to = *formats.out;
   else file_format_of(out, to);
-  if (from != FileFormat::kPly || to != FileFormat::kPly) return convert(in, out, from, to, transform, threads, progress);
+  if (from != FileFormat::kPly || to != FileFormat::kPly) return convert(in, out, from, to, formats.spz_version, transform, threads, progress);
   std::ifstream file(in, std::ios::binary);
   if (!file) throw InputError(in + ": cannot open: " + std::strerror(errno));
   const ply::Header header = ply::read_header(file, in);

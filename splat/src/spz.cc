@@ -1,7 +1,11 @@
-// Niantic's .spz, versions 2 and 3 (read) and 3 (written): one gzip stream of a 16-byte header
+// Niantic's .spz, versions 2, 3 and 4 read, 3 and 4 written. Versions 2 and 3 are one gzip stream
+// of a 16-byte header
 //   magic 0x5053474e ("NGSP"), version, splat count (uint32); SH degree, fractional bits, flags,
 //   reserved (uint8)
-// and then each attribute for every splat in turn: positions (x, y, z as 24-bit signed fixed
+// and the attributes one after another; version 4 is a plain 32-byte header (the same fields, then
+// the stream count (uint8), the table's offset (uint32) and 12 zero bytes; extension records may
+// sit between it and the table), a table of (compressed, decompressed) uint64 sizes, and each
+// attribute as its own zstd frame. The attributes, each for every splat in turn: positions (x, y, z as 24-bit signed fixed
 // point with that many fractional bits), alphas (255 sigmoid(opacity)), colours (255 (0.5 + 0.15
 // f_dc)), log-scales (16 (s + 10)), rotations and SH (128 + 128 v, coefficient by coefficient,
 // the channel inner). Rotations, quaternion order x y z w: version 3 the smallest three in 32
@@ -17,6 +21,7 @@
 #include <vector>
 
 #include <zlib.h>
+#include <zstd.h>
 
 #include "format_io.h"
 #include "formats.h"
@@ -30,7 +35,9 @@ namespace {
 using io::InputError;
 
 constexpr std::uint32_t kMagic = 0x5053474e;
-constexpr std::size_t kHeaderBytes = 16;
+constexpr std::size_t kHeaderBytes = 16, kZstdHeaderBytes = 32;
+constexpr int kZstdLevel = 12;  // the reference library's
+constexpr int kAttributes = 6;
 constexpr int kFractionalBits = 12;  // written: positions to +-2048 in steps of 1/4096
 constexpr double kColourScale = 0.15;
 const double kSqrtHalf = std::sqrt(0.5);
@@ -47,7 +54,7 @@ double half_turn_sign(int k) {
 int coefficients(int degree) { return (degree + 1) * (degree + 1) - 1; }
 
 // Bytes per splat of each attribute, in file order.
-std::array<std::uint64_t, 6> attribute_bytes(int version, int degree) {
+std::array<std::uint64_t, kAttributes> attribute_bytes(int version, int degree) {
   return {9, 1, 3, 3, std::uint64_t(version >= 3 ? 4 : 3), std::uint64_t(3 * coefficients(degree))};
 }
 
@@ -73,9 +80,18 @@ struct Deflater {
   Deflater& operator=(const Deflater&) = delete;
 };
 
+// One attribute's decompressed bytes, read in order.
+class AttributeStream {
+ public:
+  virtual ~AttributeStream() = default;
+  virtual void read(unsigned char* out, std::size_t size) = 0;
+  // After the last splat: the stream must end here, and the file (or its part) with it.
+  virtual void expect_end() = 0;
+};
+
 // The decompressed stream from some offset on: each attribute is read by its own inflater, so
 // memory stays bounded whatever the count (the earlier bytes are inflated and dropped).
-class GzipReader {
+class GzipReader : public AttributeStream {
  public:
   GzipReader(const std::string& path, std::uint64_t skip) : path_(path), file_(open_input(path)), inflater_(path) {
     std::vector<unsigned char> scratch(1 << 16);
@@ -85,7 +101,7 @@ class GzipReader {
       skip -= n;
     }
   }
-  void read(unsigned char* out, std::size_t size) {
+  void read(unsigned char* out, std::size_t size) override {
     z_.next_out = out;
     z_.avail_out = static_cast<uInt>(size);
     while (z_.avail_out > 0) {
@@ -97,8 +113,7 @@ class GzipReader {
     }
   }
 
-  // After the last attribute: the stream must end here, and the file with it.
-  void expect_end() {
+  void expect_end() override {
     unsigned char extra;
     z_.next_out = &extra;
     z_.avail_out = 1;
@@ -129,25 +144,81 @@ class GzipReader {
   bool ended_ = false;
 };
 
+// Version 4: one zstd frame, `size` bytes at `offset` of the file.
+class ZstdReader : public AttributeStream {
+ public:
+  ZstdReader(const std::string& path, std::uint64_t offset, std::uint64_t size) : path_(path), file_(open_input(path)), left_(size) {
+    if (!stream_) throw InputError(path + ": zstd: cannot start decompressing");
+    file_.seekg(std::streamoff(offset));
+  }
+  ~ZstdReader() override { ZSTD_freeDStream(stream_); }
+  ZstdReader(const ZstdReader&) = delete;
+  ZstdReader& operator=(const ZstdReader&) = delete;
+
+  void read(unsigned char* out, std::size_t size) override {
+    ZSTD_outBuffer output{out, size, 0};
+    while (output.pos < output.size) {
+      if (ended_) throw InputError(path_ + ": a zstd stream ends before the last splat");
+      refill();
+      step(output);
+    }
+  }
+
+  void expect_end() override {
+    unsigned char extra;
+    ZSTD_outBuffer output{&extra, 1, 0};
+    while (!ended_) {
+      refill();
+      step(output);
+      if (output.pos > 0) throw InputError(path_ + ": decompressed bytes after the last splat");
+    }
+    if (input_.pos < input_.size || left_ > 0) throw InputError(path_ + ": bytes after a zstd frame");
+  }
+
+ private:
+  void refill() {
+    if (input_.pos < input_.size) return;
+    if (left_ == 0) throw InputError(path_ + ": truncated: a zstd stream ends early");
+    file_.read(reinterpret_cast<char*>(in_.data()), std::streamsize(std::min<std::uint64_t>(left_, in_.size())));
+    if (file_.gcount() == 0) throw InputError(path_ + ": truncated");
+    left_ -= std::uint64_t(file_.gcount());
+    input_ = {in_.data(), std::size_t(file_.gcount()), 0};
+  }
+  void step(ZSTD_outBuffer& output) {
+    const std::size_t result = ZSTD_decompressStream(stream_, &output, &input_);
+    if (ZSTD_isError(result)) throw InputError(path_ + ": zstd: " + runtime::excerpt(ZSTD_getErrorName(result)));
+    if (result == 0) ended_ = true;
+  }
+
+  std::string path_;
+  std::ifstream file_;
+  std::uint64_t left_;
+  ZSTD_DStream* stream_ = ZSTD_createDStream();
+  ZSTD_inBuffer input_{nullptr, 0, 0};
+  std::array<unsigned char, 1 << 16> in_{};
+  bool ended_ = false;
+};
+
 class SpzReader : public SceneReader {
  public:
   explicit SpzReader(const std::string& path) : path_(path) {
     const std::uint64_t size = regular_file_size(path, ".spz is checked against its size first");
-    {
-      std::ifstream file = open_input(path);
-      unsigned char start[4] = {};
-      file.read(reinterpret_cast<char*>(start), 4);
-      if (file.gcount() >= 4 && get_uint32(start) == kMagic)
-        throw InputError(path + ": .spz version 4 (zstd streams) is not read here; write it as version 3 (splat-transform --spz-version 3)");
-      if (file.gcount() < 2 || start[0] != 0x1f || start[1] != 0x8b) throw InputError(path + ": not a .spz file (no gzip stream)");
+    std::ifstream file = open_input(path);
+    unsigned char h[kZstdHeaderBytes] = {};
+    file.read(reinterpret_cast<char*>(h), kZstdHeaderBytes);
+    const std::size_t got = std::size_t(file.gcount());
+    const bool zstd = got >= 4 && get_uint32(h) == kMagic;
+    if (!zstd) {
+      if (got < 2 || h[0] != 0x1f || h[1] != 0x8b) throw InputError(path + ": not a .spz file (neither NGSP nor a gzip stream)");
+      GzipReader header_stream(path, 0);
+      header_stream.read(h, kHeaderBytes);
+      if (get_uint32(h) != kMagic) throw InputError(path + ": not a .spz file (the magic is not NGSP)");
+    } else if (got < kZstdHeaderBytes) {
+      throw InputError(path + ": truncated: a version 4 header is 32 bytes");
     }
-    GzipReader header_stream(path, 0);
-    unsigned char h[kHeaderBytes];
-    header_stream.read(h, kHeaderBytes);
-    if (get_uint32(h) != kMagic) throw InputError(path + ": not a .spz file (the magic is not NGSP)");
     version_ = get_uint32(h + 4);
-    if (version_ != 2 && version_ != 3)
-      throw InputError(path + ": .spz version " + std::to_string(version_) + "; zhf reads versions 2 and 3");
+    if (zstd ? version_ != 4 : version_ != 2 && version_ != 3)
+      throw InputError(path + ": .spz version " + std::to_string(version_) + (zstd ? " in a plain header; expected 4" : "; zhf reads versions 2, 3 and 4"));
     splats_ = get_uint32(h + 8);
     if (splats_ > runtime::kMaxPlyVertices)
       throw InputError(path + ": " + std::to_string(splats_) + " splats; at most " + std::to_string(runtime::kMaxPlyVertices));
@@ -155,23 +226,50 @@ class SpzReader : public SceneReader {
     if (degree_ > 3) throw InputError(path + ": SH degree " + std::to_string(degree_) + "; zhf splat handles degrees 0..3");
     fractional_bits_ = h[13];
     if (fractional_bits_ > 23) throw InputError(path + ": " + std::to_string(fractional_bits_) + " fractional bits; at most 23");
-    if (h[15] != 0) throw InputError(path + ": the header's reserved byte is not 0");
-    const std::array<std::uint64_t, 6> bytes = attribute_bytes(version_, degree_);
-    std::uint64_t offset = kHeaderBytes;
-    for (std::uint64_t b : bytes) offset += b * splats_;
-    if (double(offset) > runtime::kMaxGzipExpansion * double(size))
-      throw InputError(path + ": the header claims " + std::to_string(splats_) + " splats (" + std::to_string(offset) +
+    const std::array<std::uint64_t, kAttributes> bytes = attribute_bytes(version_, degree_);
+    std::uint64_t claimed = 0;
+    for (std::uint64_t b : bytes) claimed += b * splats_;
+    if (double(claimed) > runtime::kMaxCompressionRatio * double(size))
+      throw InputError(path + ": the header claims " + std::to_string(splats_) + " splats (" + std::to_string(claimed) +
                        " bytes), more than " + std::to_string(size) + " compressed bytes can hold");
-    offset = kHeaderBytes;
-    for (std::size_t a = 0; a < bytes.size(); ++a) {
-      attributes_[a] = std::make_unique<GzipReader>(path, offset);
-      offset += bytes[a] * splats_;
+    if (!zstd) {
+      if (h[15] != 0) throw InputError(path + ": the header's reserved byte is not 0");
+      std::uint64_t offset = kHeaderBytes;
+      for (std::size_t a = 0; a < bytes.size(); ++a) {
+        attributes_[a] = std::make_unique<GzipReader>(path, offset);
+        offset += bytes[a] * splats_;
+      }
+      return;
     }
+    for (std::size_t i = 20; i < kZstdHeaderBytes; ++i)
+      if (h[i] != 0) throw InputError(path + ": the header's reserved bytes are not 0");
+    const int streams = h[15];
+    const std::uint32_t table = get_uint32(h + 16);
+    if (streams != kAttributes) throw InputError(path + ": " + std::to_string(streams) + " streams; expected 6");
+    if (table < kZstdHeaderBytes || table > size || size - table < std::uint64_t(16 * streams))
+      throw InputError(path + ": the table of streams at byte " + std::to_string(table) + " is not inside the file");
+    file.clear();
+    file.seekg(table);
+    std::uint64_t offset = table + 16 * streams;
+    for (int a = 0; a < streams; ++a) {
+      unsigned char entry[16];
+      file.read(reinterpret_cast<char*>(entry), 16);
+      std::uint64_t compressed, decompressed;
+      std::memcpy(&compressed, entry, 8);
+      std::memcpy(&decompressed, entry + 8, 8);
+      if (decompressed != bytes[a] * splats_)
+        throw InputError(path + ": stream " + std::to_string(a) + " holds " + std::to_string(decompressed) + " bytes; " +
+                         std::to_string(splats_) + " splats need " + std::to_string(bytes[a] * splats_));
+      if (compressed > size - offset) throw InputError(path + ": stream " + std::to_string(a) + " runs past the end of the file");
+      attributes_[a] = std::make_unique<ZstdReader>(path, offset, compressed);
+      offset += compressed;
+    }
+    if (offset != size) throw InputError(path + ": " + std::to_string(size - offset) + " bytes after the last stream");
   }
 
   void read(std::uint64_t, std::uint64_t count, double* records) override {
     const Canonical c(degree_);
-    const std::array<std::uint64_t, 6> bytes = attribute_bytes(version_, degree_);
+    const std::array<std::uint64_t, kAttributes> bytes = attribute_bytes(version_, degree_);
     for (std::size_t a = 0; a < bytes.size(); ++a) {
       buffers_[a].resize(count * bytes[a]);
       attributes_[a]->read(buffers_[a].data(), buffers_[a].size());
@@ -226,14 +324,20 @@ class SpzReader : public SceneReader {
     }
   }
 
-  void finish() override { attributes_.back()->expect_end(); }
+  void finish() override {
+    // Version 4: every stream its own frame; versions 2 and 3: one stream, ending after the last.
+    if (version_ == 4)
+      for (const auto& stream : attributes_) stream->expect_end();
+    else
+      attributes_.back()->expect_end();
+  }
 
  private:
   std::string path_;
   std::uint32_t version_ = 3;
   int fractional_bits_ = 0;
-  std::array<std::unique_ptr<GzipReader>, 6> attributes_;
-  std::array<std::vector<unsigned char>, 6> buffers_;
+  std::array<std::unique_ptr<AttributeStream>, kAttributes> attributes_;
+  std::array<std::vector<unsigned char>, kAttributes> buffers_;
 };
 
 // SH byte with `bits` kept: 128 + 128 v rounded, then to the nearest multiple of 2^(8 - bits)
@@ -248,7 +352,8 @@ unsigned char sh_byte(double v, int bits, std::uint64_t& clamped) {
 
 class SpzWriter : public SceneWriter {
  public:
-  SpzWriter(io::PendingFile& out, int degree, std::uint64_t splats) : out_(out), c_(degree), degree_(degree), splats_(splats) {
+  SpzWriter(io::PendingFile& out, int degree, std::uint64_t splats, int version)
+      : out_(out), c_(degree), degree_(degree), version_(version), splats_(splats) {
     for (std::size_t a = 0; a < files_.size(); ++a) {
       files_[a].open(dir_.path() + "/" + std::to_string(a), std::ios::binary);
       if (!files_[a]) throw io::OutputError(dir_.path() + ": cannot write a temporary file");
@@ -257,7 +362,7 @@ class SpzWriter : public SceneWriter {
 
   void write(std::uint64_t count, const double* records) override {
     const int dim = coefficients(degree_);
-    std::array<std::vector<unsigned char>, 6> bytes;
+    std::array<std::vector<unsigned char>, kAttributes> bytes;
     for (std::uint64_t s = 0; s < count; ++s) {
       const double* v = records + s * c_.size();
       for (int i = 0; i < 3; ++i) {
@@ -299,8 +404,81 @@ class SpzWriter : public SceneWriter {
     }
   }
 
-  // The header and the six attributes, one after another, through one gzip stream.
   void finish() override {
+    for (std::ofstream& file : files_) {
+      file.close();
+      if (!file) throw io::OutputError(dir_.path() + ": cannot write a temporary file");
+    }
+    if (version_ == 4) finish_zstd();
+    else finish_gzip();
+  }
+  int kept_degree(int degree) const override { return degree; }
+
+ private:
+  // Each attribute's bytes, a block at a time.
+  template <class F>
+  void for_each_block(std::size_t attribute, F&& use) {
+    std::vector<unsigned char> chunk(1 << 16);
+    std::ifstream in(dir_.path() + "/" + std::to_string(attribute), std::ios::binary);
+    while (in.read(reinterpret_cast<char*>(chunk.data()), std::streamsize(chunk.size())) || in.gcount() > 0)
+      use(chunk.data(), std::size_t(in.gcount()));
+  }
+
+  void put_header(unsigned char* header, std::uint32_t version) const {
+    put_uint32(header, kMagic);
+    put_uint32(header + 4, version);
+    put_uint32(header + 8, static_cast<std::uint32_t>(splats_));
+    header[12] = static_cast<unsigned char>(degree_);
+    header[13] = kFractionalBits;
+  }
+
+  // Version 4: the header, the table, then each attribute as its own zstd frame.
+  void finish_zstd() {
+    unsigned char header[kZstdHeaderBytes] = {};
+    put_header(header, 4);
+    header[15] = kAttributes;
+    put_uint32(header + 16, kZstdHeaderBytes);
+    out_.write(reinterpret_cast<const char*>(header), kZstdHeaderBytes);
+    std::array<unsigned char, 16 * kAttributes> table{};
+    out_.write(reinterpret_cast<const char*>(table.data()), table.size());  // filled in below
+    ZSTD_CStream* stream = ZSTD_createCStream();
+    if (!stream) throw io::OutputError("zstd: cannot start compressing");
+    std::vector<unsigned char> out(ZSTD_CStreamOutSize());
+    try {
+      for (std::size_t a = 0; a < kAttributes; ++a) {
+        ZSTD_CCtx_reset(stream, ZSTD_reset_session_only);
+        ZSTD_CCtx_setParameter(stream, ZSTD_c_compressionLevel, kZstdLevel);
+        ZSTD_CCtx_setParameter(stream, ZSTD_c_checksumFlag, 1);  // a reader can tell a damaged frame
+        std::uint64_t compressed = 0, decompressed = 0;
+        auto feed = [&](const unsigned char* data, std::size_t size, ZSTD_EndDirective mode) {
+          ZSTD_inBuffer input{data, size, 0};
+          for (;;) {
+            ZSTD_outBuffer output{out.data(), out.size(), 0};
+            const std::size_t left = ZSTD_compressStream2(stream, &output, &input, mode);
+            if (ZSTD_isError(left)) throw io::OutputError(std::string("zstd: ") + ZSTD_getErrorName(left));
+            out_.write(reinterpret_cast<const char*>(out.data()), output.pos);
+            compressed += output.pos;
+            if (mode == ZSTD_e_end ? left == 0 : input.pos == input.size) break;
+          }
+        };
+        for_each_block(a, [&](const unsigned char* data, std::size_t size) {
+          feed(data, size, ZSTD_e_continue);
+          decompressed += size;
+        });
+        feed(nullptr, 0, ZSTD_e_end);
+        std::memcpy(&table[16 * a], &compressed, 8);
+        std::memcpy(&table[16 * a + 8], &decompressed, 8);
+      }
+    } catch (...) {
+      ZSTD_freeCStream(stream);
+      throw;
+    }
+    ZSTD_freeCStream(stream);
+    out_.write_at(kZstdHeaderBytes, reinterpret_cast<const char*>(table.data()), table.size());
+  }
+
+  // Versions 2 and 3: the header and the attributes, one after another, through one gzip stream.
+  void finish_gzip() {
     Deflater deflater;
     z_stream& z = deflater.z;
     std::vector<unsigned char> out(1 << 16);
@@ -317,37 +495,26 @@ class SpzWriter : public SceneWriter {
       }
     };
     unsigned char header[kHeaderBytes] = {};
-    put_uint32(header, kMagic);
-    put_uint32(header + 4, 3);
-    put_uint32(header + 8, static_cast<std::uint32_t>(splats_));
-    header[12] = static_cast<unsigned char>(degree_);
-    header[13] = kFractionalBits;
+    put_header(header, 3);
     feed(header, kHeaderBytes, Z_NO_FLUSH);
-    std::vector<unsigned char> chunk(1 << 16);
-    for (std::size_t a = 0; a < files_.size(); ++a) {
-      files_[a].close();
-      std::ifstream in(dir_.path() + "/" + std::to_string(a), std::ios::binary);
-      while (in.read(reinterpret_cast<char*>(chunk.data()), std::streamsize(chunk.size())) || in.gcount() > 0)
-        feed(chunk.data(), std::size_t(in.gcount()), Z_NO_FLUSH);
-    }
+    for (std::size_t a = 0; a < kAttributes; ++a)
+      for_each_block(a, [&](const unsigned char* data, std::size_t size) { feed(data, size, Z_NO_FLUSH); });
     feed(nullptr, 0, Z_FINISH);
   }
-  int kept_degree(int degree) const override { return degree; }
 
- private:
   io::PendingFile& out_;
   Canonical c_;
-  int degree_;
+  int degree_, version_;
   std::uint64_t splats_;
   io::PrivateDir dir_{"zhf-spz"};  // each attribute's bytes until the end, in file order
-  std::array<std::ofstream, 6> files_;
+  std::array<std::ofstream, kAttributes> files_;
 };
 
 }  // namespace
 
 std::unique_ptr<SceneReader> open_spz_reader(const std::string& path) { return std::make_unique<SpzReader>(path); }
-std::unique_ptr<SceneWriter> open_spz_writer(io::PendingFile& out, int degree, std::uint64_t splats) {
-  return std::make_unique<SpzWriter>(out, degree, splats);
+std::unique_ptr<SceneWriter> open_spz_writer(io::PendingFile& out, int degree, std::uint64_t splats, int version) {
+  return std::make_unique<SpzWriter>(out, degree, splats, version);
 }
 
 }  // namespace zhf::splat

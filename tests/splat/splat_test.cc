@@ -645,7 +645,7 @@ TEST(Splat, SpzHoldsTheLayoutInItsAxesAndReadsBackExactly) {
   }
   const std::string in = (dir / "in.ply").string(), spz = (dir / "out.spz").string(), back = (dir / "back.ply").string();
   write_scene(scene, in, false);
-  test::RunResult run = test::run_zhf("splat --in '" + in + "' --out '" + spz + "' --identity --quiet");
+  test::RunResult run = test::run_zhf("splat --in '" + in + "' --out '" + spz + "' --identity --quiet --spz-version 3");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(run.err, "");
   const std::string data = gunzip(test::read_text(spz));
@@ -703,6 +703,14 @@ TEST(Splat, SpzHoldsTheLayoutInItsAxesAndReadsBackExactly) {
       }
     }
   }
+  // Version 4 (the default): the same attributes as zstd frames, so the same values read back.
+  const std::string v4 = (dir / "v4.spz").string(), v4_back = (dir / "v4_back.ply").string();
+  ASSERT_EQ(test::run_zhf("splat --in '" + in + "' --out '" + v4 + "' --identity --quiet").exit_code, 0);
+  const std::string v4_bytes = test::read_text(v4);
+  ASSERT_GE(v4_bytes.size(), 32u + 96u);
+  EXPECT_EQ(v4_bytes.substr(0, 12), spz_header(4, std::uint32_t(n), 3).substr(0, 12));
+  ASSERT_EQ(test::run_zhf("splat --in '" + v4 + "' --out '" + v4_back + "' --identity --quiet").exit_code, 0);
+  EXPECT_EQ(test::read_text(v4_back), test::read_text(back));
   // Transformed straight from the .spz, as its decoded .ply is.
   const std::string turn = " --zyz '0.3 0.5 0.7' --scale 2 --translate '1 2 3' --quiet";
   ASSERT_EQ(test::run_zhf("splat --in '" + spz + "' --out '" + (dir / "a.ply").string() + "'" + turn).exit_code, 0);
@@ -724,10 +732,10 @@ TEST(Splat, MalformedSpzIsRefusedAndNothingIsWritten) {
   std::string corrupt = gz;
   corrupt[gz.size() - 6] ^= 0x55;  // the gzip trailer's CRC
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"PK\x03\x04 not gzip", "not a .spz file (no gzip stream)"},
-      {spz_header(4, 2, 0) + std::string(16, '\0'), ".spz version 4 (zstd streams) is not read here"},
+      {"PK\x03\x04 not gzip", "not a .spz file (neither NGSP nor a gzip stream)"},
+      {spz_header(4, 2, 0), "truncated: a version 4 header is 32 bytes"},
       {gzip(std::string("NGSX") + reordered.substr(4)), "the magic is not NGSP"},
-      {gzip(spz_header(1, 2, 0) + reordered.substr(16)), ".spz version 1; zhf reads versions 2 and 3"},
+      {gzip(spz_header(1, 2, 0) + reordered.substr(16)), ".spz version 1; zhf reads versions 2, 3 and 4"},
       {gzip(spz_header(3, 2, 4) + reordered.substr(16)), "SH degree 4; zhf splat handles degrees 0..3"},
       {gzip(spz_header(3, 2, 0, 12, 7) + reordered.substr(16)), "the header's reserved byte is not 0"},
       {gzip(spz_header(3, 2, 0, 30) + reordered.substr(16)), "30 fractional bits; at most 23"},
@@ -751,6 +759,36 @@ TEST(Splat, MalformedSpzIsRefusedAndNothingIsWritten) {
   test::write_text((dir / "good.spz").string(), gz);
   const test::RunResult run = test::run_zhf("splat --in '" + (dir / "good.spz").string() + "' --out '" + (dir / "good.ply").string() + "' --identity --quiet");
   EXPECT_EQ(run.exit_code, 0) << run.err;
+  // Version 4, as zhf writes it from that file, then broken one way at a time.
+  const std::string v4_path = (dir / "good4.spz").string();
+  ASSERT_EQ(test::run_zhf("splat --in '" + (dir / "good.spz").string() + "' --out '" + v4_path + "' --identity --quiet").exit_code, 0);
+  const std::string v4 = test::read_text(v4_path);
+  auto with_byte = [&](std::size_t at, char value) {
+    std::string s = v4;
+    s[at] = value;
+    return s;
+  };
+  std::uint64_t first_stream;
+  std::memcpy(&first_stream, &v4[32], 8);
+  const std::vector<std::pair<std::string, std::string>> v4_cases = {
+      {with_byte(15, 5), "5 streams; expected 6"},
+      {with_byte(16, char(0xf0)), "the table of streams at byte 240 is not inside the file"},
+      {with_byte(20, 1), "the header's reserved bytes are not 0"},
+      {with_byte(40, 7), "stream 0 holds 7 bytes; 2 splats need 18"},
+      {with_byte(32, char(first_stream + 1)), "stream"},
+      {v4 + "z", "1 bytes after the last stream"},
+      {with_byte(32 + 96, char(v4[32 + 96] ^ 0x3c)), "zstd: "},  // the first frame's magic
+      {v4.substr(0, v4.size() - 1), "runs past the end of the file"},
+  };
+  for (const auto& [content, message] : v4_cases) {
+    const std::string bad = (dir / "bad4.spz").string(), out = (dir / "out4.ply").string();
+    test::write_text(bad, content);
+    const test::RunResult broken = test::run_zhf("splat --in '" + bad + "' --out '" + out + "' --identity --quiet");
+    EXPECT_EQ(broken.exit_code, 3) << message << ": " << broken.err;
+    EXPECT_NE(broken.err.find(message), std::string::npos) << message << ": " << broken.err;
+    EXPECT_EQ(std::count(broken.err.begin(), broken.err.end(), '\n'), 1) << broken.err;
+    EXPECT_FALSE(fs::exists(out)) << message;
+  }
 }
 
 }  // namespace

@@ -114,9 +114,10 @@ inline constexpr std::size_t kMaxPlyHeaderBytes = std::size_t(64) << 10;
 inline constexpr std::size_t kMaxPlyProperties = 1024;
 inline constexpr std::size_t kMaxPlyElements = 8;
 inline constexpr std::uint64_t kMaxPlyVertices = std::uint64_t(1) << 31;
-// Deflate expands at most about 1032:1: a compressed scene whose header claims more than this
-// many bytes per compressed byte is refused before it is inflated.
-inline constexpr double kMaxGzipExpansion = 1100;
+// A compressed scene (.spz) whose header claims more than this many bytes per byte of the file
+// is refused before anything is decompressed: deflate cannot expand beyond about 1032:1, and a
+// real scene's attributes compress far less (zstd could go further only on degenerate data).
+inline constexpr double kMaxCompressionRatio = 1100;
 // Radiance .hdr images: file and header size, width and height, pixels.
 inline constexpr std::size_t kMaxHdrBytes = std::size_t(256) << 20;
 inline constexpr std::size_t kMaxHdrHeader = 64 << 10;

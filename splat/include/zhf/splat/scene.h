@@ -68,6 +68,7 @@ inline constexpr std::uint64_t kChunkSplats = 1 << 16;
 // read as compressed.
 struct Formats {
   std::optional<FileFormat> in, out;
+  int spz_version = 4;  // written: 4 (zstd streams, the reference library's default) or 3 (gzip)
 };
 Summary transform_file(const std::string& in, const std::string& out, const Transform& transform, int threads,
                        const std::function<void(std::uint64_t, std::uint64_t)>& progress, const Formats& formats = {});
