@@ -129,6 +129,18 @@ Matrix3 quaternion_matrix(const std::vector<double>& row, const Scene& s) {
   return q;
 }
 
+// `content` written to `in` and given to zhf splat: refused with exit 3 and one line holding
+// `message`, and `out` not written.
+void expect_refused(const std::string& in, const std::string& content, const std::string& out, const std::string& options,
+                    const std::string& message) {
+  test::write_text(in, content);
+  const test::RunResult run = test::run_zhf("splat --in '" + in + "' --out '" + out + "' " + options + " --quiet");
+  EXPECT_EQ(run.exit_code, 3) << message << ": " << run.err;
+  EXPECT_NE(run.err.find(message), std::string::npos) << message << ": " << run.err;
+  EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+  EXPECT_FALSE(fs::exists(out)) << message;
+}
+
 struct Case {
   std::string options;
   Matrix3 r;
@@ -237,15 +249,8 @@ TEST(Splat, MalformedScenesAreRefusedAndNothingIsWritten) {
       {"ply\nformat ascii 1.0\nelement vertex 99999999999\n", "is not a count up to 2^31"},
       {"ply\nformat ascii 1.0\nelement vertex 1\nproperty list uchar int vertex_indices\nend_header\n", "list properties"},
   };
-  for (const auto& [content, message] : cases) {
-    const std::string in = (dir / "bad.ply").string(), out = (dir / "out.ply").string();
-    test::write_text(in, content);
-    const test::RunResult run = test::run_zhf("splat --in '" + in + "' --out '" + out + "' --zyz '1 2 3' --quiet");
-    EXPECT_EQ(run.exit_code, 3) << message << ": " << run.err;
-    EXPECT_NE(run.err.find(message), std::string::npos) << message << ": " << run.err;
-    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
-    EXPECT_FALSE(fs::exists(out)) << message;
-  }
+  for (const auto& [content, message] : cases)
+    expect_refused((dir / "bad.ply").string(), content, (dir / "out.ply").string(), "--zyz '1 2 3'", message);
   for (const auto& [options, message] : std::vector<std::pair<std::string, std::string>>{
            {"--zyz '1 2 3' --scale 0", "--scale"},
            {"--zyz '1 2 3' --scale '1 2 3'", "--scale"},
@@ -580,15 +585,8 @@ TEST(Splat, MalformedCompressedPlyIsRefusedAndNothingIsWritten) {
       {replaced("element vertex 300\n", "element vertex 300\nproperty uint packed_extra\n"), "element vertex has 5 properties"},
       {nan_bound, "chunk 1: min_y is nan"},
   };
-  for (const auto& [content, message] : cases) {
-    const std::string bad = (dir / "bad.compressed.ply").string(), out = (dir / "out.ply").string();
-    test::write_text(bad, content);
-    const test::RunResult run = test::run_zhf("splat --in '" + bad + "' --out '" + out + "' --zyz '1 2 3' --quiet");
-    EXPECT_EQ(run.exit_code, 3) << message << ": " << run.err;
-    EXPECT_NE(run.err.find(message), std::string::npos) << message << ": " << run.err;
-    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
-    EXPECT_FALSE(fs::exists(out)) << message;
-  }
+  for (const auto& [content, message] : cases)
+    expect_refused((dir / "bad.compressed.ply").string(), content, (dir / "out.ply").string(), "--zyz '1 2 3'", message);
 }
 
 // gzip of bytes, and back (zlib, as a writer of .spz would).
@@ -746,15 +744,8 @@ TEST(Splat, MalformedSpzIsRefusedAndNothingIsWritten) {
       {gzip(reordered.substr(0, reordered.size() - 1)), "the decompressed data ends before the last splat"},
       {gzip(spz_header(3, 2000000000, 0)), "the header claims 2000000000 splats"},
   };
-  for (const auto& [content, message] : cases) {
-    const std::string bad = (dir / "bad.spz").string(), out = (dir / "out.ply").string();
-    test::write_text(bad, content);
-    const test::RunResult run = test::run_zhf("splat --in '" + bad + "' --out '" + out + "' --zyz '1 2 3' --quiet");
-    EXPECT_EQ(run.exit_code, 3) << message << ": " << run.err;
-    EXPECT_NE(run.err.find(message), std::string::npos) << message << ": " << run.err;
-    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
-    EXPECT_FALSE(fs::exists(out)) << message;
-  }
+  for (const auto& [content, message] : cases)
+    expect_refused((dir / "bad.spz").string(), content, (dir / "out.ply").string(), "--zyz '1 2 3'", message);
   // The well-formed file reads.
   test::write_text((dir / "good.spz").string(), gz);
   const test::RunResult run = test::run_zhf("splat --in '" + (dir / "good.spz").string() + "' --out '" + (dir / "good.ply").string() + "' --identity --quiet");
@@ -780,15 +771,8 @@ TEST(Splat, MalformedSpzIsRefusedAndNothingIsWritten) {
       {with_byte(32 + 96, char(v4[32 + 96] ^ 0x3c)), "zstd: "},  // the first frame's magic
       {v4.substr(0, v4.size() - 1), "runs past the end of the file"},
   };
-  for (const auto& [content, message] : v4_cases) {
-    const std::string bad = (dir / "bad4.spz").string(), out = (dir / "out4.ply").string();
-    test::write_text(bad, content);
-    const test::RunResult broken = test::run_zhf("splat --in '" + bad + "' --out '" + out + "' --identity --quiet");
-    EXPECT_EQ(broken.exit_code, 3) << message << ": " << broken.err;
-    EXPECT_NE(broken.err.find(message), std::string::npos) << message << ": " << broken.err;
-    EXPECT_EQ(std::count(broken.err.begin(), broken.err.end(), '\n'), 1) << broken.err;
-    EXPECT_FALSE(fs::exists(out)) << message;
-  }
+  for (const auto& [content, message] : v4_cases)
+    expect_refused((dir / "bad4.spz").string(), content, (dir / "out4.ply").string(), "--identity", message);
 }
 
 }  // namespace
