@@ -246,7 +246,7 @@ class CompressedPlyWriter : public SceneWriter {
           bounds[6 * group + 3 + i] = clamped_float(high, clamped_);
         }
       for (int i = 0; i < kChunkFloats; ++i) put_float(&chunk_bytes_[(k * kChunkFloats + i) * 4], bounds[i]);
-      for (std::uint64_t s = begin; s < end; ++s) pack(records + s * c_.size(), bounds, &vertex_bytes_[s * 16], &sh_bytes_[s * c_.rest]);
+      for (std::uint64_t s = begin; s < end; ++s) pack(records + s * c_.size(), bounds, vertex_bytes_.data() + s * 16, sh_bytes_.data() + s * c_.rest);
     }
     out_.write_at(chunk_at_, reinterpret_cast<const char*>(chunk_bytes_.data()), chunk_bytes_.size());
     out_.write_at(vertex_at_, reinterpret_cast<const char*>(vertex_bytes_.data()), vertex_bytes_.size());

@@ -278,9 +278,9 @@ class SpzReader : public SceneReader {
     const int dim = coefficients(degree_);
     for (std::uint64_t s = 0; s < count; ++s) {
       double* v = records + s * c.size();
-      const unsigned char* p = &buffers_[0][9 * s];
-      const unsigned char* rgb = &buffers_[2][3 * s];
-      const unsigned char* scale = &buffers_[3][3 * s];
+      const unsigned char* p = buffers_[0].data() + 9 * s;
+      const unsigned char* rgb = buffers_[2].data() + 3 * s;
+      const unsigned char* scale = buffers_[3].data() + 3 * s;
       for (int i = 0; i < 3; ++i) {
         std::int32_t fixed = p[3 * i] | (p[3 * i + 1] << 8) | (p[3 * i + 2] << 16);
         if (fixed & 0x800000) fixed -= 0x1000000;
@@ -293,7 +293,7 @@ class SpzReader : public SceneReader {
       v[c.opacity()] = logit(std::clamp(buffers_[1][s] / 255.0, 0.25 / 255, 254.75 / 255));
       double xyzw[4];
       if (version_ >= 3) {
-        std::uint32_t word = get_uint32(&buffers_[4][4 * s]);
+        std::uint32_t word = get_uint32(buffers_[4].data() + 4 * s);
         const int largest = int(word >> 30);
         double squares = 0;
         for (int i = 3; i >= 0; --i) {
@@ -305,7 +305,7 @@ class SpzReader : public SceneReader {
         }
         xyzw[largest] = std::sqrt(std::max(0.0, 1 - squares));
       } else {
-        const unsigned char* r = &buffers_[4][3 * s];
+        const unsigned char* r = buffers_[4].data() + 3 * s;
         double squares = 0;
         for (int i = 0; i < 3; ++i) {
           xyzw[i] = r[i] / 127.5 - 1;
@@ -318,7 +318,7 @@ class SpzReader : public SceneReader {
       q[1] = xyzw[0];
       q[2] = -xyzw[1];
       q[3] = -xyzw[2];
-      const unsigned char* sh = &buffers_[5][3 * dim * s];
+      const unsigned char* sh = buffers_[5].data() + 3 * dim * s;  // empty at degree 0
       for (int k = 0; k < dim; ++k)
         for (int ch = 0; ch < 3; ++ch) v[Canonical::kRest + ch * dim + k] = half_turn_sign(k) * (sh[3 * k + ch] - 128.0) / 128;
     }

@@ -101,7 +101,8 @@ Scene read_scene(const std::string& path, const Scene& like, std::string& header
     } else {
       std::vector<unsigned char> record(h.record_bytes);
       in.read(reinterpret_cast<char*>(record.data()), std::streamsize(record.size()));
-      for (std::size_t i = 0; i < row.size(); ++i) row[i] = io::ply::read_binary(record.data(), h.properties[i]);
+      // A converted file has the 3DGS record's columns only: `like`'s extra ones read as 0.
+      for (std::size_t i = 0; i < row.size(); ++i) row[i] = i < h.properties.size() ? io::ply::read_binary(record.data(), h.properties[i]) : 0;
     }
   }
   return s;
