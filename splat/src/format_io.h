@@ -19,8 +19,8 @@ struct Canonical {
   int scale() const { return kRest + rest + 1; }
   int rotation() const { return kRest + rest + 4; }
   int size() const { return kRest + rest + 8; }
-  // The SH band of f_rest value k of a channel (k + 1 = l (l + 1) + m).
-  static int band(int k) { return int(std::sqrt(double(k + 1))); }
+  // The SH band of f_rest value k of a channel (k + 1 = l (l + 1) + m; degrees to 3).
+  static int band(int k) { return k < 3 ? 1 : k < 8 ? 2 : 3; }
 };
 
 // The file opened for reading, or io::InputError.

@@ -86,13 +86,15 @@ class PlyWriter : public SceneWriter {
   }
   void write(std::uint64_t count, const double* records) override {
     buffer_.resize(count * size_ * sizeof(float));
-    for (std::uint64_t i = 0; i < count * size_; ++i) {
-      const float value = clamped_float(records[i], clamped_);
-      const int field = int(i % size_);
-      if (field >= Canonical::kDc && field < Canonical::kRest + rest_)
-        stored(field < Canonical::kRest ? 0 : Canonical::band((field - Canonical::kRest) % (rest_ / 3)), records[i], value);
-      put_float(&buffer_[i * sizeof(float)], value);
-    }
+    unsigned char* at = buffer_.data();
+    for (std::uint64_t s = 0; s < count; ++s)
+      for (int field = 0; field < size_; ++field, at += sizeof(float)) {
+        const double given = records[s * size_ + field];
+        const float value = clamped_float(given, clamped_);
+        if (field >= Canonical::kDc && field < Canonical::kRest + rest_)
+          stored(field < Canonical::kRest ? 0 : Canonical::band((field - Canonical::kRest) % (rest_ / 3)), given, value);
+        put_float(at, value);
+      }
     out_.write(reinterpret_cast<const char*>(buffer_.data()), buffer_.size());
   }
   int kept_degree(int degree) const override { return degree; }

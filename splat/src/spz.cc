@@ -42,13 +42,20 @@ constexpr int kFractionalBits = 12;  // written: positions to +-2048 in steps of
 constexpr double kColourScale = 0.15;
 const double kSqrtHalf = std::sqrt(0.5);
 
-// The sign a half turn about x (y -> -y, z -> -z) gives SH coefficient k of f_rest (band l,
-// order m, k + 1 = l (l + 1) + m): cos(m phi) terms (-1)^(l + m), sin(|m| phi) terms -(-1)^(l + |m|).
-double half_turn_sign(int k) {
-  const int l = int(std::sqrt(double(k + 1)));
-  const int m = k + 1 - l * (l + 1);
-  const int parity = (l + std::abs(m)) % 2 == 0 ? 1 : -1;
-  return m >= 0 ? parity : -parity;
+// The sign a half turn about x (y -> -y, z -> -z) gives each f_rest coefficient k of a channel
+// (band l, order m, k + 1 = l (l + 1) + m; degrees to 3): cos(m phi) terms (-1)^(l + m),
+// sin(|m| phi) terms -(-1)^(l + |m|). Made once.
+const std::array<double, 15>& half_turn_signs() {
+  static const std::array<double, 15> signs = [] {
+    std::array<double, 15> s{};
+    for (int k = 0; k < 15; ++k) {
+      const int l = Canonical::band(k), m = k + 1 - l * (l + 1);
+      const int parity = (l + std::abs(m)) % 2 == 0 ? 1 : -1;
+      s[k] = m >= 0 ? parity : -parity;
+    }
+    return s;
+  }();
+  return signs;
 }
 
 int coefficients(int degree) { return (degree + 1) * (degree + 1) - 1; }
@@ -276,6 +283,7 @@ class SpzReader : public SceneReader {
     }
     const double position_scale = 1.0 / double(1 << fractional_bits_);
     const int dim = coefficients(degree_);
+    const std::array<double, 15>& flip = half_turn_signs();
     for (std::uint64_t s = 0; s < count; ++s) {
       double* v = records + s * c.size();
       const unsigned char* p = buffers_[0].data() + 9 * s;
@@ -320,7 +328,7 @@ class SpzReader : public SceneReader {
       q[3] = -xyzw[2];
       const unsigned char* sh = buffers_[5].data() + 3 * dim * s;  // empty at degree 0
       for (int k = 0; k < dim; ++k)
-        for (int ch = 0; ch < 3; ++ch) v[Canonical::kRest + ch * dim + k] = half_turn_sign(k) * (sh[3 * k + ch] - 128.0) / 128;
+        for (int ch = 0; ch < 3; ++ch) v[Canonical::kRest + ch * dim + k] = flip[k] * (sh[3 * k + ch] - 128.0) / 128;
     }
   }
 
@@ -362,6 +370,7 @@ class SpzWriter : public SceneWriter {
 
   void write(std::uint64_t count, const double* records) override {
     const int dim = coefficients(degree_);
+    const std::array<double, 15>& flip = half_turn_signs();
     std::array<std::vector<unsigned char>, kAttributes> bytes;
     for (std::uint64_t s = 0; s < count; ++s) {
       const double* v = records + s * c_.size();
@@ -393,7 +402,7 @@ class SpzWriter : public SceneWriter {
       for (int b = 0; b < 4; ++b) bytes[4].push_back(static_cast<unsigned char>(word >> (8 * b)));
       for (int k = 0; k < dim; ++k)
         for (int ch = 0; ch < 3; ++ch) {
-          const double given = half_turn_sign(k) * v[Canonical::kRest + ch * dim + k];
+          const double given = flip[k] * v[Canonical::kRest + ch * dim + k];
           bytes[5].push_back(sh_byte(given, k < 3 ? 5 : 4, clamped_));
           stored(Canonical::band(k), given, (bytes[5].back() - 128.0) / 128);
         }
