@@ -3,14 +3,18 @@ applied (fitted from its positions), then zhf splat with that matrix, compared f
 positions, orientations (up to sign), log-scales, colour, opacity and SH per band, the largest
 absolute difference of each. Both write .ply, whatever the scene's format.
 
-    /usr/bin/python3 bench/splat_crosscheck.py SCENE SPLAT_TRANSFORM ZHF [--rotate 10,20,30]
+    /usr/bin/python3 bench/splat_crosscheck.py SCENE SPLAT_TRANSFORM ZHF [--rotate 10,20,30] [--glb]
 
 SCENE: a binary 3DGS .ply (examples/make_splats.py), a .compressed.ply or a .splat (zhf splat
 --in X.ply --out X.compressed.ply); SPLAT_TRANSFORM: its executable (npm install @playcanvas/splat-transform); ZHF: the zhf
 binary.
+--glb: splat-transform writes its result as .glb (it does not read .glb), which zhf reads; then
+both write the unrotated scene as .glb and their attributes are compared as stored.
 """
 
 import argparse
+import json
+import struct
 import subprocess
 import tempfile
 from pathlib import Path
@@ -30,16 +34,59 @@ def read_ply(path):
     return {name: records[name].astype(np.float64) for name, _ in dtype}
 
 
+def read_glb(path):
+    """A .glb's float attributes of its first primitive, as {attribute: array of rows}."""
+    data = Path(path).read_bytes()
+    json_bytes = struct.unpack_from("<I", data, 12)[0]
+    gltf = json.loads(data[20:20 + json_bytes])
+    bin_at = 20 + json_bytes + 8
+    widths = {"SCALAR": 1, "VEC3": 3, "VEC4": 4}
+    out = {}
+    for name, index in gltf["meshes"][0]["primitives"][0]["attributes"].items():
+        accessor = gltf["accessors"][index]
+        if accessor["componentType"] != 5126:
+            continue
+        view = gltf["bufferViews"][accessor["bufferView"]]
+        width = widths[accessor["type"]]
+        at = bin_at + view.get("byteOffset", 0) + accessor.get("byteOffset", 0)
+        out[name] = np.frombuffer(data, dtype="<f4", count=accessor["count"] * width, offset=at).reshape(-1, width).astype(np.float64)
+    return out
+
+
+def compare_glb(a, b):
+    """Attributes of two .glb files of one scene, as stored (rotations up to sign)."""
+    print("| .glb attribute | max abs difference, zhf vs splat-transform |")
+    print("| --- | --- |")
+    for name in sorted(set(a) | set(b)):
+        if name not in a or name not in b:
+            print(f"| {name} | only in {'zhf' if name in a else 'splat-transform'} |")
+            continue
+        x, y = a[name], b[name]
+        if name.endswith("ROTATION"):
+            x = x / np.linalg.norm(x, axis=1, keepdims=True)
+            y = y / np.linalg.norm(y, axis=1, keepdims=True)
+            y = y * np.sign(np.sum(x * y, axis=1, keepdims=True))
+        print(f"| {name} | {np.abs(x - y).max():.3g} |")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("scene")
     parser.add_argument("splat_transform")
     parser.add_argument("zhf")
     parser.add_argument("--rotate", default="10,20,30", help="splat-transform's -r (Euler degrees, its axes)")
+    parser.add_argument("--glb", action="store_true", help="splat-transform writes .glb, zhf reads it")
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as work:
         peer_out, zhf_out = f"{work}/peer.ply", f"{work}/zhf.ply"
-        subprocess.run([args.splat_transform, args.scene, "-r", args.rotate, peer_out], check=True, capture_output=True)
+        if args.glb:
+            subprocess.run([args.splat_transform, args.scene, "-r", args.rotate, f"{work}/peer.glb"], check=True, capture_output=True)
+            subprocess.run([args.zhf, "splat", "--in", f"{work}/peer.glb", "--out", peer_out, "--identity", "--quiet"], check=True)
+            subprocess.run([args.splat_transform, args.scene, f"{work}/peer0.glb"], check=True, capture_output=True)
+            subprocess.run([args.zhf, "splat", "--in", args.scene, "--out", f"{work}/zhf0.glb", "--identity", "--quiet"], check=True)
+            compare_glb(read_glb(f"{work}/zhf0.glb"), read_glb(f"{work}/peer0.glb"))
+        else:
+            subprocess.run([args.splat_transform, args.scene, "-r", args.rotate, peer_out], check=True, capture_output=True)
         if args.scene.endswith(".ply") and not args.scene.endswith(".compressed.ply"):
             a = read_ply(args.scene)
         else:  # decoded by zhf (zhf and splat-transform decode these formats alike: docs/formats.md)

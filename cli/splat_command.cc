@@ -88,9 +88,9 @@ void add_splat_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<SplatOptions>();
   CLI::App* c = app.add_subcommand(
       "splat",
-      "Transform a 3D Gaussian Splatting scene (.ply, .compressed.ply, .splat): p' = s R p + t (rotate and scale about the origin, then translate), "
-      "orientations, normals, log-scales and SH colours with it; in the file's own axes; or convert it to another format");
-  c->add_option("--in", o->in, "The scene: binary little-endian or ASCII .ply, compressed .ply, or .splat")->required();
+      "Transform a 3D Gaussian Splatting scene (.ply, .compressed.ply, .splat, .spz, .glb): p' = s R p + t (rotate and scale about the origin, then translate), "
+      "orientations, normals, log-scales and SH colours with it, in the .ply's axes (.spz and .glb are turned into them: docs/conventions.md); or convert it to another format");
+  c->add_option("--in", o->in, "The scene: binary little-endian or ASCII .ply, compressed .ply, .splat, .spz, or .glb (KHR_gaussian_splatting)")->required();
   c->add_option("--out", o->out, "Write the transformed scene here (.ply to .ply: same format, columns and comments)")->required();
   c->add_option("--format", o->format, "The output's format, " + splat::file_format_names() + " (default: --out's extension, else ply)");
   c->add_option("--spz-version", o->spz_version, "A .spz output's version: 4 (zstd, default) or 3 (gzip, for older readers)");

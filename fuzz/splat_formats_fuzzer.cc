@@ -1,5 +1,6 @@
 // zhf splat's format readers on arbitrary bytes: the first byte picks the reader (binary .ply to
-// .splat, .splat to .ply, compressed .ply to compressed .ply, .spz to .spz), the rest is the file.
+// .splat, .splat to .ply, compressed .ply to compressed .ply, .spz to .spz, .glb to .glb), the
+// rest is the file.
 // They may refuse, never crash; a .splat the reader accepts converts every one of its 32-byte
 // records.
 #include <cstddef>
@@ -18,8 +19,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   static const char* const kPaths[][2] = {{"/in.ply", "/out.splat"},
                                           {"/in.splat", "/out.ply"},
                                           {"/in.compressed.ply", "/out.compressed.ply"},
-                                          {"/in.spz", "/out.spz"}};
-  const int path = data[0] % 4;
+                                          {"/in.spz", "/out.spz"},
+                                          {"/in.glb", "/out.glb"}};
+  const int path = data[0] % 5;
   const bool from_splat = path == 1;
   const std::string in = dir.path() + kPaths[path][0], out = dir.path() + kPaths[path][1];
   {

@@ -45,6 +45,23 @@ std::uint32_t clamped_round(double x, std::uint32_t max, std::uint64_t& clamped)
   return static_cast<std::uint32_t>(r);
 }
 
+// About x (y, z -> -y, -z): cos(m phi) terms (-1)^(l + m), sin(|m| phi) terms -(-1)^(l + |m|).
+// About z (phi -> phi + pi): (-1)^m for both.
+const std::array<double, 15>& half_turn_signs(Axis axis) {
+  static const auto make = [](Axis about) {
+    std::array<double, 15> s{};
+    for (int k = 0; k < 15; ++k) {
+      const int l = Canonical::band(k), m = k + 1 - l * (l + 1);
+      const double odd_m = std::abs(m) % 2 == 0 ? 1 : -1;
+      if (about == Axis::kZ) s[k] = odd_m;
+      else s[k] = (m >= 0 ? 1 : -1) * ((l + std::abs(m)) % 2 == 0 ? 1 : -1);
+    }
+    return s;
+  };
+  static const std::array<double, 15> about_x = make(Axis::kX), about_z = make(Axis::kZ);
+  return axis == Axis::kX ? about_x : about_z;
+}
+
 double sigmoid(double x) { return 1 / (1 + std::exp(-x)); }
 double logit(double p) { return std::log(p / (1 - p)); }
 

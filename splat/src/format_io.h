@@ -2,6 +2,7 @@
 // input, messages, and quantising with the clamps counted.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -48,6 +49,11 @@ inline std::uint32_t get_uint32(const unsigned char* at) {
   std::memcpy(&value, at, sizeof value);
   return value;
 }
+
+// The sign a half turn about an axis gives each f_rest coefficient k of a channel (band l, order
+// m, k + 1 = l (l + 1) + m; degrees to 3): the frame changes at the formats' edges.
+enum class Axis { kX, kZ };
+const std::array<double, 15>& half_turn_signs(Axis axis);
 
 // The logistic function and its inverse (3DGS stores opacity as a logit).
 double sigmoid(double x);

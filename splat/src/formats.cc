@@ -123,6 +123,7 @@ std::unique_ptr<SceneReader> open_reader(FileFormat format, const std::string& p
   if (format == FileFormat::kSplat) return open_splat_reader(path);
   if (format == FileFormat::kCompressedPly) return open_compressed_ply_reader(path);
   if (format == FileFormat::kSpz) return open_spz_reader(path);
+  if (format == FileFormat::kGlb) return open_glb_reader(path);
   return std::make_unique<PlyReader>(path);
 }
 
@@ -130,6 +131,7 @@ std::unique_ptr<SceneWriter> open_writer(FileFormat format, io::PendingFile& out
   if (format == FileFormat::kSplat) return open_splat_writer(out, degree);
   if (format == FileFormat::kCompressedPly) return open_compressed_ply_writer(out, degree, splats);
   if (format == FileFormat::kSpz) return open_spz_writer(out, degree, splats, spz_version);
+  if (format == FileFormat::kGlb) return open_glb_writer(out, degree, splats);
   return std::make_unique<PlyWriter>(out, degree, splats);
 }
 

@@ -54,13 +54,15 @@ class SceneWriter {
 };
 
 std::unique_ptr<SceneReader> open_reader(FileFormat format, const std::string& path);
-// Each format's own (splat_file.cc, compressed_ply.cc, spz.cc), behind open_reader and open_writer.
+// Each format's own (splat_file.cc, compressed_ply.cc, spz.cc, glb.cc), behind open_reader and open_writer.
 std::unique_ptr<SceneReader> open_splat_reader(const std::string& path);
 std::unique_ptr<SceneWriter> open_splat_writer(io::PendingFile& out, int degree);
 std::unique_ptr<SceneReader> open_compressed_ply_reader(const std::string& path);
 std::unique_ptr<SceneWriter> open_compressed_ply_writer(io::PendingFile& out, int degree, std::uint64_t splats);
 std::unique_ptr<SceneReader> open_spz_reader(const std::string& path);
 std::unique_ptr<SceneWriter> open_spz_writer(io::PendingFile& out, int degree, std::uint64_t splats, int version);
+std::unique_ptr<SceneReader> open_glb_reader(const std::string& path);
+std::unique_ptr<SceneWriter> open_glb_writer(io::PendingFile& out, int degree, std::uint64_t splats);
 // Records of SH degree `degree` into `out`.
 std::unique_ptr<SceneWriter> open_writer(FileFormat format, io::PendingFile& out, int degree, std::uint64_t splats, int spz_version);
 

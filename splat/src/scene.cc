@@ -295,7 +295,8 @@ struct FormatName {
 constexpr FormatName kFormatNames[] = {{FileFormat::kPly, "ply", ".ply"},
                                        {FileFormat::kCompressedPly, "compressed-ply", ".compressed.ply"},
                                        {FileFormat::kSplat, "splat", ".splat"},
-                                       {FileFormat::kSpz, "spz", ".spz"}};
+                                       {FileFormat::kSpz, "spz", ".spz"},
+                                       {FileFormat::kGlb, "glb", ".glb"}};
 
 const FormatName& named(FileFormat format) {
   for (const FormatName& f : kFormatNames)

@@ -42,21 +42,6 @@ constexpr int kFractionalBits = 12;  // written: positions to +-2048 in steps of
 constexpr double kColourScale = 0.15;
 const double kSqrtHalf = std::sqrt(0.5);
 
-// The sign a half turn about x (y -> -y, z -> -z) gives each f_rest coefficient k of a channel
-// (band l, order m, k + 1 = l (l + 1) + m; degrees to 3): cos(m phi) terms (-1)^(l + m),
-// sin(|m| phi) terms -(-1)^(l + |m|). Made once.
-const std::array<double, 15>& half_turn_signs() {
-  static const std::array<double, 15> signs = [] {
-    std::array<double, 15> s{};
-    for (int k = 0; k < 15; ++k) {
-      const int l = Canonical::band(k), m = k + 1 - l * (l + 1);
-      const int parity = (l + std::abs(m)) % 2 == 0 ? 1 : -1;
-      s[k] = m >= 0 ? parity : -parity;
-    }
-    return s;
-  }();
-  return signs;
-}
 
 int coefficients(int degree) { return (degree + 1) * (degree + 1) - 1; }
 
@@ -283,7 +268,7 @@ class SpzReader : public SceneReader {
     }
     const double position_scale = 1.0 / double(1 << fractional_bits_);
     const int dim = coefficients(degree_);
-    const std::array<double, 15>& flip = half_turn_signs();
+    const std::array<double, 15>& flip = half_turn_signs(Axis::kX);
     for (std::uint64_t s = 0; s < count; ++s) {
       double* v = records + s * c.size();
       const unsigned char* p = buffers_[0].data() + 9 * s;
@@ -370,7 +355,7 @@ class SpzWriter : public SceneWriter {
 
   void write(std::uint64_t count, const double* records) override {
     const int dim = coefficients(degree_);
-    const std::array<double, 15>& flip = half_turn_signs();
+    const std::array<double, 15>& flip = half_turn_signs(Axis::kX);
     std::array<std::vector<unsigned char>, kAttributes> bytes;
     for (std::uint64_t s = 0; s < count; ++s) {
       const double* v = records + s * c_.size();

@@ -428,7 +428,7 @@ TEST(Splat, MalformedSplatFilesAreRefusedAndNothingIsWritten) {
   EXPECT_NE(fifo.err.find("not a regular file"), std::string::npos) << fifo.err;
   const test::RunResult format = test::run_zhf("splat --in '" + zero_turn_path + "' --out x --format gltf --identity");
   EXPECT_EQ(format.exit_code, 2) << format.err;
-  EXPECT_NE(format.err.find("--format: 'gltf' is not ply, compressed-ply, splat or spz"), std::string::npos) << format.err;
+  EXPECT_NE(format.err.find("--format: 'gltf' is not ply, compressed-ply, splat, spz or glb"), std::string::npos) << format.err;
 }
 
 // A quaternion read back: rot_0..3 exactly the decoded q (w x y z, in float), the same rotation
@@ -774,6 +774,247 @@ TEST(Splat, MalformedSpzIsRefusedAndNothingIsWritten) {
   };
   for (const auto& [content, message] : v4_cases)
     expect_refused((dir / "bad4.spz").string(), content, (dir / "out4.ply").string(), "--identity", message);
+}
+
+// ---- .glb (KHR_gaussian_splatting) ----
+
+// A .glb of a JSON text and a BIN chunk (the JSON padded with spaces, as glTF says).
+std::string glb(std::string json, const std::string& bin) {
+  while (json.size() % 4) json += ' ';
+  auto word = [](std::uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+  return word(0x46546c67) + word(2) + word(std::uint32_t(12 + 8 + json.size() + 8 + bin.size())) + word(std::uint32_t(json.size())) +
+         word(0x4e4f534a) + json + word(std::uint32_t(bin.size())) + word(0x004e4942) + bin;
+}
+
+// A .glb's JSON (parsed here independently) and BIN chunk.
+struct Glb {
+  nlohmann::json json;
+  std::string text, bin;
+};
+Glb parse_glb(const std::string& bytes) {
+  Glb g;
+  std::uint32_t words[5];
+  std::memcpy(words, bytes.data(), sizeof words);
+  EXPECT_EQ(words[0], 0x46546c67u);
+  EXPECT_EQ(words[1], 2u);
+  EXPECT_EQ(words[2], bytes.size());
+  EXPECT_EQ(words[4], 0x4e4f534au);
+  g.text = bytes.substr(20, words[3]);
+  g.json = nlohmann::json::parse(g.text);
+  std::uint32_t bin[2];
+  std::memcpy(bin, bytes.data() + 20 + words[3], sizeof bin);
+  EXPECT_EQ(bin[1], 0x004e4942u);
+  g.bin = bytes.substr(20 + words[3] + 8, bin[0]);
+  return g;
+}
+
+// Element k's component i of a float attribute.
+float glb_float(const Glb& g, const std::string& attribute, std::size_t k, int i) {
+  const nlohmann::json& accessor = g.json["accessors"][g.json["meshes"][0]["primitives"][0]["attributes"][attribute].get<int>()];
+  EXPECT_EQ(accessor["componentType"], 5126) << attribute;
+  const nlohmann::json& view = g.json["bufferViews"][accessor["bufferView"].get<int>()];
+  const int width = accessor["type"] == "SCALAR" ? 1 : accessor["type"] == "VEC3" ? 3 : 4;
+  float value;
+  std::memcpy(&value, g.bin.data() + view.value("byteOffset", 0) + accessor.value("byteOffset", 0) + 4 * (width * k + i), 4);
+  return value;
+}
+
+TEST(Splat, GlbHoldsTheLayoutInGltfAxesAndReadsBackExactly) {
+  const test::TempDir dir;
+  std::mt19937_64 rng(37);
+  const Scene scene = random_scene(3, 5000, rng);
+  const std::string in = (dir / "in.ply").string(), out = (dir / "out.glb").string(), back = (dir / "back.ply").string();
+  write_scene(scene, in, false);
+  test::RunResult run = test::run_zhf("splat --in '" + in + "' --out '" + out + "' --identity --quiet");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const Glb g = parse_glb(test::read_text(out));
+  const std::size_t n = scene.rows.size();
+  const nlohmann::json& primitive = g.json["meshes"][0]["primitives"][0];
+  EXPECT_EQ(primitive["mode"], 0);
+  EXPECT_EQ(primitive["extensions"]["KHR_gaussian_splatting"]["kernel"], "ellipse");
+  EXPECT_EQ(primitive["attributes"].size(), 4u + 16u);
+  ASSERT_EQ(test::run_zhf("splat --in '" + out + "' --out '" + back + "' --identity --quiet").exit_code, 0);
+  std::string header;
+  const Scene got = read_scene(back, scene, header);
+  // glTF's axes are the .ply's turned half a turn about z: x and y flip, SH of odd m flip.
+  std::array<double, 6> bounds{INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY};
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::vector<double>& o = scene.rows[k];
+    const std::vector<double>& row = got.rows[k];
+    const std::string at = "splat " + std::to_string(k);
+    auto value = [&](const std::string& name) { return o[index_of(scene, name)]; };
+    for (int i = 0; i < 3; ++i) {
+      const std::string axis = "xyz"s.substr(i, 1), s = std::to_string(i);
+      const float position = glb_float(g, "POSITION", k, i);
+      ASSERT_EQ(position, float((i < 2 ? -1 : 1) * value(axis))) << at;
+      bounds[i] = std::min<double>(bounds[i], position);
+      bounds[3 + i] = std::max<double>(bounds[3 + i], position);
+      ASSERT_EQ(row[index_of(scene, axis)], value(axis)) << at;
+      const float scale = glb_float(g, "KHR_gaussian_splatting:SCALE", k, i);
+      ASSERT_EQ(scale, float(std::exp(value("scale_" + s)))) << at;
+      ASSERT_EQ(row[index_of(scene, "scale_" + s)], float(std::log(double(scale)))) << at;
+      ASSERT_EQ(glb_float(g, "KHR_gaussian_splatting:SH_DEGREE_0_COEF_0", k, i), float(value("f_dc_" + s))) << at;
+      for (int l = 1; l <= 3; ++l)
+        for (int m = -l; m <= l; ++m) {
+          const std::string name = "f_rest_" + std::to_string(15 * i + l * l + l + m - 1);
+          const std::string attribute = "KHR_gaussian_splatting:SH_DEGREE_" + std::to_string(l) + "_COEF_" + std::to_string(l + m);
+          ASSERT_EQ(glb_float(g, attribute, k, i), float((m % 2 ? -1 : 1) * value(name))) << at << ", " << attribute;
+          ASSERT_EQ(row[index_of(scene, name)], value(name)) << at << ", " << name;
+        }
+    }
+    const float opacity = glb_float(g, "KHR_gaussian_splatting:OPACITY", k, 0);
+    ASSERT_EQ(opacity, float(1 / (1 + std::exp(-value("opacity"))))) << at;
+    ASSERT_EQ(row[index_of(scene, "opacity")], float(std::log(opacity / (1.0 - opacity)))) << at;
+    // Stored x y z w: the unit quaternion turned by the half turn k (k q = (-z, -y, x, w) as w x y z).
+    const double w = value("rot_0"), x = value("rot_1"), y = value("rot_2"), z = value("rot_3");
+    const double norm = std::sqrt(w * w + x * x + y * y + z * z);
+    const double expected[4] = {-y / norm, x / norm, w / norm, -z / norm};
+    float stored[4];
+    for (int i = 0; i < 4; ++i) {
+      stored[i] = glb_float(g, "KHR_gaussian_splatting:ROTATION", k, i);
+      ASSERT_NEAR(stored[i], expected[i], runtime::tolerance::kFloatEpsilon) << at;
+    }
+    // Read back: k^-1 applied to the stored quaternion, exactly (signs and order only).
+    const float wxyz[4] = {stored[2], stored[1], -stored[0], -stored[3]};
+    for (int i = 0; i < 4; ++i) ASSERT_EQ(row[index_of(scene, "rot_" + std::to_string(i))], wxyz[i]) << at;
+  }
+  const nlohmann::json& position = g.json["accessors"][primitive["attributes"]["POSITION"].get<int>()];
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(float(position["min"][i].get<double>()), float(bounds[i]));  // nine digits: the float exactly
+    EXPECT_EQ(float(position["max"][i].get<double>()), float(bounds[3 + i]));
+  }
+  // Transformed straight from the .glb, as its decoded .ply is.
+  const std::string turn = " --zyz '0.3 0.5 0.7' --scale 2 --translate '1 2 3' --quiet";
+  ASSERT_EQ(test::run_zhf("splat --in '" + out + "' --out '" + (dir / "a.ply").string() + "'" + turn).exit_code, 0);
+  ASSERT_EQ(test::run_zhf("splat --in '" + back + "' --out '" + (dir / "b.ply").string() + "'" + turn).exit_code, 0);
+  const Scene a = read_scene((dir / "a.ply").string(), scene, header), b = read_scene((dir / "b.ply").string(), scene, header);
+  for (std::size_t k = 0; k < a.rows.size(); ++k)
+    for (std::size_t i = 0; i + 1 < a.rows[k].size(); ++i)
+      ASSERT_NEAR(a.rows[k][i], b.rows[k][i], kFloatStorage * (1 + std::abs(b.rows[k][i]))) << "splat " << k << ", " << scene.names[i];
+  // A node placing the mesh (a parent's translation, its own turn about z and scale) is applied
+  // on reading: in the .ply's axes the translation's x and y flip, the turn about z stays.
+  const double angle = 0.7;
+  std::string placed = g.text;
+  const std::string node = "\"nodes\":[{\"mesh\":0}]";
+  ASSERT_NE(placed.find(node), std::string::npos);
+  char nodes[256];
+  std::snprintf(nodes, sizeof nodes, "\"nodes\":[{\"children\":[1],\"translation\":[1,2,3]},{\"mesh\":0,\"rotation\":[0,0,%.17g,%.17g],\"scale\":[2,2,2]}]",
+                std::sin(angle / 2), std::cos(angle / 2));
+  placed.replace(placed.find(node), node.size(), nodes);
+  const std::string placed_path = (dir / "placed.glb").string();
+  test::write_text(placed_path, glb(placed, g.bin));
+  ASSERT_EQ(test::run_zhf("splat --in '" + placed_path + "' --out '" + (dir / "c.ply").string() + "' --identity --quiet").exit_code, 0);
+  ASSERT_EQ(test::run_zhf("splat --in '" + back + "' --out '" + (dir / "d.ply").string() + "' --axis-angle '0 0 1 0.7' --scale 2 --translate '-1 -2 3' --quiet").exit_code, 0);
+  const Scene c = read_scene((dir / "c.ply").string(), scene, header), d = read_scene((dir / "d.ply").string(), scene, header);
+  for (std::size_t k = 0; k < c.rows.size(); ++k)
+    for (std::size_t i = 0; i + 1 < c.rows[k].size(); ++i)
+      ASSERT_NEAR(c.rows[k][i], d.rows[k][i], kFloatStorage * (1 + std::abs(d.rows[k][i]))) << "splat " << k << ", " << scene.names[i];
+}
+
+TEST(Splat, MalformedGlbIsRefusedAndNothingIsWritten) {
+  const test::TempDir dir;
+  std::mt19937_64 rng(38);
+  const std::string in = (dir / "in.ply").string(), good_path = (dir / "good.glb").string();
+  write_scene(random_scene(1, 2, rng), in, false);
+  ASSERT_EQ(test::run_zhf("splat --in '" + in + "' --out '" + good_path + "' --identity --quiet").exit_code, 0);
+  const std::string good = test::read_text(good_path);
+  const Glb g = parse_glb(good);
+  auto edited = [&](const std::string& from, const std::string& to) {
+    std::string text = g.text;
+    const std::size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+    return glb(text, g.bin);
+  };
+  auto with_float = [&](std::size_t at, float value) {  // in the BIN chunk
+    std::string bin = g.bin;
+    std::memcpy(&bin[at], &value, 4);
+    return glb(g.text, bin);
+  };
+  auto with_word = [&](std::size_t at, std::uint32_t value) {
+    std::string s = good;
+    std::memcpy(&s[at], &value, 4);
+    return s;
+  };
+  // Regions of two splats: POSITION at 0, ROTATION at 24, SCALE at 56, OPACITY at 80.
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"PK\x03\x04 not a glb at all", "not a .glb"},
+      {with_word(4, 1), ".glb version 1"},
+      {good + "pad", "the header says"},
+      {with_word(12, 0x7fffff00u), "JSON chunk of"},
+      {with_word(12, 0x10000u), "the JSON chunk runs past the end of the file"},
+      {edited("{\"asset\"", "[\"asset\""), "not valid JSON"},
+      {edited("\"extensions\":{\"KHR_gaussian_splatting\"", "\"extras\":{\"KHR_gaussian_splatting\""), "no mesh primitive with KHR_gaussian_splatting"},
+      {edited("\"mode\":0", "\"mode\":4"), "mode is not POINTS"},
+      {edited("\"KHR_gaussian_splatting:SCALE\"", "\"_SCALE\""), "no KHR_gaussian_splatting:SCALE"},
+      {edited("\"KHR_gaussian_splatting:SH_DEGREE_1_COEF_2\"", "\"KHR_gaussian_splatting:SH_DEGREE_1_COEF_9\""), "not an attribute of a degree-1 scene"},
+      {edited("\"count\":2,\"type\":\"VEC4\"", "\"count\":1,\"type\":\"VEC4\""), "for POSITION"},
+      {edited("\"byteOffset\":0,\"byteLength\":24", "\"byteOffset\":0,\"byteLength\":20"), "run past the end of their buffer view"},
+      {edited("\"buffers\":[{", "\"buffers\":[{\"uri\":\"scene.bin\","), "external buffers are not read"},
+      {edited("\"extensionsUsed\"", "\"extensionsRequired\":[\"EXT_meshopt_compression\"],\"extensionsUsed\""), "requires EXT_meshopt_compression"},
+      {edited("\"type\":\"VEC4\"", "\"type\":\"VEC4\",\"sparse\":{}"), "sparse accessors are not read"},
+      {edited("\"type\":\"VEC4\"", "\"type\":\"VEC3\""), "must be VEC4"},
+      {edited("\"kernel\":\"ellipse\"", "\"kernel\":\"box\""), "the \"ellipse\" kernel"},
+      {edited("\"nodes\":[{\"mesh\":0}]", "\"nodes\":[{\"mesh\":0,\"scale\":[1,2,1]}]"), "scales unevenly"},
+      {edited("\"nodes\":[{\"mesh\":0}]", "\"nodes\":[{\"mesh\":0,\"children\":[1]},{\"children\":[0]}]"), "cycle"},
+      {with_float(4, NAN), "splat 0: POSITION is nan"},
+      {with_float(56 + 12 + 8, -1), "splat 1: KHR_gaussian_splatting:SCALE is -1, below 0"},
+      {with_float(80, 1.5f), "splat 0: KHR_gaussian_splatting:OPACITY is 1.5, outside [0, 1]"},
+      {[&] {
+         std::string bin = g.bin;
+         std::memset(&bin[24], 0, 16);
+         return glb(g.text, bin);
+       }(),
+       "splat 0: KHR_gaussian_splatting:ROTATION is a zero quaternion"},
+      {good.substr(0, good.size() - 4), "the header says"},
+  };
+  for (const auto& [content, message] : cases)
+    expect_refused((dir / "bad.glb").string(), content, (dir / "out.ply").string(), "--zyz '1 2 3'", message);
+  // glTF accessors are never empty: a scene without splats is refused as a .glb.
+  expect_refused((dir / "empty.ply").string(), header_text(random_scene(0, 0, rng), false), (dir / "out.glb").string(), "--identity",
+                 "a .glb holds at least one splat");
+}
+
+TEST(Splat, GlbQuantisedAttributesAndInterleavedViewsRead) {
+  // Two splats as another writer may store them: position and colour interleaved (stride 24),
+  // rotation as signed shorts, scale as plain bytes, opacity as normalized bytes (stride 4 each).
+  const float interleaved[12] = {1, 2, 3, 0.125f, 0.25f, 0.5f, -4, 5, 0.5f, -0.5f, 0, 0.75f};
+  const std::int16_t rotation[8] = {0, 0, 0, 32767, 32767, 0, 0, 0};
+  const unsigned char scale[8] = {1, 2, 3, 0, 4, 5, 6, 0}, opacity[8] = {51, 0, 0, 0, 204, 0, 0, 0};
+  std::string bin(reinterpret_cast<const char*>(interleaved), sizeof interleaved);
+  bin.append(reinterpret_cast<const char*>(rotation), sizeof rotation);
+  bin.append(reinterpret_cast<const char*>(scale), sizeof scale);
+  bin.append(reinterpret_cast<const char*>(opacity), sizeof opacity);
+  const std::string json =
+      R"({"asset":{"version":"2.0"},"extensionsUsed":["KHR_gaussian_splatting"],"nodes":[{"mesh":0}],)"
+      R"("meshes":[{"primitives":[{"mode":0,"attributes":{"POSITION":0,"KHR_gaussian_splatting:SH_DEGREE_0_COEF_0":1,)"
+      R"("KHR_gaussian_splatting:ROTATION":2,"KHR_gaussian_splatting:SCALE":3,"KHR_gaussian_splatting:OPACITY":4},)"
+      R"("extensions":{"KHR_gaussian_splatting":{"kernel":"ellipse","colorSpace":"lin_rec709_display"}}}]}],)"
+      R"("buffers":[{"byteLength":80}],"bufferViews":[{"buffer":0,"byteLength":48,"byteStride":24},)"
+      R"({"buffer":0,"byteOffset":48,"byteLength":16},{"buffer":0,"byteOffset":64,"byteLength":8,"byteStride":4},)"
+      R"({"buffer":0,"byteOffset":72,"byteLength":8,"byteStride":4}],)"
+      R"("accessors":[{"bufferView":0,"componentType":5126,"count":2,"type":"VEC3"},)"
+      R"({"bufferView":0,"byteOffset":12,"componentType":5126,"count":2,"type":"VEC3"},)"
+      R"({"bufferView":1,"componentType":5122,"normalized":true,"count":2,"type":"VEC4"},)"
+      R"({"bufferView":2,"componentType":5121,"count":2,"type":"VEC3"},)"
+      R"({"bufferView":3,"componentType":5121,"normalized":true,"count":2,"type":"SCALAR"}]})";
+  const test::TempDir dir;
+  const std::string in = (dir / "in.glb").string(), out = (dir / "out.ply").string();
+  test::write_text(in, glb(json, bin));
+  const test::RunResult run = test::run_zhf("splat --in '" + in + "' --out '" + out + "' --identity --quiet");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::mt19937_64 rng(39);
+  Scene like = random_scene(0, 2, rng);
+  std::string header;
+  const Scene got = read_scene(out, like, header);
+  auto logit = [](double p) { return float(std::log(p / (1 - p))); };
+  const std::vector<std::vector<float>> expected = {
+      // x y z nx ny nz f_dc_0..2 opacity scale_0..2 rot_0..3 (w x y z, turned back by k^-1)
+      {-1, -2, 3, 0, 0, 0, 0.125f, 0.25f, 0.5f, logit(51 / 255.0), 0, float(std::log(2.0)), float(std::log(3.0)), 0, 0, 0, -1},
+      {4, -5, 0.5f, 0, 0, 0, -0.5f, 0, 0.75f, logit(204 / 255.0), float(std::log(4.0)), float(std::log(5.0)), float(std::log(6.0)), 0, 0, -1, 0}};
+  for (std::size_t k = 0; k < 2; ++k)
+    for (std::size_t i = 0; i < expected[k].size(); ++i)
+      EXPECT_EQ(got.rows[k][i], expected[k][i]) << "splat " << k << ", " << like.names[i];
 }
 
 }  // namespace

@@ -118,6 +118,8 @@ inline constexpr std::uint64_t kMaxPlyVertices = std::uint64_t(1) << 31;
 // is refused before anything is decompressed: deflate cannot expand beyond about 1032:1, and a
 // real scene's attributes compress far less (zstd could go further only on degenerate data).
 inline constexpr double kMaxCompressionRatio = 1100;
+// A .glb scene's JSON chunk (a splat file's is a few kilobytes; whole glTF scenes are larger).
+inline constexpr std::size_t kMaxGlbJsonBytes = std::size_t(16) << 20;
 // Radiance .hdr images: file and header size, width and height, pixels.
 inline constexpr std::size_t kMaxHdrBytes = std::size_t(256) << 20;
 inline constexpr std::size_t kMaxHdrHeader = 64 << 10;

@@ -1,6 +1,6 @@
 // 3D Gaussian Splatting scenes (.ply, as the 3DGS tools write them; PlayCanvas's compressed .ply;
-// antimatter15's .splat; Niantic's .spz) transformed as a whole, and converted from one format to
-// another:
+// antimatter15's .splat; Niantic's .spz; glTF .glb with KHR_gaussian_splatting) transformed as a
+// whole, and converted from one format to another:
 // p' = s R p + t for positions (rotate and scale about the origin, then translate), the
 // Gaussians' orientations and normals turned by R, log-scales plus log s, and each splat's
 // view-dependent colour (SH of degree 0..3 in the file's convention, 3dgs by default) turned
@@ -36,14 +36,14 @@ struct Transform {
   const runtime::Convention* convention = nullptr;  // the SH's; nullptr: 3dgs
 };
 
-enum class FileFormat { kPly, kCompressedPly, kSplat, kSpz };
+enum class FileFormat { kPly, kCompressedPly, kSplat, kSpz, kGlb };
 
-// "ply", "compressed-ply", "splat", "spz", or false.
+// "ply", "compressed-ply", "splat", "spz", "glb", or false.
 bool parse_file_format(const std::string& name, FileFormat& format);
 const char* file_format_name(FileFormat format);
-// ".ply", ".compressed.ply", ".splat", ".spz".
+// ".ply", ".compressed.ply", ".splat", ".spz", ".glb".
 const char* file_format_extension(FileFormat format);
-// "ply, compressed-ply, splat or spz", for messages.
+// "ply, compressed-ply, splat, spz or glb", for messages.
 std::string file_format_names();
 // From the name's ending (any case; the longest that fits), or false.
 bool file_format_of(const std::string& path, FileFormat& format);
