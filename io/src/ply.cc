@@ -1,9 +1,13 @@
 #include "zhf/io/ply.h"
 
+#include <charconv>
+#include <cmath>
 #include <cstring>
+#include <optional>
 #include <sstream>
 
 #include "zhf/io/errors.h"
+#include "zhf/io/numbers.h"
 
 namespace zhf::io::ply {
 namespace {
@@ -185,6 +189,93 @@ void write_binary(unsigned char* record, const Property& property, double value)
   } else {
     std::memcpy(p, &value, sizeof value);
   }
+}
+
+std::string_view read_ascii_line(std::istream& in, std::vector<char>& buffer, const std::string& source, std::uint64_t vertex,
+                                 std::uint64_t vertices) {
+  buffer.resize(runtime::kMaxPlyAsciiLine + 2);
+  in.getline(buffer.data(), std::streamsize(buffer.size()));
+  if (in.fail() && !in.eof())
+    throw InputError(source + ": splat " + std::to_string(vertex) + ": a line longer than " + std::to_string(runtime::kMaxPlyAsciiLine) + " bytes");
+  if (in.gcount() == 0 && in.eof())
+    throw InputError(source + ": truncated: the data ends before splat " + std::to_string(vertex) + " of " + std::to_string(vertices));
+  return std::string_view(buffer.data());
+}
+
+std::vector<std::string_view> split_ascii(std::string_view line) {
+  std::vector<std::string_view> tokens;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+    if (i == line.size()) break;
+    std::size_t j = i;
+    while (j < line.size() && line[j] != ' ' && line[j] != '\t') ++j;
+    tokens.push_back(line.substr(i, j - i));
+    i = j;
+  }
+  return tokens;
+}
+
+namespace {
+
+// A token of the property's type as a double: floats strictly (finite), integers in range.
+std::optional<double> parse_token(std::string_view token, Type type, std::string& problem) {
+  if (is_float(type)) {
+    const ParsedNumber x = parse_number(token);
+    if (!x.value) {
+      problem = x.problem;
+      return std::nullopt;
+    }
+    if (type == Type::kFloat64) return x.value;
+    // A float property holds a float: the text's nearest, as a binary file would store it.
+    const float single = static_cast<float>(*x.value);
+    if (!std::isfinite(single)) {
+      problem = "is beyond the range of float";
+      return std::nullopt;
+    }
+    return double(single);
+  }
+  long long value = 0;
+  const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
+  const long long low = type == Type::kInt8 ? -128 : type == Type::kInt16 ? -32768 : type == Type::kInt32 ? -2147483648LL : 0;
+  const long long high = type == Type::kInt8 ? 127 : type == Type::kUint8 ? 255 : type == Type::kInt16 ? 32767
+                         : type == Type::kUint16 ? 65535 : type == Type::kInt32 ? 2147483647LL : 4294967295LL;
+  if (error != std::errc() || end != token.data() + token.size() || value < low || value > high) {
+    problem = "is not an integer of the property's type";
+    return std::nullopt;
+  }
+  return double(value);
+}
+
+}  // namespace
+
+bool parse_ascii(const std::vector<std::string_view>& tokens, const Header& header, double* values) {
+  if (tokens.size() != header.properties.size()) return false;
+  std::string problem;
+  for (std::size_t i = 0; i < tokens.size(); ++i) {
+    const std::optional<double> x = parse_token(tokens[i], header.properties[i].type, problem);
+    if (!x) return false;
+    values[i] = *x;
+  }
+  return true;
+}
+
+void parse_ascii_or_throw(std::string_view line, const Header& header, const std::string& source, std::uint64_t vertex, double* values) {
+  const std::vector<std::string_view> tokens = split_ascii(line);
+  const std::string at = source + ": splat " + std::to_string(vertex) + ": ";
+  if (tokens.size() != header.properties.size())
+    throw InputError(at + std::to_string(tokens.size()) + " numbers, the header has " + std::to_string(header.properties.size()) + " properties");
+  std::string problem;
+  for (std::size_t i = 0; i < tokens.size(); ++i) {
+    const std::optional<double> x = parse_token(tokens[i], header.properties[i].type, problem);
+    if (!x) throw InputError(at + "property " + header.properties[i].name + ": '" + excerpt(tokens[i]) + "' " + problem);
+    values[i] = *x;
+  }
+}
+
+void check_ascii_end(std::istream& in, const std::string& source) {
+  for (char c; in.get(c);)
+    if (c != ' ' && c != '\t' && c != '\n') throw InputError(source + ": data after the last splat");
 }
 
 }  // namespace zhf::io::ply

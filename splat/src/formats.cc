@@ -15,24 +15,24 @@ namespace {
 namespace ply = io::ply;
 using io::InputError;
 
-// ---- binary .ply, any column order, to the canonical record ----
+// ---- .ply (binary little-endian or ASCII), any column order, to the canonical record ----
 
 class PlyReader : public SceneReader {
  public:
   explicit PlyReader(const std::string& path) : path_(path), file_(open_input(path)) {
     header_ = ply::read_header(file_, path);
-    if (header_.format != ply::Format::kBinaryLittleEndian)
-      throw InputError(path + ": ASCII .ply converts to .ply only (write .ply, or convert it to binary first)");
     layout_ = layout_of(header_, path);
     if (layout_.degree < 0) throw InputError(path + ": no f_dc_0..2 properties: nothing to convert the colour from");
     for (const char* name : {"opacity", "scale_0", "rot_0"})
       if (header_.find(name) < 0) throw InputError(path + ": no property " + name + ": converting to another format needs it");
     if (!ply::is_float(header_.properties[layout_.opacity].type)) throw InputError(path + ": property opacity is not float or double");
-    const std::uint64_t size = regular_file_size(path, "a converted .ply is checked against its size first");
-    const std::uint64_t expected = header_.text.size() + header_.vertices * header_.record_bytes;
-    if (size != expected)
-      throw InputError(path + ": " + std::to_string(size) + " bytes, but the header says " + std::to_string(expected) +
-                       (size < expected ? ": truncated" : ": bytes after the last splat"));
+    if (header_.format == ply::Format::kBinaryLittleEndian) {
+      const std::uint64_t size = regular_file_size(path, "a converted .ply is checked against its size first");
+      const std::uint64_t expected = header_.text.size() + header_.vertices * header_.record_bytes;
+      if (size != expected)
+        throw InputError(path + ": " + std::to_string(size) + " bytes, but the header says " + std::to_string(expected) +
+                         (size < expected ? ": truncated" : ": bytes after the last splat"));
+    }
     splats_ = header_.vertices;
     degree_ = layout_.degree;
     const Canonical c(degree_);
@@ -50,14 +50,19 @@ class PlyReader : public SceneReader {
 
   void read(std::uint64_t first, std::uint64_t count, double* records) override {
     const Canonical c(degree_);
-    buffer_.resize(count * header_.record_bytes);
-    file_.read(reinterpret_cast<char*>(buffer_.data()), std::streamsize(buffer_.size()));
-    if (std::uint64_t(file_.gcount()) != buffer_.size()) throw InputError(path_ + ": truncated");
+    const bool ascii = header_.format == ply::Format::kAscii;
+    if (!ascii) {
+      buffer_.resize(count * header_.record_bytes);
+      file_.read(reinterpret_cast<char*>(buffer_.data()), std::streamsize(buffer_.size()));
+      if (std::uint64_t(file_.gcount()) != buffer_.size()) throw InputError(path_ + ": truncated");
+    }
+    std::vector<double> values(header_.properties.size());
     for (std::uint64_t s = 0; s < count; ++s) {
       const unsigned char* record = buffer_.data() + s * header_.record_bytes;
+      if (ascii) ply::parse_ascii_or_throw(ply::read_ascii_line(file_, line_, path_, first + s, splats_), header_, path_, first + s, values.data());
       double* v = records + s * c.size();
       for (int i = 0; i < c.size(); ++i) {
-        v[i] = source_[i] < 0 ? 0 : ply::read_binary(record, header_.properties[source_[i]]);
+        v[i] = source_[i] < 0 ? 0 : ascii ? values[source_[i]] : ply::read_binary(record, header_.properties[source_[i]]);
         if (!std::isfinite(v[i]))
           throw InputError(where(path_, first + s, "property " + header_.properties[source_[i]].name) + " is " + runtime::format_number(v[i]));
       }
@@ -67,12 +72,17 @@ class PlyReader : public SceneReader {
   }
 
   void finish() override {
-    if (file_.peek() != std::char_traits<char>::eof()) throw InputError(path_ + ": bytes after the last splat");
+    if (header_.format == ply::Format::kAscii) {
+      ply::check_ascii_end(file_, path_);
+    } else if (file_.peek() != std::char_traits<char>::eof()) {
+      throw InputError(path_ + ": bytes after the last splat");
+    }
   }
 
  private:
   std::string path_;
   std::ifstream file_;
+  std::vector<char> line_;  // an ASCII file's current line
   ply::Header header_;
   Layout layout_;
   std::vector<int> source_;  // canonical field -> header property, -1: none (normals: 0)

@@ -201,7 +201,7 @@ class GlbReader : public SceneReader {
     // Chunks after the JSON: the first may be BIN (the buffer); others are ignored, as glTF says.
     std::uint64_t at = sizeof header + json_bytes, bin_at = 0, bin_bytes = 0;
     for (int chunk = 1; at < size; ++chunk) {
-      if (chunk > kMaxChunks) throw InputError(path + ": more than " + std::to_string(kMaxChunks) + " chunks");
+      if (chunk > runtime::kMaxGlbChunks) throw InputError(path + ": more than " + std::to_string(runtime::kMaxGlbChunks) + " chunks");
       if (size - at < kChunkHeaderBytes) throw InputError(path + ": chunk " + std::to_string(chunk) + ": truncated header");
       unsigned char chunk_header[kChunkHeaderBytes];
       fill(at, chunk_header, sizeof chunk_header);
@@ -230,7 +230,6 @@ class GlbReader : public SceneReader {
   void finish() override {}  // the header's length is the file's: nothing follows
 
  private:
-  static constexpr int kMaxChunks = 16;
   static constexpr runtime::json::Limits kJsonLimits{32, std::size_t(1) << 20, 1 << 16, 64};
 
   void fill(std::uint64_t offset, unsigned char* to, std::uint64_t bytes) {
@@ -250,9 +249,9 @@ class GlbReader : public SceneReader {
     int mesh_index = -1;
     std::optional<Field> primitive;
     if (std::optional<Field> meshes = root.find("meshes")) {
-      const std::vector<Field> list = meshes->items(0, kMaxObjects);
+      const std::vector<Field> list = meshes->items(0, runtime::kMaxGlbObjects);
       for (std::size_t m = 0; m < list.size(); ++m)
-        for (const Field& p : list[m].member("primitives").items(1, kMaxObjects)) {
+        for (const Field& p : list[m].member("primitives").items(1, runtime::kMaxGlbObjects)) {
           std::optional<Field> extensions = p.find("extensions");
           if (!extensions || !extensions->find(kExtension)) continue;
           if (primitive) p.fail("a second splat primitive; zhf reads files with one");
@@ -280,9 +279,9 @@ class GlbReader : public SceneReader {
       for (const auto& name : names) known = known || name.first == key;
       if (!known) attributes.member(key).fail("not an attribute of a degree-" + std::to_string(degree_) + " scene");
     }
-    const std::vector<Field> accessors = root.member("accessors").items(1, kMaxObjects);
-    const std::vector<Field> views = root.member("bufferViews").items(1, kMaxObjects);
-    const std::vector<Field> buffers = root.member("buffers").items(1, kMaxObjects);
+    const std::vector<Field> accessors = root.member("accessors").items(1, runtime::kMaxGlbObjects);
+    const std::vector<Field> views = root.member("bufferViews").items(1, runtime::kMaxGlbObjects);
+    const std::vector<Field> buffers = root.member("buffers").items(1, runtime::kMaxGlbObjects);
     std::optional<std::uint64_t> count;
     for (const auto& [name, spec] : names) {
       std::optional<Field> index = attributes.find(name);
@@ -325,11 +324,11 @@ class GlbReader : public SceneReader {
   void node_transform(const Field& root, int mesh_index) {
     std::optional<Field> nodes_field = root.find("nodes");
     if (!nodes_field) return;
-    const std::vector<Field> nodes = nodes_field->items(0, kMaxObjects);
+    const std::vector<Field> nodes = nodes_field->items(0, runtime::kMaxGlbObjects);
     std::vector<int> parent(nodes.size(), -1);
     int placing = -1;
     for (std::size_t i = 0; i < nodes.size(); ++i) {
-      if (std::optional<Field> mesh = nodes[i].find("mesh"); mesh && mesh->integer(0, kMaxObjects) == mesh_index) {
+      if (std::optional<Field> mesh = nodes[i].find("mesh"); mesh && mesh->integer(0, runtime::kMaxGlbObjects) == mesh_index) {
         if (placing >= 0) mesh->fail("a second node places the splat mesh; zhf reads one instance");
         placing = int(i);
       }
@@ -411,7 +410,6 @@ class GlbReader : public SceneReader {
     turn_half_about_z(v, c, false);
   }
 
-  static constexpr int kMaxObjects = 1 << 16;  // meshes, primitives, nodes, accessors, views, buffers
   std::string path_;
   std::ifstream file_;
   std::vector<Attribute> attributes_;
@@ -506,9 +504,9 @@ class GlbWriter : public SceneWriter {
   // The glTF JSON; widest: every bound printed as the longest float text.
   std::string json(const std::array<float, 6>& bounds, bool widest) const {
     auto number = [&](float x) {
-      char text[32];
-      std::snprintf(text, sizeof text, "%.9g", double(x));
-      return widest ? std::string("-1.17549435e-38") : std::string(text);
+      char text[32];  // nine digits: the float exactly; the least normal float prints longest
+      std::snprintf(text, sizeof text, "%.9g", widest ? -double(std::numeric_limits<float>::min()) : double(x));
+      return std::string(text);
     };
     std::string attributes, views, accessors;
     for (std::size_t a = 0; a < names_.size(); ++a) {

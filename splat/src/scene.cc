@@ -136,39 +136,6 @@ void transform_binary(std::istream& file, io::PendingFile& pending, const ply::H
 
 // ---- ASCII ----
 
-// A token of the property's type as a double: floats strictly (finite), integers in range.
-std::optional<double> parse_token(std::string_view token, ply::Type type, std::string& problem) {
-  if (ply::is_float(type)) {
-    const io::ParsedNumber x = io::parse_number(token);
-    if (!x.value) problem = x.problem;
-    return x.value;
-  }
-  long long value = 0;
-  const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
-  const long long low = type == ply::Type::kInt8 ? -128 : type == ply::Type::kInt16 ? -32768 : type == ply::Type::kInt32 ? -2147483648LL : 0;
-  const long long high = type == ply::Type::kInt8 ? 127 : type == ply::Type::kUint8 ? 255 : type == ply::Type::kInt16 ? 32767
-                         : type == ply::Type::kUint16 ? 65535 : type == ply::Type::kInt32 ? 2147483647LL : 4294967295LL;
-  if (error != std::errc() || end != token.data() + token.size() || value < low || value > high) {
-    problem = "is not an integer of the property's type";
-    return std::nullopt;
-  }
-  return double(value);
-}
-
-std::vector<std::string_view> split(std::string_view line) {
-  std::vector<std::string_view> tokens;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
-    if (i == line.size()) break;
-    std::size_t j = i;
-    while (j < line.size() && line[j] != ' ' && line[j] != '\t') ++j;
-    tokens.push_back(line.substr(i, j - i));
-    i = j;
-  }
-  return tokens;
-}
-
 void transform_ascii(std::istream& file, io::PendingFile& pending, const ply::Header& header, const Layout& layout,
                      const SplatMath& math, const std::string& source, int threads,
                      const std::function<void(std::uint64_t, std::uint64_t)>& progress) {
@@ -177,33 +144,18 @@ void transform_ascii(std::istream& file, io::PendingFile& pending, const ply::He
   for (int i : layout.changed) changed[i] = true;
   std::vector<std::string> lines;
   std::vector<std::string> output;
-  std::vector<char> buffer(runtime::kMaxPlyAsciiLine + 2);
+  std::vector<char> buffer;
   for (std::uint64_t done = 0; done < header.vertices;) {
     const std::uint64_t count = std::min(kChunkSplats, header.vertices - done);
     lines.resize(count);
-    for (std::uint64_t s = 0; s < count; ++s) {
-      file.getline(buffer.data(), std::streamsize(buffer.size()));
-      if (file.fail() && !file.eof())
-        throw InputError(source + ": splat " + std::to_string(done + s) + ": a line longer than " + std::to_string(runtime::kMaxPlyAsciiLine) + " bytes");
-      if (file.gcount() == 0 && file.eof())
-        throw InputError(source + ": truncated: the data ends before splat " + std::to_string(done + s) + " of " +
-                         std::to_string(header.vertices));
-      lines[s].assign(buffer.data());
-    }
+    for (std::uint64_t s = 0; s < count; ++s) lines[s] = ply::read_ascii_line(file, buffer, source, done + s, header.vertices);
     output.assign(count, std::string());
     FirstFailure failure;
     runtime::parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
       std::vector<double> v(properties);
-      std::string problem;
       for (std::size_t s = begin; s < end; ++s) {
-        const std::vector<std::string_view> tokens = split(lines[s]);
-        bool ok = tokens.size() == properties;
-        for (std::size_t i = 0; ok && i < properties; ++i) {
-          const std::optional<double> x = parse_token(tokens[i], header.properties[i].type, problem);
-          ok = x.has_value();
-          if (ok) v[i] = *x;
-        }
-        if (!ok) {
+        const std::vector<std::string_view> tokens = ply::split_ascii(lines[s]);
+        if (!ply::parse_ascii(tokens, header, v.data())) {
           failure.note(done + s);
           return;
         }
@@ -226,23 +178,15 @@ void transform_ascii(std::istream& file, io::PendingFile& pending, const ply::He
       }
     });
     if (const auto bad = failure.splat()) {
-      const std::string& line = lines[*bad - done];
-      const std::vector<std::string_view> tokens = split(line);
-      if (tokens.size() != properties)
-        throw InputError(source + ": splat " + std::to_string(*bad) + ": " + std::to_string(tokens.size()) + " numbers, the header has " +
-                         std::to_string(properties) + " properties");
-      std::string problem;
-      for (std::size_t i = 0; i < properties; ++i)
-        if (!parse_token(tokens[i], header.properties[i].type, problem))
-          throw InputError(splat_where(source, *bad, header.properties[i]) + ": '" + runtime::excerpt(tokens[i]) + "' " + problem);
+      std::vector<double> v(properties);
+      ply::parse_ascii_or_throw(lines[*bad - done], header, source, *bad, v.data());
     }
     for (const std::string& line : output) pending.write(line);
     done += count;
     io::throw_if_interrupted();
     progress(done, header.vertices);
   }
-  for (char c; file.get(c);)
-    if (c != ' ' && c != '\t' && c != '\n') throw InputError(source + ": data after the last splat");
+  ply::check_ascii_end(file, source);
 }
 
 }  // namespace

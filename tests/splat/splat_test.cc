@@ -392,6 +392,8 @@ TEST(Splat, MalformedSplatFilesAreRefusedAndNothingIsWritten) {
   const std::string zero_turn_path = (dir / "zero_turn.ply").string(), ascii_path = (dir / "ascii.ply").string();
   write_scene(zero_turn, zero_turn_path, false);
   write_scene(zero_turn, ascii_path, true);
+  const std::string plain_ascii_path = (dir / "plain_ascii.ply").string();
+  write_scene(random_scene(0, 2, rng), plain_ascii_path, true);
   struct Bad {
     std::string in, content, message;  // content empty: `in` exists already
   };
@@ -408,7 +410,9 @@ TEST(Splat, MalformedSplatFilesAreRefusedAndNothingIsWritten) {
       {"dir.splat", "", "not a regular file"},
       {"no_opacity.ply", "", "no property opacity: converting to another format needs it"},
       {"zero_turn.ply", "", "splat 1: rot_0..3 are all zero"},
-      {"ascii.ply", "", "ASCII .ply converts to .ply only"},
+      {"ascii.ply", "", "splat 1: rot_0..3 are all zero"},
+      {"ascii_short.ply", header_text(zero_turn, true) + "1 2 3\n", "splat 0: 3 numbers, the header has"},
+      {"ascii_trailing.ply", test::read_text(plain_ascii_path) + "7\n", "data after the last splat"},
   };
   fs::create_directory(dir / "dir.splat");
   for (const Bad& bad : cases) {
@@ -883,6 +887,11 @@ TEST(Splat, GlbHoldsTheLayoutInGltfAxesAndReadsBackExactly) {
     EXPECT_EQ(float(position["min"][i].get<double>()), float(bounds[i]));  // nine digits: the float exactly
     EXPECT_EQ(float(position["max"][i].get<double>()), float(bounds[3 + i]));
   }
+  // An ASCII .ply converts as its binary twin does.
+  const std::string ascii = (dir / "ascii.ply").string(), ascii_glb = (dir / "ascii.glb").string();
+  write_scene(scene, ascii, true);
+  ASSERT_EQ(test::run_zhf("splat --in '" + ascii + "' --out '" + ascii_glb + "' --identity --quiet").exit_code, 0);
+  EXPECT_EQ(test::read_text(ascii_glb), test::read_text(out));
   // Transformed straight from the .glb, as its decoded .ply is.
   const std::string turn = " --zyz '0.3 0.5 0.7' --scale 2 --translate '1 2 3' --quiet";
   ASSERT_EQ(test::run_zhf("splat --in '" + out + "' --out '" + (dir / "a.ply").string() + "'" + turn).exit_code, 0);

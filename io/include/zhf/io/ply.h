@@ -66,4 +66,19 @@ Header read_header_elements(std::istream& in, const std::string& source);
 double read_binary(const unsigned char* record, const Property& property);
 void write_binary(unsigned char* record, const Property& property, double value);
 
+// ASCII data, one vertex a line. The next line (at most kMaxPlyAsciiLine bytes, without its
+// newline), read into buffer; throws InputError "<source>: splat K: ..." when it is longer or
+// missing.
+std::string_view read_ascii_line(std::istream& in, std::vector<char>& buffer, const std::string& source, std::uint64_t vertex,
+                                 std::uint64_t vertices);
+// A line's tokens, split at spaces and tabs.
+std::vector<std::string_view> split_ascii(std::string_view line);
+// One token per property into values: floats strictly (finite), integers in their type's range.
+// False when any is not.
+bool parse_ascii(const std::vector<std::string_view>& tokens, const Header& header, double* values);
+// The same for a line, throwing InputError "<source>: splat K: property P: '<token>' <problem>".
+void parse_ascii_or_throw(std::string_view line, const Header& header, const std::string& source, std::uint64_t vertex, double* values);
+// After the last line: only spaces, tabs and newlines may follow (InputError otherwise).
+void check_ascii_end(std::istream& in, const std::string& source);
+
 }  // namespace zhf::io::ply

@@ -120,6 +120,9 @@ inline constexpr std::uint64_t kMaxPlyVertices = std::uint64_t(1) << 31;
 inline constexpr double kMaxCompressionRatio = 1100;
 // A .glb scene's JSON chunk (a splat file's is a few kilobytes; whole glTF scenes are larger).
 inline constexpr std::size_t kMaxGlbJsonBytes = std::size_t(16) << 20;
+// Its chunks, and its meshes, primitives, nodes, accessors, views and buffers (each).
+inline constexpr int kMaxGlbChunks = 16;
+inline constexpr int kMaxGlbObjects = 1 << 16;
 // Radiance .hdr images: file and header size, width and height, pixels.
 inline constexpr std::size_t kMaxHdrBytes = std::size_t(256) << 20;
 inline constexpr std::size_t kMaxHdrHeader = 64 << 10;
