@@ -142,6 +142,23 @@ void expect_refused(const std::string& in, const std::string& content, const std
   EXPECT_FALSE(fs::exists(out)) << message;
 }
 
+// A turn, scale and shift for comparing one scene's transforms from two files.
+const std::string kTurn = "--zyz '0.3 0.5 0.7' --scale 2 --translate '1 2 3'";
+
+// zhf splat on two inputs, each with its options, both written as .ply: the same records to
+// float storage (the last column, `like`'s "custom", is not in a converted record).
+void expect_alike(const std::string& a_in, const std::string& a_options, const std::string& b_in, const std::string& b_options,
+                  const Scene& like, const fs::path& dir) {
+  const std::string a_out = (dir / "alike_a.ply").string(), b_out = (dir / "alike_b.ply").string();
+  ASSERT_EQ(test::run_zhf("splat --in '" + a_in + "' --out '" + a_out + "' " + a_options + " --quiet").exit_code, 0) << a_in;
+  ASSERT_EQ(test::run_zhf("splat --in '" + b_in + "' --out '" + b_out + "' " + b_options + " --quiet").exit_code, 0) << b_in;
+  std::string header;
+  const Scene a = read_scene(a_out, like, header), b = read_scene(b_out, like, header);
+  for (std::size_t k = 0; k < a.rows.size(); ++k)
+    for (std::size_t i = 0; i + 1 < a.rows[k].size(); ++i)
+      ASSERT_NEAR(a.rows[k][i], b.rows[k][i], kFloatStorage * (1 + std::abs(b.rows[k][i]))) << a_in << ": splat " << k << ", " << like.names[i];
+}
+
 struct Case {
   std::string options;
   Matrix3 r;
@@ -551,13 +568,7 @@ TEST(Splat, CompressedPlyHoldsTheLayoutAndReadsBackExactly) {
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(test::read_text((dir / "plain_back.ply").string()), test::read_text(back));
   // Transformed straight from the compressed file, as its decoded .ply is.
-  const std::string turn = " --zyz '0.3 0.5 0.7' --scale 2 --translate '1 2 3' --quiet";
-  ASSERT_EQ(test::run_zhf("splat --in '" + packed + "' --out '" + (dir / "a.ply").string() + "'" + turn).exit_code, 0);
-  ASSERT_EQ(test::run_zhf("splat --in '" + back + "' --out '" + (dir / "b.ply").string() + "'" + turn).exit_code, 0);
-  const Scene a = read_scene((dir / "a.ply").string(), scene, header), bb = read_scene((dir / "b.ply").string(), scene, header);
-  for (std::size_t k = 0; k < a.rows.size(); ++k)
-    for (std::size_t i = 0; i + 1 < a.rows[k].size(); ++i)  // the last column: scene's "custom", not in the canonical record
-      ASSERT_NEAR(a.rows[k][i], bb.rows[k][i], kFloatStorage * (1 + std::abs(bb.rows[k][i]))) << "splat " << k << ", " << scene.names[i];
+  expect_alike(packed, kTurn, back, kTurn, scene, dir);
 }
 
 TEST(Splat, MalformedCompressedPlyIsRefusedAndNothingIsWritten) {
@@ -715,13 +726,7 @@ TEST(Splat, SpzHoldsTheLayoutInItsAxesAndReadsBackExactly) {
   ASSERT_EQ(test::run_zhf("splat --in '" + v4 + "' --out '" + v4_back + "' --identity --quiet").exit_code, 0);
   EXPECT_EQ(test::read_text(v4_back), test::read_text(back));
   // Transformed straight from the .spz, as its decoded .ply is.
-  const std::string turn = " --zyz '0.3 0.5 0.7' --scale 2 --translate '1 2 3' --quiet";
-  ASSERT_EQ(test::run_zhf("splat --in '" + spz + "' --out '" + (dir / "a.ply").string() + "'" + turn).exit_code, 0);
-  ASSERT_EQ(test::run_zhf("splat --in '" + back + "' --out '" + (dir / "b.ply").string() + "'" + turn).exit_code, 0);
-  const Scene a = read_scene((dir / "a.ply").string(), scene, header), b = read_scene((dir / "b.ply").string(), scene, header);
-  for (std::size_t k = 0; k < a.rows.size(); ++k)
-    for (std::size_t i = 0; i + 1 < a.rows[k].size(); ++i)
-      ASSERT_NEAR(a.rows[k][i], b.rows[k][i], kFloatStorage * (1 + std::abs(b.rows[k][i]))) << "splat " << k << ", " << scene.names[i];
+  expect_alike(spz, kTurn, back, kTurn, scene, dir);
 }
 
 TEST(Splat, MalformedSpzIsRefusedAndNothingIsWritten) {
@@ -893,13 +898,7 @@ TEST(Splat, GlbHoldsTheLayoutInGltfAxesAndReadsBackExactly) {
   ASSERT_EQ(test::run_zhf("splat --in '" + ascii + "' --out '" + ascii_glb + "' --identity --quiet").exit_code, 0);
   EXPECT_EQ(test::read_text(ascii_glb), test::read_text(out));
   // Transformed straight from the .glb, as its decoded .ply is.
-  const std::string turn = " --zyz '0.3 0.5 0.7' --scale 2 --translate '1 2 3' --quiet";
-  ASSERT_EQ(test::run_zhf("splat --in '" + out + "' --out '" + (dir / "a.ply").string() + "'" + turn).exit_code, 0);
-  ASSERT_EQ(test::run_zhf("splat --in '" + back + "' --out '" + (dir / "b.ply").string() + "'" + turn).exit_code, 0);
-  const Scene a = read_scene((dir / "a.ply").string(), scene, header), b = read_scene((dir / "b.ply").string(), scene, header);
-  for (std::size_t k = 0; k < a.rows.size(); ++k)
-    for (std::size_t i = 0; i + 1 < a.rows[k].size(); ++i)
-      ASSERT_NEAR(a.rows[k][i], b.rows[k][i], kFloatStorage * (1 + std::abs(b.rows[k][i]))) << "splat " << k << ", " << scene.names[i];
+  expect_alike(out, kTurn, back, kTurn, scene, dir);
   // A node placing the mesh (a parent's translation, its own turn about z and scale) is applied
   // on reading: in the .ply's axes the translation's x and y flip, the turn about z stays.
   const double angle = 0.7;
@@ -912,12 +911,7 @@ TEST(Splat, GlbHoldsTheLayoutInGltfAxesAndReadsBackExactly) {
   placed.replace(placed.find(node), node.size(), nodes);
   const std::string placed_path = (dir / "placed.glb").string();
   test::write_text(placed_path, glb(placed, g.bin));
-  ASSERT_EQ(test::run_zhf("splat --in '" + placed_path + "' --out '" + (dir / "c.ply").string() + "' --identity --quiet").exit_code, 0);
-  ASSERT_EQ(test::run_zhf("splat --in '" + back + "' --out '" + (dir / "d.ply").string() + "' --axis-angle '0 0 1 0.7' --scale 2 --translate '-1 -2 3' --quiet").exit_code, 0);
-  const Scene c = read_scene((dir / "c.ply").string(), scene, header), d = read_scene((dir / "d.ply").string(), scene, header);
-  for (std::size_t k = 0; k < c.rows.size(); ++k)
-    for (std::size_t i = 0; i + 1 < c.rows[k].size(); ++i)
-      ASSERT_NEAR(c.rows[k][i], d.rows[k][i], kFloatStorage * (1 + std::abs(d.rows[k][i]))) << "splat " << k << ", " << scene.names[i];
+  expect_alike(placed_path, "--identity", back, "--axis-angle '0 0 1 0.7' --scale 2 --translate '-1 -2 3'", scene, dir);
 }
 
 TEST(Splat, MalformedGlbIsRefusedAndNothingIsWritten) {
