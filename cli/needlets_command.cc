@@ -13,6 +13,7 @@
 #include "options.h"
 #include "zhf/codegen/needlet_lut.h"
 #include "zhf/frames/needlets.h"
+#include "zhf/frames/windows.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/io/signals.h"
@@ -31,6 +32,7 @@ struct NeedletOptions {
   std::string set = "0", binding = "0";
   std::string out, data;
   std::string j = "1", cut = "10", margin = "4";
+  std::string window = "standard", mexican_order = "1", level;
 };
 
 // The top band L of a needlet command's signals, in [lo, hi]: --order N means bands 0..N-1 (as in
@@ -218,21 +220,49 @@ int run_needlet_mask(const NeedletOptions& o) {
 }
 
 int run_needlet_window(const NeedletOptions& o) {
-  const double dilation = dilation_option(o.dilation);
+  frames::Window w;
+  w.dilation = dilation_option(o.dilation);
+  if (!frames::parse_window_kind(o.window, w.kind)) throw UsageError("--window: '" + runtime::excerpt(o.window) + "' is not standard, spline or mexican");
+  w.order = static_cast<int>(integer_option("--mexican-order", o.mexican_order, 1, runtime::kMaxMexicanOrder));
   const int lmax = top_band(o, 0, runtime::kMaxNeedletBand);
   std::unique_ptr<io::PendingFile> out;
   if (!o.out.empty()) out = std::make_unique<io::PendingFile>(o.out);
   nlohmann::ordered_json b = nlohmann::ordered_json::array();
-  const std::vector<frames::WindowValue> windows = frames::needlet_windows(dilation, lmax);
+  const std::vector<frames::WindowValue> windows = frames::window_values(w, lmax);
   for (std::size_t i = 0; i < windows.size(); ++i) {
-    const frames::WindowValue& w = windows[i];
-    b.push_back({w.j, w.l, w.value});
-    if (i == 0 || windows[i - 1].j != w.j) std::printf("level %d: bands %d..", w.j, w.l);
-    if (i + 1 == windows.size() || windows[i + 1].j != w.j) std::printf("%d\n", w.l);
+    const frames::WindowValue& v = windows[i];
+    b.push_back({v.j, v.l, v.value});
+    if (i == 0 || windows[i - 1].j != v.j) std::printf("level %d: bands %d..", v.j, v.l);
+    if (i + 1 == windows.size() || windows[i + 1].j != v.j) std::printf("%d\n", v.l);
   }
   std::printf("%zu windows\n", b.size());
+  nlohmann::ordered_json report{{"format", "zhf-needlet-window-1"}, {"window", frames::window_kind_name(w.kind)}, {"B", w.dilation}, {"lmax", lmax}};
+  if (w.kind == frames::WindowKind::kMexican) report["order"] = w.order;
+  if (lmax >= 1) {
+    // How far from tight: the squares' sum over the levels, least and greatest over the bands.
+    double least = 1e300, most = 0;
+    for (int l = 1; l <= lmax; ++l) least = std::min(least, frames::window_square_sum(w, l)), most = std::max(most, frames::window_square_sum(w, l));
+    std::printf("sum over levels of b^2, bands 1..%d: %.17g .. %.17g, ratio %.6g (frame bounds; 1 .. 1 is a tight frame)\n", lmax, least,
+                most, most / least);
+    report["frame_bounds"] = {least, most};
+  }
+  if (!o.level.empty()) {
+    // Localisation: level j's kernel energy outside caps of radius k / B^j, k = 1, 2, 4, 8.
+    const int j = static_cast<int>(integer_option("--level", o.level, 0, 12));
+    nlohmann::ordered_json caps = nlohmann::ordered_json::array();
+    std::printf("level %d kernel, energy outside the cap of radius k / B^%d:", j, j);
+    for (double k : {1.0, 2.0, 4.0, 8.0}) {
+      const double radius = std::min(runtime::kPi, k / std::pow(w.dilation, j));
+      const double outside = frames::kernel_energy_outside(w, j, radius);
+      std::printf("  k=%g %.3e", k, outside);
+      caps.push_back({k, outside});
+    }
+    std::printf("\n");
+    report["localisation"] = {{"level", j}, {"outside", caps}};
+  }
+  report["b"] = b;
   if (out) {
-    out->write(io::json_text(nlohmann::ordered_json{{"format", "zhf-needlet-window-1"}, {"B", dilation}, {"lmax", lmax}, {"b", b}}));
+    out->write(io::json_text(report));
     out->commit();
   }
   return kExitOk;
@@ -327,8 +357,11 @@ void add_needlets_command(CLI::App& app, Action& action, const std::string& comm
   CLI::App* nc = app.add_subcommand("needlets", "Spherical needlets: windows, kernel tables and tabulated rotation");
   nc->require_subcommand(1);
   auto w = std::make_shared<NeedletOptions>();
-  CLI::App* wc = nc->add_subcommand("window", "The Littlewood-Paley windows b(l / B^j), every non-zero one for bands 0..lmax");
+  CLI::App* wc = nc->add_subcommand("window", "The windows b(l / B^j), every non-zero one for bands 0..lmax, their frame bounds and (--level) localisation");
   wc->add_option("--B", w->dilation, kDilationHelp);
+  wc->add_option("--window", w->window, "standard (the C-infinity bump), spline (cubic B-spline step) or mexican (x^(2p) exp(-x^2)); default standard");
+  wc->add_option("--mexican-order", w->mexican_order, "p of the Mexican window, 1.." + std::to_string(runtime::kMaxMexicanOrder) + " (default 1)");
+  wc->add_option("--level", w->level, "Also print level J's kernel energy outside caps of radius k / B^J, k = 1, 2, 4, 8 (J in 0..12)");
   add_band_limit(wc, *w, runtime::kMaxNeedletBand);
   keep_old_spelling(wc, wc->add_option("--out", w->out, "Write the windows here: {\"B\", \"lmax\", \"b\": [[j, l, value], ...]}"), "--json", w->out);
   wc->callback([w, &action] { action = [w] { return run_needlet_window(*w); }; });

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "zhf/frames/windows.h"
 #include "zhf/runtime/limits.h"
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/runtime/tolerances.h"
@@ -58,13 +59,13 @@ double integrate(double a, double b) {
   return integrate_to(a, b, runtime::tolerance::kKronrodRelative * std::abs(whole), 0);
 }
 
+}  // namespace
+
 void check_dilation(double dilation) {
   if (!(dilation >= runtime::kMinDilation && dilation <= runtime::kMaxDilation))
     throw std::invalid_argument("B must be in [" + std::to_string(runtime::kMinDilation).substr(0, 4) + ", " + std::to_string(int(runtime::kMaxDilation)) +
                                 "] (got " + std::to_string(dilation) + ")");
 }
-
-}  // namespace
 
 double bump_integral() {
   static const double value = integrate(-1, 0) + integrate(0, 1);
@@ -105,21 +106,7 @@ double needlet_window(double x, double dilation) {
   return std::sqrt(integrate(lo, hi) / bump_integral());
 }
 
-std::vector<WindowValue> needlet_windows(double dilation, int lmax) {
-  check_dilation(dilation);
-  if (lmax < 0 || lmax > runtime::kMaxNeedletBand)
-    throw std::invalid_argument("lmax must be 0.." + std::to_string(runtime::kMaxNeedletBand) + " (got " + std::to_string(lmax) + ")");
-  std::vector<WindowValue> out;
-  // Level j covers B^(j-1) < l < B^(j+1); stop once B^(j-1) passes lmax.
-  for (int j = 0; std::pow(dilation, j - 1) < lmax + 1; ++j) {
-    const int first = std::max(0, static_cast<int>(std::floor(std::pow(dilation, j - 1)))), last = std::min(lmax, static_cast<int>(std::ceil(std::pow(dilation, j + 1))));
-    for (int l = first; l <= last; ++l) {
-      const double b = needlet_window(l / std::pow(dilation, j), dilation);
-      if (b > 0) out.push_back({j, l, b});
-    }
-  }
-  return out;
-}
+std::vector<WindowValue> needlet_windows(double dilation, int lmax) { return window_values(Window{WindowKind::kStandard, dilation, 1}, lmax); }
 
 // ---- Cubatures ----------------------------------------------------------------------------------
 
@@ -130,18 +117,6 @@ void check_cubature(const Cubature& c, int degree) {
   if (c.degree < degree || c.points.empty() || c.points.size() != c.weights.size())
     throw std::invalid_argument("cubature '" + c.name + "' is exact to degree " + std::to_string(c.degree) + ", " +
                                 std::to_string(degree) + " needed");
-}
-
-// sum_{l = lo..hi} weight(l) L_l(t), with L_l(t) = (2l+1)/(4 pi) P_l(t) = sum_m y_l^m(x) y_l^m(xi)
-// the kernel of band l at t = x . xi, written sqrt((2l+1)/(4 pi)) Q_l^0(t) on the runtime's
-// Legendre recurrence.
-template <class Weight>
-double zonal_series(int lo, int hi, double t, Weight&& weight) {
-  double sum = 0;
-  runtime::legendre_column(0, hi, t, runtime::kInvSqrt4Pi, runtime::LegendreCoefficients<>{}, [&](int l, double q) {
-    if (l >= lo) sum += weight(l) * std::sqrt(2 * l + 1) * runtime::kInvSqrt4Pi * q;
-  });
-  return sum;
 }
 
 double dot(const Point& a, const Point& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
@@ -367,19 +342,31 @@ double sh_delta_kernel(int lmax, double t) {
   return zonal_series(0, lmax, t, [](int) { return 1.0; });
 }
 
+namespace {
+constexpr int kLargestRule = 64;  // sh::gauss_legendre's most nodes
+}  // namespace
+
 Localisation localisation(const std::function<double(double)>& kernel, int degree, double cap) {
   if (degree < 0 || degree > runtime::kMaxProfileBand)
     throw std::invalid_argument("profile degree must be 0.." + std::to_string(runtime::kMaxProfileBand) + " (got " + std::to_string(degree) + ")");
+  // K^2 has degree 2 degree: one Gauss-Legendre rule of degree + 1 nodes is exact; past the
+  // largest rule, panels of it (twice as many nodes in all as the degree needs).
+  const int nodes = std::min(degree + 1, kLargestRule);
+  const int panels = degree + 1 <= kLargestRule ? 1 : 2 * ((degree + kLargestRule) / kLargestRule);
   std::vector<double> x, w;
-  sh::gauss_legendre(degree + 1, x, w);
+  sh::gauss_legendre(nodes, x, w);
   const double edge = std::cos(cap);
   auto energy = [&](double a, double b) {
     double sum = 0;
-    for (std::size_t i = 0; i < x.size(); ++i) {
-      const double k = kernel((a + b) / 2 + (b - a) / 2 * x[i]);
-      sum += w[i] * k * k;
+    const double width = (b - a) / panels;
+    for (int p = 0; p < panels; ++p) {
+      const double start = a + p * width;
+      for (std::size_t i = 0; i < x.size(); ++i) {
+        const double k = kernel(start + width / 2 * (x[i] + 1));
+        sum += w[i] * k * k;
+      }
     }
-    return sum * (b - a) / 2;
+    return sum * width / 2;
   };
   Localisation out;
   const double outside = energy(-1, edge), inside = energy(edge, 1);

@@ -1,11 +1,14 @@
-// zhf designs and zhf frame from the command line: byte-identical designs whatever the thread
-// count, the checked-in designs reproduced, frame reports, bad input refused in one line.
+// zhf designs, zhf frame and zhf needlets window from the command line: byte-identical designs
+// whatever the thread count, the checked-in designs reproduced, frame reports, window reports,
+// bad input refused in one line.
 #include <filesystem>
 #include <string>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "test_support.h"
+#include "zhf/runtime/tolerances.h"
 
 namespace zhf {
 namespace {
@@ -39,6 +42,30 @@ TEST(FrameCli, DesignsAreTightAndTablesReportTheirBands) {
   r = test::run_zhf("frame --table '" + test::source_path("generated/lobes/order_5.json") + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(test::line_count(r.out), 4) << r.out;  // the header and bands 2, 3, 4
+}
+
+TEST(NeedletWindowCli, ReportsFrameBoundsAndLocalisationPerWindow) {
+  const test::TempDir dir;
+  for (const char* window : {"standard", "spline", "mexican"}) {
+    const std::string out = (dir / (std::string(window) + ".json")).string();
+    const test::RunResult r = test::run_zhf(std::string("needlets window --order 33 --level 3 --window ") + window + " --out '" + out + "'");
+    ASSERT_EQ(r.exit_code, 0) << window << ": " << r.err;
+    const nlohmann::json report = nlohmann::json::parse(test::read_text(out));
+    EXPECT_EQ(report["window"], window);
+    const double least = report["frame_bounds"][0], most = report["frame_bounds"][1];
+    if (std::string(window) == "mexican") {
+      EXPECT_GT(most / least, 1.01) << "a Mexican frame is not tight";
+    } else {
+      EXPECT_NEAR(least, 1.0, runtime::tolerance::kNeedletWindow) << window;
+      EXPECT_NEAR(most, 1.0, runtime::tolerance::kNeedletWindow) << window;
+    }
+    const nlohmann::json& caps = report["localisation"]["outside"];
+    ASSERT_EQ(caps.size(), 4u);
+    for (std::size_t i = 1; i < caps.size(); ++i) EXPECT_LT(caps[i][1].get<double>(), caps[i - 1][1].get<double>()) << window;
+  }
+  const test::RunResult bad = test::run_zhf("needlets window --order 9 --window gaussian");
+  EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  EXPECT_NE(bad.err.find("--window: 'gaussian' is not standard, spline or mexican"), std::string::npos) << bad.err;
 }
 
 TEST(FramesCli, BadInputGetsOneLineAndNoOutput) {

@@ -38,8 +38,24 @@
 #include "zhf/frames/designs.h"
 #include "zhf/runtime/limits.h"
 #include "zhf/runtime/rotation.h"
+#include "zhf/runtime/sh_eval.h"
 
 namespace zhf::frames {
+
+// Throws std::invalid_argument unless B is in [runtime::kMinDilation, runtime::kMaxDilation].
+void check_dilation(double dilation);
+
+// sum_{l = lo..hi} weight(l) L_l(t), with L_l(t) = (2l+1)/(4 pi) P_l(t) = sum_m y_l^m(x) y_l^m(xi)
+// the kernel of band l at t = x . xi, written sqrt((2l+1)/(4 pi)) Q_l^0(t) on the runtime's
+// Legendre recurrence.
+template <class Weight>
+double zonal_series(int lo, int hi, double t, Weight&& weight) {
+  double sum = 0;
+  runtime::legendre_column(0, hi, t, runtime::kInvSqrt4Pi, runtime::LegendreCoefficients<>{}, [&](int l, double q) {
+    if (l >= lo) sum += weight(l) * std::sqrt(2 * l + 1) * runtime::kInvSqrt4Pi * q;
+  });
+  return sum;
+}
 
 // int_{-1}^{1} exp(-1 / (1 - t^2)) dt.
 double bump_integral();
@@ -160,9 +176,10 @@ std::function<double(double)> needlet_kernel(double dilation, int j);  // its wi
 double sh_delta_kernel(int lmax, double t);
 
 // How much of a zonal kernel K (a polynomial of degree `degree` in t = cos theta) lies outside the
-// cap theta < cap: its energy fraction there, int_{theta > cap} K^2 / int K^2 (exact: Gauss-Legendre
-// on each side), and its largest |K| there relative to K(1) (sampled at 20001 angles). Degrees up
-// to runtime::kMaxProfileBand (std::invalid_argument beyond).
+// cap theta < cap: its energy fraction there, int_{theta > cap} K^2 / int K^2 (Gauss-Legendre on
+// each side: exact to degree 63, on panels of 64 nodes beyond, converged to rounding), and its
+// largest |K| there relative to K(1) (sampled at 20001 angles). Degrees up to
+// runtime::kMaxProfileBand (std::invalid_argument beyond).
 struct Localisation {
   double outside_energy = 0;
   double sidelobe = 0;

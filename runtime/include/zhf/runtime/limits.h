@@ -69,12 +69,15 @@ inline constexpr int kMaxTightFrameOrder = 32;
 // and the degree of a localisation profile.
 inline constexpr double kMinDilation = 1.05, kMaxDilation = 64;
 inline constexpr int kMaxNeedletBand = 4096;
+// Mexican needlets x^(2p) exp(-x^2): orders p.
+inline constexpr int kMaxMexicanOrder = 8;
 inline constexpr int kMaxNeedletFrameBand = 63;
 inline constexpr int kMinNeedletTableSize = 3, kMaxNeedletTableSize = 1 << 20;
 // The descriptor set (WebGPU: bind group) and binding a shader evaluator's data is read from:
 // Vulkan guarantees only 4 sets, WebGPU 4 groups of up to 1000 bindings.
 inline constexpr int kMaxStorageSet = 3, kMaxStorageBinding = 999;
-inline constexpr int kMaxProfileBand = 63;
+// A kernel profile: its degree (zhf needlets profile, the windows' localisation).
+inline constexpr int kMaxProfileBand = 1023;
 
 // candidates --json up to this order: its 174242 directions take about 400 MiB to write (order 20
 // has 584162 and 1.4 GiB, order 32 6.4 million and 15 GiB).

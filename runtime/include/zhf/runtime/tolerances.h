@@ -124,6 +124,17 @@ inline constexpr double kDesignQuadrature = 1e-14;
 // (psi(0) = 1/2, psi(u) + psi(-u) = 1) and the partition of unity sum_j b^2(l / B^j) = 1, each a
 // few roundings of values below 1 (measured at most 2.3e-15, B = 1.2).
 inline constexpr double kNeedletWindow = 1e-14;
+// A Mexican needlet window is taken as zero where b^2 is below this fraction of its peak
+// (its Gaussian tail: the sum over levels changes by less than that).
+inline constexpr double kWindowNegligible = 1e-20;
+// The spline step against Simpson's rule on the cubic B-spline (2000 panels a piece: the
+// rule's error on a quartic is below 1e-16) and the Mexican square sums against a plain sum
+// over levels (a few roundings of ~20 terms, relative).
+inline constexpr double kSplineStepAgainstSimpson = 1e-13;
+inline constexpr double kWindowSquareSum = 1e-14;
+// A kernel's energy outside a cap against the midpoint rule in the angle on 200 000 panels:
+// the rule's error, h^2 / 24 times the integrand's second derivative (~band^2), relative.
+inline constexpr double kCapEnergyAgainstMidpoint = 1e-6;
 // The needlet frame on unit-norm signals of bands <= 16: reconstruction, Parseval, sampled analysis,
 // kernels and rotation, each sums of ~10^3 terms of size <= 1 over a cubature whose nodes carry
 // double rounding (the bound for exact reconstruction).
