@@ -80,16 +80,11 @@ double needlet_psi(double u) {
   return integrate(-1, u) / bump_integral();
 }
 
-namespace {
-
-// phi(t) = psi(u(t)): u = 1 up to t = 1/B (phi = 1), -1 beyond t = 1 (phi = 0), linear between.
 double phi_argument(double t, double dilation) {
   if (t <= 1 / dilation) return 1;
   if (t > 1) return -1;
   return 1 - 2 * dilation / (dilation - 1) * (t - 1 / dilation);
 }
-
-}  // namespace
 
 double needlet_phi(double t, double dilation) {
   check_dilation(dilation);

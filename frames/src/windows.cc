@@ -32,13 +32,8 @@ double spline_cumulative_left(double s) {
   return 1.0 / 24 + (4 * s - 2 * s * s * s - 0.75 * s * s * s * s + 2.75) / 6;
 }
 
-// phi(t) from a step: 1 up to t = 1/B, 0 beyond t = 1, the step's argument linear between (the
-// standard window's mapping, needlets.h).
-double spline_phi(double t, double dilation) {
-  if (t <= 1 / dilation) return 1;
-  if (t > 1) return 0;
-  return spline_step(1 - 2 * dilation / (dilation - 1) * (t - 1 / dilation));
-}
+// phi(t) from the spline step, through the standard window's mapping (needlets.h).
+double spline_phi(double t, double dilation) { return spline_step(phi_argument(t, dilation)); }
 
 // Mexican: b^2 falls below kWindowNegligible of its peak outside [low, high] in x.
 void mexican_support(int p, double& low, double& high) {

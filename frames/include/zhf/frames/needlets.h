@@ -61,6 +61,8 @@ double zonal_series(int lo, int hi, double t, Weight&& weight) {
 double bump_integral();
 double needlet_psi(double u);
 // B in [runtime::kMinDilation, runtime::kMaxDilation]: a B closer to 1 asks for ~log(l) / log(B) levels.
+// phi(t) = psi(u(t)): u = 1 up to t = 1/B (phi = 1), -1 beyond t = 1 (phi = 0), linear between.
+double phi_argument(double t, double dilation);
 double needlet_phi(double t, double dilation);
 double needlet_window(double x, double dilation);  // b(x)
 
