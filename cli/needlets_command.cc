@@ -241,7 +241,11 @@ int run_needlet_window(const NeedletOptions& o) {
   if (lmax >= 1) {
     // How far from tight: the squares' sum over the levels, least and greatest over the bands.
     double least = 1e300, most = 0;
-    for (int l = 1; l <= lmax; ++l) least = std::min(least, frames::window_square_sum(w, l)), most = std::max(most, frames::window_square_sum(w, l));
+    for (int l = 1; l <= lmax; ++l) {
+      const double sum = frames::window_square_sum(w, l);
+      least = std::min(least, sum);
+      most = std::max(most, sum);
+    }
     std::printf("sum over levels of b^2, bands 1..%d: %.17g .. %.17g, ratio %.6g (frame bounds; 1 .. 1 is a tight frame)\n", lmax, least,
                 most, most / least);
     report["frame_bounds"] = {least, most};

@@ -58,7 +58,7 @@ class PlyReader : public SceneReader {
     }
     std::vector<double> values(header_.properties.size());
     for (std::uint64_t s = 0; s < count; ++s) {
-      const unsigned char* record = buffer_.data() + s * header_.record_bytes;
+      const unsigned char* record = ascii ? nullptr : buffer_.data() + s * header_.record_bytes;
       if (ascii) ply::parse_ascii_or_throw(ply::read_ascii_line(file_, line_, path_, first + s, splats_), header_, path_, first + s, values.data());
       double* v = records + s * c.size();
       for (int i = 0; i < c.size(); ++i) {

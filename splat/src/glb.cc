@@ -162,16 +162,13 @@ Affine local_transform(const Field& node) {
     for (int i = 0; i < 4; ++i) q[i] = v[i].number(-1, 1);
     const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
     if (std::abs(norm - 1) > runtime::tolerance::kRotationDefect) f->fail("is not a unit quaternion (norm " + runtime::format_number(norm) + ")");
-    for (double& x : q) x /= norm;
   }
   if (std::optional<Field> f = node.find("scale")) {
     const std::vector<Field> v = f->items(3);
     for (int i = 0; i < 3; ++i) s[i] = v[i].number();
   }
-  const double x = q[0], y = q[1], z = q[2], w = q[3];
-  const double r[9] = {1 - 2 * (y * y + z * z), 2 * (x * y - z * w),     2 * (x * z + y * w),
-                       2 * (x * y + z * w),     1 - 2 * (x * x + z * z), 2 * (y * z - x * w),
-                       2 * (x * z - y * w),     2 * (y * z + x * w),     1 - 2 * (x * x + y * y)};
+  runtime::Matrix3 r;
+  runtime::rotation_from_quaternion(q[3], q[0], q[1], q[2], r);  // glTF stores x y z w
   Affine a = kIdentity;
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) a[4 * i + j] = r[3 * i + j] * s[j];
