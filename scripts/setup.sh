@@ -13,7 +13,7 @@ packages=(
   libeigen3-dev libnlopt-cxx-dev libcli11-dev nlohmann-json3-dev zlib1g-dev libzstd-dev
   libgtest-dev libbenchmark-dev
   glslang-tools spirv-tools libvulkan-dev mesa-vulkan-drivers
-  libhealpix-cxx-dev gnuplot-nox
+  libhealpix-cxx-dev libcfitsio-dev gnuplot-nox
   python3 python3-dev pybind11-dev python3-numpy python3-pytest
 )
 missing=()

@@ -9,8 +9,6 @@
 
 namespace zhf::bench {
 
-bool healpix_available() { return true; }
-
 struct HealpixRotator::State {
   int order;
   mutable Alm<xcomplex<double>> alm;

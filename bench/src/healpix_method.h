@@ -1,13 +1,10 @@
 // HEALPix rotate_alm (Debian's libhealpix-cxx-dev) as an outside reference point: complex
 // coefficients with the Condon-Shortley phase, converted from and to zhf's real SH at the edges.
-// Built only when the library is found; healpix_available() says which.
 #pragma once
 
 #include <memory>
 
 namespace zhf::bench {
-
-bool healpix_available();
 
 class HealpixRotator {
  public:

@@ -390,7 +390,6 @@ SuiteReport run_suite(const SuiteOptions& o) {
     if (it != counts.end()) r.multiplies = it->second.first, r.adds = it->second.second;
     return r;
   };
-  if (!healpix_available()) report.notes.push_back("healpix: not built (libhealpix-cxx-dev was not found at configure time)");
 
   for (int order : orders) {
     const Pool pool(order, scale.pool);
@@ -473,7 +472,7 @@ SuiteReport run_suite(const SuiteOptions& o) {
       say(single<double>(scale, pool, "ivanic_ruedenberg", "single", 1, [&](auto r, auto in, auto out) { ir(r, in, out, 1); }));
       say(single<double>(scale, pool, "ivanic_ruedenberg", "rgb", 3, [&](auto r, auto in, auto out) { ir(r, in, out, 3); }));
     }
-    if (healpix_available()) {
+    {
       const HealpixRotator h(order);
       say(single<double>(scale, pool, "healpix", "single", 1, [&](auto r, auto in, auto out) { h.rotate(r, in, out); }, "incl. real<->complex"));
       // The conversions' share of that time, alone (no rotation, so no error to report).

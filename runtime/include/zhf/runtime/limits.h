@@ -131,6 +131,12 @@ inline constexpr std::size_t kMaxHdrBytes = std::size_t(256) << 20;
 inline constexpr std::size_t kMaxHdrHeader = 64 << 10;
 inline constexpr int kMaxHdrSide = 32767;
 inline constexpr long long kMaxHdrPixels = 1LL << 25;
+// HEALPix FITS maps: Nside (12 Nside^2 pixels: 805 million, 6.4 GB as doubles, at the limit) and
+// the bytes of the headers before the map's table (a map's are a few kilobytes).
+inline constexpr long long kMaxHealpixNside = 8192;
+inline constexpr std::size_t kMaxHealpixHeaderBytes = std::size_t(1) << 20;
+// Jacobi steps of a HEALPix map's analysis (healpy's iter; 3 is its default and usually enough).
+inline constexpr int kMaxHealpixIterations = 20;
 // Options: zhf analyze's and analyze()'s relative tolerance goes down to this (double rounding);
 // zhf splat --scale is a factor in [kMinSplatScale, kMaxSplatScale]; a search's local phase gets
 // at least kMinSearchSeconds of a time limit.

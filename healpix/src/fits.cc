@@ -1,0 +1,269 @@
+#include "zhf/healpix/fits.h"
+
+#include <fitsio.h>
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <memory>
+#include <stdexcept>
+
+#include "zhf/io/errors.h"
+#include "zhf/io/files.h"
+#include "zhf/io/signals.h"
+#include "zhf/runtime/read_file.h"
+
+namespace zhf::healpix {
+namespace {
+
+using io::excerpt;
+using io::InputError;
+using io::throw_if_interrupted;
+
+constexpr long long kFitsBlock = 2880;
+// Values read or written per cfitsio call: the interrupt flag is polled between them.
+constexpr long long kPixelsPerCall = 1 << 20;
+// healpy's row length; a map shorter or not a multiple of it is written one value a row.
+constexpr long long kValuesPerRow = 1024;
+
+bool power_of_two(std::int64_t n) { return n > 0 && (n & (n - 1)) == 0; }
+
+// cfitsio's short text for a status, its message stack cleared (cfitsio never prints by itself).
+std::string fits_text(int status) {
+  char text[FLEN_STATUS] = {};
+  fits_get_errstatus(status, text);
+  fits_clear_errmsg();
+  return text;
+}
+
+struct FitsCloser {
+  void operator()(fitsfile* f) const {
+    int status = 0;
+    fits_close_file(f, &status);
+    fits_clear_errmsg();
+  }
+};
+using FitsFile = std::unique_ptr<fitsfile, FitsCloser>;
+
+std::string trimmed(const char* text) {
+  std::string s(text);
+  while (!s.empty() && s.back() == ' ') s.pop_back();
+  return s;
+}
+
+class MapReader {
+ public:
+  MapReader(fitsfile* file, std::uint64_t file_bytes, const std::string& source)
+      : file_(file), file_bytes_(file_bytes), source_(source) {}
+
+  HealpixMap read() {
+    int hdu_type = 0;
+    if (fits_movabs_hdu(file_, 2, &hdu_type, &status_)) fail("no extension after the primary header (" + fits_text(status_) + ")");
+    if (hdu_type != BINARY_TBL) fail("the first extension is not a binary table");
+    LONGLONG header_start = 0, data_start = 0, data_end = 0;
+    check(fits_get_hduaddrll(file_, &header_start, &data_start, &data_end, &status_), "the table's header");
+    if (static_cast<std::uint64_t>(data_start) > runtime::kMaxHealpixHeaderBytes)
+      fail("headers of " + std::to_string(data_start) + " bytes, more than the limit of " + std::to_string(runtime::kMaxHealpixHeaderBytes));
+    const LONGLONG padded_end = (data_end + kFitsBlock - 1) / kFitsBlock * kFitsBlock;
+    if (static_cast<std::uint64_t>(data_end) > file_bytes_)
+      fail("truncated: the table needs " + std::to_string(data_end) + " bytes, the file has " + std::to_string(file_bytes_));
+    if (file_bytes_ > static_cast<std::uint64_t>(padded_end))
+      fail(std::to_string(file_bytes_ - static_cast<std::uint64_t>(padded_end)) + " bytes after the map's table (a second extension is not read)");
+
+    if (text_key("PIXTYPE", true) != "HEALPIX") fail("PIXTYPE is not 'HEALPIX'");
+    HealpixMap map;
+    const std::string ordering = text_key("ORDERING", true);
+    if (ordering == "RING") map.ordering = HealpixOrdering::kRing;
+    else if (ordering == "NESTED" || ordering == "NEST") map.ordering = HealpixOrdering::kNested;
+    else fail("ORDERING '" + excerpt(ordering) + "' is not RING or NESTED");
+    map.nside = integer_key("NSIDE", true, -1);
+    if (map.nside < 1 || map.nside > kMaxHealpixNside)
+      fail("NSIDE " + std::to_string(map.nside) + " is outside 1.." + std::to_string(kMaxHealpixNside));
+    if (map.ordering == HealpixOrdering::kNested && !power_of_two(map.nside))
+      fail("NSIDE " + std::to_string(map.nside) + " is not a power of two, as NESTED ordering needs");
+    const std::int64_t pixels = healpix_pixels(map.nside);
+    const std::string scheme = text_key("INDXSCHM", false);
+    if (!scheme.empty() && scheme != "IMPLICIT") fail("INDXSCHM '" + excerpt(scheme) + "' (a partial map) is not read: only IMPLICIT");
+
+    int columns = 0, type = 0;
+    LONGLONG rows = 0, repeat = 0, width = 0;
+    check(fits_get_num_cols(file_, &columns, &status_), "its columns");
+    check(fits_get_num_rowsll(file_, &rows, &status_), "its rows");
+    if (columns < 1) fail("the table has no column");
+    check(fits_get_coltypell(file_, 1, &type, &repeat, &width, &status_), "column 1");
+    const bool integer = type == TBYTE || type == TSBYTE || type == TSHORT || type == TUSHORT || type == TLONG || type == TULONG || type == TLONGLONG;
+    if (!integer && type != TFLOAT && type != TDOUBLE) fail("column 1 is not of a number type (FITS type code " + std::to_string(type) + ")");
+    if (repeat < 1 || rows < 0 || rows > pixels || repeat * rows != pixels)
+      fail("column 1 holds " + std::to_string(rows) + " rows of " + std::to_string(repeat) + " values, not 12 NSIDE^2 = " + std::to_string(pixels) +
+           " (NSIDE " + std::to_string(map.nside) + ")");
+
+    if (integer_key("FIRSTPIX", false, 0) != 0) fail("FIRSTPIX is not 0");
+    const std::int64_t last = integer_key("LASTPIX", false, pixels - 1);
+    if (last != pixels - 1) fail("LASTPIX " + std::to_string(last) + " is not 12 NSIDE^2 - 1 = " + std::to_string(pixels - 1));
+
+    map.pixels.resize(static_cast<std::size_t>(pixels));
+    std::vector<char> nulls(integer ? static_cast<std::size_t>(kPixelsPerCall) : 0);
+    for (LONGLONG first = 0; first < pixels; first += kPixelsPerCall) {
+      throw_if_interrupted();
+      const LONGLONG count = std::min<LONGLONG>(kPixelsPerCall, pixels - first);
+      double* out = map.pixels.data() + first;
+      int any_null = 0;
+      if (integer) {
+        check(fits_read_colnull(file_, TDOUBLE, 1, first / repeat + 1, first % repeat + 1, count, out, nulls.data(), &any_null, &status_), "the pixels");
+        if (any_null)
+          fail("pixel " + std::to_string(first + (std::find(nulls.begin(), nulls.begin() + count, 1) - nulls.begin())) + " is null (TNULL)");
+      } else {
+        double no_check = 0;
+        check(fits_read_col(file_, TDOUBLE, 1, first / repeat + 1, first % repeat + 1, count, &no_check, out, &any_null, &status_), "the pixels");
+      }
+      for (LONGLONG k = 0; k < count; ++k) {
+        if (!std::isfinite(out[k])) fail("pixel " + std::to_string(first + k) + " is " + (std::isnan(out[k]) ? "NaN" : "infinite"));
+        if (is_unseen(out[k]) && map.unseen++ == 0) map.first_unseen = first + k;
+      }
+    }
+    return map;
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& what) const { throw InputError(source_ + ": " + what); }
+  void check(int status, const char* reading) {
+    if (status) fail(std::string("FITS error reading ") + reading + ": " + fits_text(status));
+  }
+  // A string keyword's value, "" when absent and optional.
+  std::string text_key(const char* name, bool required) {
+    char value[FLEN_VALUE] = {};
+    if (fits_read_key(file_, TSTRING, name, value, nullptr, &status_)) {
+      const int status = status_;
+      status_ = 0;
+      fits_clear_errmsg();
+      if (status == KEY_NO_EXIST && !required) return "";
+      fail(std::string(status == KEY_NO_EXIST ? "no " : "unreadable ") + name + " keyword");
+    }
+    return trimmed(value);
+  }
+  std::int64_t integer_key(const char* name, bool required, std::int64_t absent) {
+    LONGLONG value = 0;
+    if (fits_read_key_lnglng(file_, name, &value, nullptr, &status_)) {
+      const int status = status_;
+      status_ = 0;
+      fits_clear_errmsg();
+      if (status == KEY_NO_EXIST && !required) return absent;
+      fail(std::string(status == KEY_NO_EXIST ? "no " : "") + name + (status == KEY_NO_EXIST ? " keyword" : " is not an integer"));
+    }
+    return value;
+  }
+
+  fitsfile* file_;
+  std::uint64_t file_bytes_;
+  const std::string& source_;
+  int status_ = 0;
+};
+
+HealpixMap read_opened(fitsfile* raw, int status, std::uint64_t bytes, const std::string& source) {
+  if (status) {
+    if (raw) FitsCloser()(raw);
+    throw InputError(source + ": not a FITS file (" + fits_text(status) + ")");
+  }
+  FitsFile file(raw);
+  return MapReader(file.get(), bytes, source).read();
+}
+
+void check_map(const HealpixMap& map) {
+  if (map.nside < 1 || map.nside > kMaxHealpixNside) throw std::invalid_argument("HEALPix Nside " + std::to_string(map.nside) + " is outside 1.." + std::to_string(kMaxHealpixNside));
+  if (map.ordering == HealpixOrdering::kNested && !power_of_two(map.nside))
+    throw std::invalid_argument("HEALPix Nside " + std::to_string(map.nside) + " is not a power of two, as NESTED ordering needs");
+  if (static_cast<std::int64_t>(map.pixels.size()) != healpix_pixels(map.nside))
+    throw std::invalid_argument(std::to_string(map.pixels.size()) + " pixels are not 12 Nside^2 (Nside " + std::to_string(map.nside) + ")");
+}
+
+}  // namespace
+
+bool is_unseen(double value) { return std::abs(value - kHealpixUnseen) <= 1e-5 * std::abs(kHealpixUnseen); }
+
+std::int64_t healpix_pixels(std::int64_t nside) { return 12 * nside * nside; }
+
+HealpixMap read_healpix_map(const std::string& path) {
+  struct stat st {};
+  if (stat(path.c_str(), &st) != 0) throw InputError(path + ": cannot be read (missing or not accessible)");
+  if (!S_ISREG(st.st_mode)) return parse_healpix_map(runtime::read_file(path, runtime::kMaxHealpixHeaderBytes + healpix_pixels(kMaxHealpixNside) * 8), path);
+  fitsfile* raw = nullptr;
+  int status = 0;
+  fits_open_diskfile(&raw, path.c_str(), READONLY, &status);  // the name taken as is: no cfitsio filename syntax
+  return read_opened(raw, status, static_cast<std::uint64_t>(st.st_size), path);
+}
+
+HealpixMap parse_healpix_map(const std::string& bytes, const std::string& source) {
+  if (bytes.empty()) throw InputError(source + ": empty, not a FITS file");
+  void* buffer = const_cast<char*>(bytes.data());  // read only: cfitsio neither writes nor grows it
+  std::size_t size = bytes.size();
+  fitsfile* raw = nullptr;
+  int status = 0;
+  fits_open_memfile(&raw, "memory", READONLY, &buffer, &size, 0, nullptr, &status);
+  return read_opened(raw, status, bytes.size(), source);
+}
+
+std::string encode_healpix_map(const HealpixMap& map) {
+  check_map(map);
+  const LONGLONG pixels = healpix_pixels(map.nside);
+  const LONGLONG per_row = pixels % kValuesPerRow == 0 ? kValuesPerRow : 1;
+  // cfitsio grows the buffer with realloc; closing a memory file leaves the buffer to its owner.
+  struct MemoryFits {
+    std::size_t size = kFitsBlock;
+    void* buffer = std::malloc(kFitsBlock);
+    fitsfile* file = nullptr;
+    ~MemoryFits() {
+      if (file) FitsCloser()(file);
+      std::free(buffer);
+    }
+  } fits;
+  if (!fits.buffer) throw std::bad_alloc();
+  int status = 0;
+  auto check = [&](const char* what) {
+    if (status) throw std::runtime_error(std::string("writing a HEALPix map: ") + what + ": " + fits_text(status));
+  };
+  fits_create_memfile(&fits.file, &fits.buffer, &fits.size, static_cast<std::size_t>(kFitsBlock) * 64, std::realloc, &status);
+  check("creating the file");
+  fitsfile* f = fits.file;
+  fits_create_img(f, BYTE_IMG, 0, nullptr, &status);
+  char type[] = "SIGNAL", unit[] = "";
+  std::string form = std::to_string(per_row) + "D";
+  char* types[] = {type};
+  char* forms[] = {form.data()};
+  char* units[] = {unit};
+  fits_create_tbl(f, BINARY_TBL, pixels / per_row, 1, types, forms, units, nullptr, &status);
+  char healpix[] = "HEALPIX", ring[] = "RING", nested[] = "NESTED", implicit[] = "IMPLICIT", fullsky[] = "FULLSKY";
+  LONGLONG nside = map.nside, first = 0, last = pixels - 1;
+  fits_write_key(f, TSTRING, "PIXTYPE", healpix, "HEALPIX pixelisation", &status);
+  fits_write_key(f, TSTRING, "ORDERING", map.ordering == HealpixOrdering::kRing ? ring : nested, "Pixel ordering scheme, RING or NESTED", &status);
+  fits_write_key(f, TLONGLONG, "NSIDE", &nside, "Resolution parameter of HEALPix", &status);
+  fits_write_key(f, TLONGLONG, "FIRSTPIX", &first, "First pixel # (0 based)", &status);
+  fits_write_key(f, TLONGLONG, "LASTPIX", &last, "Last pixel # (0 based)", &status);
+  fits_write_key(f, TSTRING, "INDXSCHM", implicit, "Indexing: IMPLICIT or EXPLICIT", &status);
+  fits_write_key(f, TSTRING, "OBJECT", fullsky, "Sky coverage", &status);
+  fits_write_comment(f, "Written by zhf (values as given; zhf's SH are real, orthonormal, without Condon-Shortley phase).", &status);
+  check("the table's header");
+  for (LONGLONG at = 0; at < pixels; at += kPixelsPerCall) {
+    throw_if_interrupted();
+    const LONGLONG count = std::min<LONGLONG>(kPixelsPerCall, pixels - at);
+    fits_write_col(f, TDOUBLE, 1, at / per_row + 1, at % per_row + 1, count, const_cast<double*>(map.pixels.data() + at), &status);
+    check("the pixels");
+  }
+  LONGLONG header_start = 0, data_start = 0, data_end = 0;
+  fits_flush_file(f, &status);
+  fits_get_hduaddrll(f, &header_start, &data_start, &data_end, &status);
+  fits_close_file(f, &status);
+  fits.file = nullptr;
+  check("closing the file");
+  const LONGLONG length = (data_end + kFitsBlock - 1) / kFitsBlock * kFitsBlock;
+  if (length > static_cast<LONGLONG>(fits.size)) throw std::runtime_error("writing a HEALPix map: cfitsio's buffer is shorter than the file");
+  return std::string(static_cast<const char*>(fits.buffer), static_cast<std::size_t>(length));
+}
+
+void write_healpix_map(const std::string& path, const HealpixMap& map) {
+  io::PendingFile out(path);
+  out.write(encode_healpix_map(map));
+  out.commit();
+}
+
+}  // namespace zhf::healpix
