@@ -14,6 +14,7 @@
 #include "zhf/codegen/needlet_lut.h"
 #include "zhf/frames/needlets.h"
 #include "zhf/frames/windows.h"
+#include "zhf/healpix/maps.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/io/signals.h"
@@ -33,6 +34,7 @@ struct NeedletOptions {
   std::string out, data;
   std::string j = "1", cut = "10", margin = "4";
   std::string window = "standard", mexican_order = "1", level;
+  std::string healpix, mask, iterations = "3", in, healpix_out, nside, ordering = "ring";
 };
 
 // The top band L of a needlet command's signals, in [lo, hi]: --order N means bands 0..N-1 (as in
@@ -40,6 +42,7 @@ struct NeedletOptions {
 const std::string kDilationHelp = "Dilation B, in [" + runtime::format_number(runtime::kMinDilation) + ", " +
                                   runtime::format_number(runtime::kMaxDilation) + "] (default 2)";
 const std::string kTableSizeRange = std::to_string(runtime::kMinNeedletTableSize) + ".." + std::to_string(runtime::kMaxNeedletTableSize);
+constexpr const char* kNeedletCoefficientsFormat = "zhf-needlet-coefficients-1";
 const std::string kTableSizeHelp = "Entries per kernel table, " + kTableSizeRange + " (default 1024)";
 
 // --order N (bands 0..N-1, N up to max_top_band + 1) and its old spelling --lmax L (bands 0..L).
@@ -354,11 +357,80 @@ int run_needlet_tables(const NeedletOptions& o) {
   return kExitOk;
 }
 
+// The needlet coefficients of a HEALPix map (masked: of the map times the mask): its SH to band L
+// by the pixel quadrature and Jacobi steps, then the frame's analysis.
+int run_needlet_analyze(const NeedletOptions& o) {
+  const double dilation = dilation_option(o.dilation);
+  const int lmax = top_band(o, 1, runtime::kMaxNeedletFrameBand);
+  const int iterations = static_cast<int>(integer_option("--iterations", o.iterations, 0, runtime::kMaxHealpixIterations));
+  if (o.healpix.empty()) throw UsageError("--healpix: required");
+  if (o.out.empty()) throw UsageError("--out: required");
+  io::PendingFile out(o.out);
+  const healpix::MaskedSignal signal = healpix::read_masked_signal(o.healpix, o.mask);
+  const std::vector<double> sh = healpix::analyze_map(signal.nside, signal.ring, lmax + 1, iterations, io::throw_if_interrupted);
+  const frames::NeedletFrame frame = needlet_frame(dilation, lmax, o.gauss);
+  const std::vector<double> beta = frame.analyze(sh);
+  std::printf("%s: Nside %lld, sky fraction %.4f; B = %g, bands 0..%d, %d needlet coefficients\n", o.healpix.c_str(),
+              static_cast<long long>(signal.nside), signal.sky_fraction, dilation, lmax, frame.size());
+  std::printf("%6s %10s %10s %12s %14s\n", "level", "bands", "needlets", "masked", "energy");
+  nlohmann::ordered_json levels = nlohmann::ordered_json::array();
+  for (const frames::NeedletLevel& level : frame.levels()) {
+    const int count = static_cast<int>(level.cubature.points.size());
+    int masked = 0;  // centred on a pixel the mask drops
+    double energy = 0;
+    for (int k = 0; k < count; ++k) {
+      energy += beta[level.offset + k] * beta[level.offset + k];
+      if (!signal.weights.empty() && signal.weights[healpix::pixel_at(signal.nside, level.cubature.points[k])] == 0) ++masked;
+    }
+    std::printf("%6d %6d..%-3d %10d %12d %14.6e\n", level.j, level.lmin, level.lmax, count, masked, energy);
+    levels.push_back({{"j", level.j}, {"lmin", level.lmin}, {"lmax", level.lmax}, {"offset", level.offset}, {"count", count}, {"masked", masked}});
+  }
+  out.write(io::json_text(nlohmann::ordered_json{{"format", kNeedletCoefficientsFormat},
+                                                 {"B", dilation},
+                                                 {"lmax", lmax},
+                                                 {"nodes", o.gauss ? "gauss" : "design"},
+                                                 {"levels", levels},
+                                                 {"beta", beta}}));
+  out.commit();
+  return kExitOk;
+}
+
+// A HEALPix map from needlet coefficients (zhf needlets analyze's file): the frame's synthesis to
+// SH, then the SH at every pixel centre.
+int run_needlet_synthesize(const NeedletOptions& o) {
+  if (o.in.empty()) throw UsageError("--in: required");
+  if (o.healpix_out.empty()) throw UsageError("--healpix-out: required");
+  if (o.nside.empty()) throw UsageError("--nside: required");
+  const std::int64_t nside = integer_option("--nside", o.nside, 1, runtime::kMaxHealpixNside);
+  healpix::HealpixOrdering ordering = healpix::HealpixOrdering::kRing;
+  if (o.ordering == "nested") ordering = healpix::HealpixOrdering::kNested;
+  else if (o.ordering != "ring") throw UsageError("--ordering: '" + io::excerpt(o.ordering) + "' is not ring or nested");
+  if (ordering == healpix::HealpixOrdering::kNested && (nside & (nside - 1)) != 0)
+    throw UsageError("--nside: " + std::to_string(nside) + " is not a power of two, as --ordering nested needs");
+  io::PendingFile out(o.healpix_out);
+  const runtime::json::Value root = io::read_json_file(o.in, runtime::kMaxCoefficientBytes);
+  const runtime::json::Field top(root, o.in);
+  top.allow_only({"format", "B", "lmax", "nodes", "levels", "beta"});
+  const runtime::json::Field format = top.member("format");
+  if (format.string() != kNeedletCoefficientsFormat) format.fail("'" + io::excerpt(format.string()) + "' is not " + kNeedletCoefficientsFormat);
+  const double dilation = top.member("B").number(runtime::kMinDilation, runtime::kMaxDilation);
+  const int lmax = top.member("lmax").integer(1, runtime::kMaxNeedletFrameBand);
+  const bool gauss = top.member("nodes").one_of({"design", "gauss"}) == "gauss";
+  const frames::NeedletFrame frame = needlet_frame(dilation, lmax, gauss);
+  std::vector<double> beta;
+  for (const runtime::json::Field& b : top.member("beta").items(frame.size())) beta.push_back(b.number());
+  const std::vector<double> ring = healpix::synthesize_map(nside, frame.synthesize(beta), io::throw_if_interrupted);
+  out.write(healpix::encode_healpix_map(healpix::map_from_ring(nside, ring, ordering)));
+  out.commit();
+  std::printf("%s: Nside %lld, %s, %zu pixels from %d needlet coefficients (B = %g, bands 0..%d)\n", o.healpix_out.c_str(),
+              static_cast<long long>(nside), o.ordering.c_str(), ring.size(), frame.size(), dilation, lmax);
+  return kExitOk;
+}
 
 }  // namespace
 
 void add_needlets_command(CLI::App& app, Action& action, const std::string& command_line) {
-  CLI::App* nc = app.add_subcommand("needlets", "Spherical needlets: windows, kernel tables and tabulated rotation");
+  CLI::App* nc = app.add_subcommand("needlets", "Spherical needlets: windows, kernel tables, tabulated rotation, analysis and synthesis of HEALPix maps");
   nc->require_subcommand(1);
   auto w = std::make_shared<NeedletOptions>();
   CLI::App* wc = nc->add_subcommand("window", "The windows b(l / B^j), every non-zero one for bands 0..lmax, their frame bounds and (--level) localisation");
@@ -369,6 +441,23 @@ void add_needlets_command(CLI::App& app, Action& action, const std::string& comm
   add_band_limit(wc, *w, runtime::kMaxNeedletBand);
   keep_old_spelling(wc, wc->add_option("--out", w->out, "Write the windows here: {\"B\", \"lmax\", \"b\": [[j, l, value], ...]}"), "--json", w->out);
   wc->callback([w, &action] { action = [w] { return run_needlet_window(*w); }; });
+  auto an = std::make_shared<NeedletOptions>();
+  CLI::App* ac = nc->add_subcommand("analyze", "Needlet coefficients of a HEALPix map, optionally masked");
+  ac->add_option("--healpix", an->healpix, "The map (FITS, RING or NESTED; healpy's layout)");
+  ac->add_option("--mask", an->mask, "A mask of the same Nside, values in [0, 1], multiplied into the map (UNSEEN pixels need 0)");
+  ac->add_option("--iterations", an->iterations, "Jacobi steps of the map's SH projection, 0.." + std::to_string(runtime::kMaxHealpixIterations) + " (default 3)");
+  ac->add_option("--B", an->dilation, kDilationHelp);
+  add_band_limit(ac, *an, runtime::kMaxNeedletFrameBand);
+  ac->add_flag("--gauss", an->gauss, "Gauss product cubatures instead of the shipped designs");
+  ac->add_option("--out", an->out, std::string("Write the coefficients here (") + kNeedletCoefficientsFormat + ")");
+  ac->callback([an, &action] { action = [an] { return run_needlet_analyze(*an); }; });
+  auto sy = std::make_shared<NeedletOptions>();
+  CLI::App* sc = nc->add_subcommand("synthesize", "A HEALPix map from needlet coefficients (zhf needlets analyze's file)");
+  sc->add_option("--in", sy->in, std::string("The coefficients (") + kNeedletCoefficientsFormat + ")");
+  sc->add_option("--healpix-out", sy->healpix_out, "Write the map here (FITS, double values)");
+  sc->add_option("--nside", sy->nside, "The map's Nside, 1.." + std::to_string(runtime::kMaxHealpixNside));
+  sc->add_option("--ordering", sy->ordering, "ring (default) or nested");
+  sc->callback([sy, &action] { action = [sy] { return run_needlet_synthesize(*sy); }; });
   auto t = std::make_shared<NeedletOptions>();
   CLI::App* tc = nc->add_subcommand("tables", "The needlet frame of bands 0..lmax: levels, kernel look-up error and tabulated rotation error per table size");
   tc->add_option("--B", t->dilation, kDilationHelp);

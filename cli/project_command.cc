@@ -9,6 +9,7 @@
 #include "options.h"
 #include "zhf/frames/cubature.h"
 #include "zhf/frames/projection.h"
+#include "zhf/healpix/maps.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/io/hdr.h"
@@ -20,7 +21,7 @@ namespace zhf::cli {
 namespace {
 
 struct ProjectOptions {
-  std::string order = "3", image, function, nodes = "design", degree, out, csv;
+  std::string order = "3", image, healpix, mask, iterations = "3", function, nodes = "design", degree, out, csv;
   bool compare = false;
 };
 
@@ -75,11 +76,18 @@ int run_project(const ProjectOptions& o) {
     if (!o.image.empty() || !o.function.empty() || !o.out.empty()) throw UsageError("--compare: takes no --image, --function or --out");
     return run_compare(o, order);
   }
-  if (o.image.empty() == o.function.empty()) throw UsageError("--image or --function: give exactly one");
+  if (o.image.empty() + o.healpix.empty() + o.function.empty() != 2) throw UsageError("--image, --healpix or --function: give exactly one");
+  if (!o.mask.empty() && o.healpix.empty()) throw UsageError("--mask: only with --healpix");
+  const int iterations = static_cast<int>(integer_option("--iterations", o.iterations, 0, runtime::kMaxHealpixIterations));
   if (o.out.empty()) throw UsageError("--out: required");
   io::PendingFile out(o.out);  // refuse an unwritable output before the work
   std::vector<std::vector<double>> coefficients;
-  if (!o.image.empty()) {
+  if (!o.healpix.empty()) {
+    const healpix::MaskedSignal signal = healpix::read_masked_signal(o.healpix, o.mask);
+    coefficients = {healpix::analyze_map(signal.nside, signal.ring, order, iterations, io::throw_if_interrupted)};
+    std::printf("%s: Nside %lld (%zu pixels), sky fraction %.4f, projected to order %d with %d Jacobi steps\n", o.healpix.c_str(),
+                static_cast<long long>(signal.nside), signal.ring.size(), signal.sky_fraction, order, iterations);
+  } else if (!o.image.empty()) {
     const io::HdrImage image = io::read_hdr(o.image);
     const frames::Cubature nodes = frames::equirectangular_nodes(image.width, image.height);
     coefficients = frames::project_samples(nodes, std::vector<double>(image.rgb.begin(), image.rgb.end()), 3, order);
@@ -109,9 +117,12 @@ int run_project(const ProjectOptions& o) {
 
 void add_project_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<ProjectOptions>();
-  CLI::App* c = app.add_subcommand("project", "Project samples into SH: an equirectangular Radiance .hdr image, or a test function on chosen nodes");
+  CLI::App* c = app.add_subcommand("project", "Project samples into SH: an equirectangular Radiance .hdr image, a HEALPix map, or a test function on chosen nodes");
   c->add_option("--order", o->order, "Order N of the coefficients, 1..64 (default 3)");
   c->add_option("--image", o->image, "A Radiance .hdr equirectangular image (row 0 at +z, phi from +x towards +y): RGB coefficients");
+  c->add_option("--healpix", o->healpix, "A HEALPix map (FITS, RING or NESTED; healpy's layout): its first column's coefficients");
+  c->add_option("--mask", o->mask, "With --healpix: a HEALPix mask of the same Nside, values in [0, 1], multiplied into the map (UNSEEN pixels need 0)");
+  c->add_option("--iterations", o->iterations, "With --healpix: Jacobi steps after the pixel quadrature, 0.." + std::to_string(runtime::kMaxHealpixIterations) + " (default 3, as healpy's iter)");
   c->add_option("--function", o->function, "A test function with known coefficients: band-limited (bands 0..7) or cap (30 degrees)");
   c->add_option("--nodes", o->nodes, "With --function: design (default), gauss or grid");
   c->add_option("--degree", o->degree, "With --function: the nodes' degree, 0..126 (default 7 + N - 1, exact for the band-limited function)");

@@ -186,6 +186,7 @@ std::int64_t healpix_pixels(std::int64_t nside) { return 12 * nside * nside; }
 HealpixMap read_healpix_map(const std::string& path) {
   struct stat st {};
   if (stat(path.c_str(), &st) != 0) throw InputError(path + ": cannot be read (missing or not accessible)");
+  if (S_ISREG(st.st_mode) && st.st_size == 0) throw InputError(path + ": empty, not a FITS file");
   if (!S_ISREG(st.st_mode)) return parse_healpix_map(runtime::read_file(path, runtime::kMaxHealpixHeaderBytes + healpix_pixels(kMaxHealpixNside) * 8), path);
   fitsfile* raw = nullptr;
   int status = 0;

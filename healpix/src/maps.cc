@@ -1,22 +1,22 @@
 #include "zhf/healpix/maps.h"
 
+#include <alm_healpix_tools.h>
 #include <healpix_base.h>
+#include <healpix_map.h>
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
+#include "zhf/healpix/alm.h"
+#include "zhf/runtime/errors.h"
 #include "zhf/runtime/limits.h"
-#include "zhf/runtime/parallel.h"
 #include "zhf/runtime/sh_eval.h"
 
 namespace zhf::healpix {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-// Rings handed to the threads between two checkpoints.
-constexpr int kRingsPerBatch = 64;
 
 Healpix_Base2 base(std::int64_t nside, HealpixOrdering ordering) {
   return Healpix_Base2(nside, ordering == HealpixOrdering::kRing ? RING : NEST, SET_NSIDE);
@@ -33,76 +33,10 @@ void check_order(int order) {
     throw std::invalid_argument("order " + std::to_string(order) + " is outside 1.." + std::to_string(runtime::kMaxProjectionOrder));
 }
 
-// One ring: its first pixel (RING numbering), pixel count, the Legendre factors y_l^m(theta, 0) of
-// bands < N (index(l, m), m >= 0; y_l^-m(theta, phi) = y_l^m(theta, 0) sin(m phi)) and its pixels'
-// cos(m phi), sin(m phi) for m < N, pixel-major.
-struct Ring {
-  std::int64_t first = 0, count = 0;
-  std::vector<double> legendre, cosines, sines;
-};
-
-Ring ring_at(const Healpix_Base2& geometry, std::int64_t ring, int order) {
-  Ring r;
-  double theta = 0;
-  bool shifted = false;
-  geometry.get_ring_info2(ring, r.first, r.count, theta, shifted);
-  r.legendre.resize(static_cast<std::size_t>(order) * order);
-  const double dir[3] = {std::sin(theta), 0.0, std::cos(theta)};
-  runtime::eval_sh(order, dir, r.legendre.data());
-  r.cosines.resize(static_cast<std::size_t>(r.count) * order);
-  r.sines.resize(r.cosines.size());
-  for (std::int64_t j = 0; j < r.count; ++j) {
-    const double phi = (static_cast<double>(j) + (shifted ? 0.5 : 0.0)) * 2 * kPi / static_cast<double>(r.count);
-    for (int m = 0; m < order; ++m) {
-      r.cosines[j * order + m] = std::cos(m * phi);
-      r.sines[j * order + m] = std::sin(m * phi);
-    }
-  }
-  return r;
-}
-
-// Runs work(ring index 1..4 nside - 1, its Ring, its slot in the batch) on the threads, batch by
-// batch; after each batch, done(first ring, rings in it); the checkpoint before each batch.
-template <class Work, class Done>
-void for_each_ring(std::int64_t nside, int order, int threads, const Checkpoint& checkpoint, Work&& work, Done&& done) {
-  const Healpix_Base2 geometry = base(nside, HealpixOrdering::kRing);
-  const std::int64_t rings = 4 * nside - 1;
-  for (std::int64_t first = 1; first <= rings; first += kRingsPerBatch) {
-    if (checkpoint) checkpoint();
-    const int batch = static_cast<int>(std::min<std::int64_t>(kRingsPerBatch, rings - first + 1));
-    runtime::parallel_for(batch, runtime::worker_count(threads), [&](int b) { work(first + b, ring_at(geometry, first + b, order), b); });
-    done(batch);
-  }
-}
-
-// Sums over each ring's pixels, (4 pi / N_pix) sum_j f_j (cos m phi_j, sin m phi_j), times the
-// Legendre columns; rings are added in ring order whatever the thread count.
-std::vector<double> analysis_pass(std::int64_t nside, const std::vector<double>& ring_values, int order, int threads,
-                                  const Checkpoint& checkpoint) {
-  const std::size_t n = static_cast<std::size_t>(order) * order;
-  std::vector<double> per_ring(kRingsPerBatch * n), sh(n, 0.0);
-  const double weight = 4 * kPi / static_cast<double>(healpix_pixels(nside));
-  auto work = [&](std::int64_t, const Ring& r, int slot) {
-    std::vector<double> c(order, 0.0), s(order, 0.0);
-    for (std::int64_t j = 0; j < r.count; ++j) {
-      const double f = ring_values[r.first + j];
-      for (int m = 0; m < order; ++m) c[m] += f * r.cosines[j * order + m], s[m] += f * r.sines[j * order + m];
-    }
-    double* out = per_ring.data() + slot * n;
-    for (int l = 0; l < order; ++l) {
-      out[runtime::index(l, 0)] = weight * r.legendre[runtime::index(l, 0)] * c[0];
-      for (int m = 1; m <= l; ++m) {
-        out[runtime::index(l, m)] = weight * r.legendre[runtime::index(l, m)] * c[m];
-        out[runtime::index(l, -m)] = weight * r.legendre[runtime::index(l, m)] * s[m];
-      }
-    }
-  };
-  auto add = [&](int batch) {
-    for (int b = 0; b < batch; ++b)
-      for (std::size_t i = 0; i < n; ++i) sh[i] += per_ring[b * n + i];
-  };
-  for_each_ring(nside, order, threads, checkpoint, work, add);
-  return sh;
+Healpix_Map<double> ring_map(std::int64_t nside, const std::vector<double>& ring) {
+  Healpix_Map<double> map(static_cast<int>(nside), RING, SET_NSIDE);
+  for (std::size_t p = 0; p < ring.size(); ++p) map[static_cast<int>(p)] = ring[p];
+  return map;
 }
 
 }  // namespace
@@ -132,6 +66,40 @@ HealpixMap map_from_ring(std::int64_t nside, std::vector<double> ring, HealpixOr
   return map;
 }
 
+MaskedSignal masked_signal(const HealpixMap& map, const std::string& map_name, const HealpixMap* mask, const std::string& mask_name) {
+  MaskedSignal signal;
+  signal.nside = map.nside;
+  signal.ring = ring_pixels(map);
+  if (!mask) {
+    if (map.unseen > 0)
+      throw runtime::InputError(map_name + ": " + std::to_string(map.unseen) + " UNSEEN pixels (the first: pixel " + std::to_string(map.first_unseen) +
+                                ") and no mask to cover them (--mask)");
+    return signal;
+  }
+  if (mask->nside != map.nside)
+    throw runtime::InputError(mask_name + ": NSIDE " + std::to_string(mask->nside) + " is not the map's " + std::to_string(map.nside));
+  signal.weights = ring_pixels(*mask);
+  const std::vector<double>& weights = signal.weights;
+  double sum = 0;
+  for (std::size_t p = 0; p < weights.size(); ++p) {
+    if (!(weights[p] >= 0 && weights[p] <= 1))
+      throw runtime::InputError(mask_name + ": pixel " + std::to_string(p) + " (RING) is " + runtime::format_number(weights[p]) + ", outside [0, 1]");
+    if (is_unseen(signal.ring[p]) && weights[p] != 0)
+      throw runtime::InputError(map_name + ": pixel " + std::to_string(p) + " (RING) is UNSEEN where the mask keeps it (" + runtime::format_number(weights[p]) + ")");
+    signal.ring[p] = weights[p] == 0 ? 0.0 : signal.ring[p] * weights[p];
+    sum += weights[p];
+  }
+  signal.sky_fraction = sum / static_cast<double>(weights.size());
+  return signal;
+}
+
+MaskedSignal read_masked_signal(const std::string& map_path, const std::string& mask_path) {
+  const HealpixMap map = read_healpix_map(map_path);
+  if (mask_path.empty()) return masked_signal(map, map_path, nullptr, mask_path);
+  const HealpixMap mask = read_healpix_map(mask_path);
+  return masked_signal(map, map_path, &mask, mask_path);
+}
+
 Point pixel_centre(std::int64_t nside, std::int64_t ring_pixel) {
   const vec3 v = base(nside, HealpixOrdering::kRing).pix2vec(ring_pixel);
   return {v.x, v.y, v.z};
@@ -141,46 +109,41 @@ std::int64_t pixel_at(std::int64_t nside, const Point& direction) {
   return base(nside, HealpixOrdering::kRing).vec2pix(vec3(direction[0], direction[1], direction[2]));
 }
 
-std::vector<double> analyze_map(std::int64_t nside, const std::vector<double>& ring, int order, int iterations, int threads,
-                                const Checkpoint& checkpoint) {
+std::vector<double> analyze_map(std::int64_t nside, const std::vector<double>& ring, int order, int iterations, const Checkpoint& checkpoint) {
   check_nside(nside, ring.size());
   check_order(order);
   if (iterations < 0 || iterations > runtime::kMaxHealpixIterations)
     throw std::invalid_argument("iterations " + std::to_string(iterations) + " is outside 0.." + std::to_string(runtime::kMaxHealpixIterations));
-  std::vector<double> sh = analysis_pass(nside, ring, order, threads, checkpoint);
+  const Healpix_Map<double> map = ring_map(nside, ring);
+  const arr<double> unit_weights(2 * static_cast<std::size_t>(nside), 1.0);
+  ComplexAlm alm(order - 1, order - 1);
+  if (checkpoint) checkpoint();
+  map2alm(map, alm, unit_weights, false);
+  Healpix_Map<double> residual(static_cast<int>(nside), RING, SET_NSIDE);
   for (int k = 0; k < iterations; ++k) {
-    std::vector<double> residual = synthesize_map(nside, sh, threads, checkpoint);
-    for (std::size_t p = 0; p < residual.size(); ++p) residual[p] = ring[p] - residual[p];
-    const std::vector<double> step = analysis_pass(nside, residual, order, threads, checkpoint);
-    for (std::size_t i = 0; i < sh.size(); ++i) sh[i] += step[i];
+    if (checkpoint) checkpoint();
+    alm2map(alm, residual);
+    for (int p = 0; p < map.Npix(); ++p) residual[p] = map[p] - residual[p];
+    if (checkpoint) checkpoint();
+    map2alm(residual, alm, unit_weights, true);
   }
-  return sh;
+  std::vector<double> f(static_cast<std::size_t>(order) * order);
+  alm_to_real(alm, f.data());
+  return f;
 }
 
-std::vector<double> synthesize_map(std::int64_t nside, const std::vector<double>& sh, int threads, const Checkpoint& checkpoint) {
+std::vector<double> synthesize_map(std::int64_t nside, const std::vector<double>& sh, const Checkpoint& checkpoint) {
   const int order = static_cast<int>(std::lround(std::sqrt(static_cast<double>(sh.size()))));
-  if (static_cast<std::size_t>(order) * order != sh.size() || order < 1)
+  if (order < 1 || static_cast<std::size_t>(order) * order != sh.size())
     throw std::invalid_argument(std::to_string(sh.size()) + " coefficients are not N^2 for an order N");
   check_order(order);
   if (nside < 1 || nside > kMaxHealpixNside) throw std::invalid_argument("Nside " + std::to_string(nside) + " is outside 1.." + std::to_string(kMaxHealpixNside));
-  std::vector<double> map(static_cast<std::size_t>(healpix_pixels(nside)));
-  auto work = [&](std::int64_t, const Ring& r, int) {
-    std::vector<double> a(order, 0.0), b(order, 0.0);
-    for (int l = 0; l < order; ++l) {
-      a[0] += sh[runtime::index(l, 0)] * r.legendre[runtime::index(l, 0)];
-      for (int m = 1; m <= l; ++m) {
-        a[m] += sh[runtime::index(l, m)] * r.legendre[runtime::index(l, m)];
-        b[m] += sh[runtime::index(l, -m)] * r.legendre[runtime::index(l, m)];
-      }
-    }
-    for (std::int64_t j = 0; j < r.count; ++j) {
-      double f = a[0];
-      for (int m = 1; m < order; ++m) f += a[m] * r.cosines[j * order + m] + b[m] * r.sines[j * order + m];
-      map[r.first + j] = f;
-    }
-  };
-  for_each_ring(nside, order, threads, checkpoint, work, [](int) {});
-  return map;
+  if (checkpoint) checkpoint();
+  Healpix_Map<double> map(static_cast<int>(nside), RING, SET_NSIDE);
+  ComplexAlm alm(order - 1, order - 1);
+  real_to_alm(sh.data(), alm);
+  alm2map(alm, map);
+  return std::vector<double>(&map[0], &map[0] + map.Npix());
 }
 
 }  // namespace zhf::healpix

@@ -3,6 +3,7 @@
 // projection of a band-limited map.
 #include <fitsio.h>
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <cmath>
 #include <cstring>
@@ -165,7 +166,7 @@ TEST(HealpixMaps, SynthesisMatchesTheSeriesAtEveryPixelCentre) {
   for (const int nside : {1, 3, 8}) {
     const int order = 7;
     const std::vector<double> sh = random_sh(order, 11);
-    const std::vector<double> map = synthesize_map(nside, sh, 2);
+    const std::vector<double> map = synthesize_map(nside, sh);
     std::vector<double> y(sh.size());
     for (std::int64_t p = 0; p < healpix_pixels(nside); ++p) {
       const Point x = pixel_centre(nside, p);
@@ -178,10 +179,10 @@ TEST(HealpixMaps, SynthesisMatchesTheSeriesAtEveryPixelCentre) {
   }
 }
 
-TEST(HealpixMaps, AnalysisIsThePixelQuadratureAndThreadCountFree) {
+TEST(HealpixMaps, AnalysisIsThePixelQuadratureWhateverTheThreadCount) {
   const int nside = 8, order = 9;
   const std::vector<double> values = random_values(static_cast<std::size_t>(healpix_pixels(nside)), 3);
-  const std::vector<double> sh = analyze_map(nside, values, order, 0, 1);
+  const std::vector<double> sh = analyze_map(nside, values, order, 0);
   std::vector<double> sum(sh.size(), 0.0), y(sh.size());
   for (std::int64_t p = 0; p < healpix_pixels(nside); ++p) {
     const Point x = pixel_centre(nside, p);
@@ -190,7 +191,13 @@ TEST(HealpixMaps, AnalysisIsThePixelQuadratureAndThreadCountFree) {
   }
   for (int l = 0; l < order; ++l)
     for (int m = -l; m <= l; ++m) ASSERT_NEAR(sh[runtime::index(l, m)], sum[runtime::index(l, m)], tol::kDouble) << "band " << l << ", m " << m;
-  for (const int iterations : {0, 3}) EXPECT_EQ(analyze_map(nside, values, order, iterations, 1), analyze_map(nside, values, order, iterations, 2));
+  // libsharp's OpenMP threads never change the result.
+  for (const int iterations : {0, 3}) {
+    omp_set_num_threads(1);
+    const std::vector<double> one = analyze_map(nside, values, order, iterations);
+    omp_set_num_threads(2);
+    EXPECT_EQ(analyze_map(nside, values, order, iterations), one) << iterations << " iterations";
+  }
 }
 
 TEST(HealpixMaps, ProjectionRecoversABandLimitedMapsCoefficients) {

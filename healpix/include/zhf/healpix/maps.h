@@ -3,14 +3,14 @@
 // zhf's; coefficients are zhf's real orthonormal SH without Condon-Shortley phase, index
 // l (l + 1) + m (healpy's complex a_lm carry the phase: docs/frames.md gives the conversion).
 //
-// The pixel geometry (rings, centres, NESTED <-> RING) is the HEALPix C++ library's. Sums run
-// ring by ring: a ring's pixels are equally spaced in phi, so a ring costs one Legendre column
-// per m (runtime::eval_sh at the ring's theta) and a direct sum over its pixels per m.
+// The pixel geometry (rings, centres, NESTED <-> RING) and the transforms are the HEALPix C++
+// library's; tests/healpix checks them against pixel-by-pixel sums of runtime::eval_sh.
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "zhf/healpix/fits.h"
@@ -24,11 +24,24 @@ std::vector<double> ring_pixels(const HealpixMap& map);
 // A map in `ordering` from RING-ordered pixels.
 HealpixMap map_from_ring(std::int64_t nside, std::vector<double> ring, HealpixOrdering ordering);
 
+// The signal to analyse: the map's RING pixels times a mask's (same Nside, any ordering, values
+// in [0, 1]: 0 drops a pixel, fractions apodise), or the map alone. An UNSEEN pixel must have mask
+// 0. Throws runtime::InputError naming the file and pixel (map_name, mask_name) otherwise.
+struct MaskedSignal {
+  std::int64_t nside = 0;
+  std::vector<double> ring;
+  std::vector<double> weights;  // the mask's, RING (empty: no mask)
+  double sky_fraction = 1;      // mean of the mask
+};
+MaskedSignal masked_signal(const HealpixMap& map, const std::string& map_name, const HealpixMap* mask, const std::string& mask_name);
+// The same from files (mask_path empty: no mask).
+MaskedSignal read_masked_signal(const std::string& map_path, const std::string& mask_path);
+
 // The unit vector at a pixel's centre, and the pixel (RING) holding a unit direction.
 Point pixel_centre(std::int64_t nside, std::int64_t ring_pixel);
 std::int64_t pixel_at(std::int64_t nside, const Point& direction);
 
-// Called between batches of rings (to poll an interrupt: it may throw).
+// Called between the transforms' passes (to poll an interrupt: it may throw).
 using Checkpoint = std::function<void()>;
 
 // The SH coefficients of order N (bands 0..N-1) of a RING map by the pixel quadrature
@@ -36,15 +49,15 @@ using Checkpoint = std::function<void()>;
 // (healpy's map2alm without ring weights), then `iterations` Jacobi steps f_lm += analysis of
 // (map - synthesis of f_lm) (healpy's iter). A map of bands < N comes back to the quadrature's
 // accuracy, better with each step while the bands stay well below 2 Nside (docs/frames.md).
-// Deterministic for any thread count. Cost: (1 + 2 iterations) (N_pix N + rings N^2).
-// Throws std::invalid_argument for an order outside 1..runtime::kMaxProjectionOrder or a pixel
-// count that is not 12 nside^2.
+// The transforms are the HEALPix library's (libsharp: FFTs along rings, Legendre recurrences;
+// OpenMP threads, results independent of their count); the coefficients converted to zhf's
+// convention. Cost per pass ~ N_pix log(Nside) + rings N^2; 1 + 2 iterations passes.
+// Throws std::invalid_argument for an order outside 1..runtime::kMaxProjectionOrder, iterations
+// outside 0..runtime::kMaxHealpixIterations or a pixel count that is not 12 nside^2.
 std::vector<double> analyze_map(std::int64_t nside, const std::vector<double>& ring, int order, int iterations,
-                                int threads = 0, const Checkpoint& checkpoint = {});
+                                const Checkpoint& checkpoint = {});
 
-// The RING map of coefficients of order N: f(p) = sum f_lm y_l^m(p) at every pixel centre. Cost:
-// N_pix N + rings N^2.
-std::vector<double> synthesize_map(std::int64_t nside, const std::vector<double>& sh, int threads = 0,
-                                   const Checkpoint& checkpoint = {});
+// The RING map of coefficients of order N: f(p) = sum f_lm y_l^m(p) at every pixel centre. One pass.
+std::vector<double> synthesize_map(std::int64_t nside, const std::vector<double>& sh, const Checkpoint& checkpoint = {});
 
 }  // namespace zhf::healpix
