@@ -49,7 +49,7 @@ fuzz_one() {
 }
 pids=()
 failed=0
-for corpus in json lobe_table coefficients scene manifest rotation_text ply hdr splat_formats; do
+for corpus in json lobe_table coefficients scene manifest rotation_text ply hdr splat_formats healpix_fits; do
   fuzz_one "$corpus" &
   pids+=($!)
   if [ ${#pids[@]} -ge "$ZHF_JOBS" ]; then

@@ -128,7 +128,8 @@ TEST(HealpixFits, MalformedBytesAreRefusedNamingTheSource) {
     }
   };
   refused("", "empty");
-  refused("SIMPLE  = nonsense", "not a FITS file");
+  refused("SIMPLE  = nonsense", "the primary header has no END");
+  refused(std::string(2880, ' '), "not a FITS file");
   refused(good.substr(0, good.size() - 2880), "truncated");
   refused(good + std::string(2880, '\0'), "bytes after the map's table");
   auto with_key = [&](const std::string& key, const std::string& value) {
