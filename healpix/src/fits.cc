@@ -15,6 +15,7 @@
 #include "zhf/io/files.h"
 #include "zhf/io/signals.h"
 #include "zhf/runtime/read_file.h"
+#include "zhf/runtime/tolerances.h"
 
 namespace zhf::healpix {
 namespace {
@@ -303,7 +304,7 @@ void check_map(const HealpixMap& map) {
 
 }  // namespace
 
-bool is_unseen(double value) { return std::abs(value - kHealpixUnseen) <= 1e-5 * std::abs(kHealpixUnseen); }
+bool is_unseen(double value) { return std::abs(value - kHealpixUnseen) <= runtime::tolerance::kHealpixUnseenRelative * std::abs(kHealpixUnseen); }
 
 std::int64_t healpix_pixels(std::int64_t nside) { return 12 * nside * nside; }
 

@@ -301,5 +301,8 @@ inline constexpr float kRgbeBlack = 1e-32f;
 // Jacobi steps: max coefficient error, measured 2.3e-10 at Nside 32, bands 0..16 (the pixel
 // quadrature alone 5.5e-4, one step 4.2e-6).
 inline constexpr double kHealpixProjection = 1e-9;
+// A pixel within this relative distance of UNSEEN (-1.6375e30) is UNSEEN: a float file stores the
+// marker rounded (6e-8 relative); healpy's own test is as loose.
+inline constexpr double kHealpixUnseenRelative = 1e-5;
 
 }  // namespace zhf::runtime::tolerance
