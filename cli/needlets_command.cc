@@ -13,10 +13,12 @@
 #include "options.h"
 #include "zhf/codegen/needlet_lut.h"
 #include "zhf/frames/needlets.h"
+#include "zhf/frames/prt.h"
 #include "zhf/frames/windows.h"
 #include "zhf/healpix/maps.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
+#include "zhf/io/hdr.h"
 #include "zhf/io/signals.h"
 #include "zhf/pipeline/project.h"
 #include "zhf/runtime/limits.h"
@@ -35,6 +37,7 @@ struct NeedletOptions {
   std::string j = "1", cut = "10", margin = "4";
   std::string window = "standard", mexican_order = "1", level;
   std::string healpix, mask, iterations = "3", in, healpix_out, nside, ordering = "ring";
+  std::string scene = "sphere", transfer = "diffuse", sky = "sun", side = "16", kept = "16,64,256,1024", csv;
 };
 
 // The top band L of a needlet command's signals, in [lo, hi]: --order N means bands 0..N-1 (as in
@@ -427,6 +430,79 @@ int run_needlet_synthesize(const NeedletOptions& o) {
   return kExitOk;
 }
 
+// Shadowed transfer on a scene's ground, shaded by SH and by needlets at equal coefficient counts
+// against the exact integral (frames/prt.h).
+int run_needlet_prt(const NeedletOptions& o) {
+  const double dilation = dilation_option(o.dilation);
+  const int lmax = o.order.empty() && o.lmax.empty() ? 31 : top_band(o, 1, runtime::kMaxProjectionOrder - 1);
+  frames::PrtScene scene;
+  if (!frames::parse_prt_scene(o.scene, scene)) throw UsageError("--scene: '" + io::excerpt(o.scene) + "' is not sphere, corner or spheres");
+  frames::PrtTransfer transfer;
+  if (!frames::parse_prt_transfer(o.transfer, transfer)) throw UsageError("--transfer: '" + io::excerpt(o.transfer) + "' is not diffuse or glossy");
+  const int side = static_cast<int>(integer_option("--side", o.side, 1, 64));
+  const int table_size = static_cast<int>(integer_option("--size", o.size, runtime::kMinNeedletTableSize, runtime::kMaxNeedletTableSize));
+  const std::vector<int> kept = orders_option("--kept", o.kept, 1, 1 << 20);
+  if (kept.size() > 16) throw UsageError("--kept: at most 16 counts (got " + std::to_string(kept.size()) + ")");
+  std::unique_ptr<io::PendingFile> out, csv_out;
+  if (!o.out.empty()) out = std::make_unique<io::PendingFile>(o.out);
+  if (!o.csv.empty()) csv_out = std::make_unique<io::PendingFile>(o.csv);
+  frames::Radiance sky = frames::sun_and_sky;
+  if (o.sky != "sun") {
+    // An equirectangular .hdr (row 0 at +z, phi from +x towards +y), its luminance at the
+    // pixel holding the direction.
+    auto image = std::make_shared<io::HdrImage>(io::read_hdr(o.sky));
+    sky = [image](const frames::Point& w) {
+      const double theta = std::acos(std::clamp(w[2], -1.0, 1.0)), phi = std::atan2(w[1], w[0]) + (w[1] < 0 ? 2 * M_PI : 0.0);
+      const int row = std::min(image->height - 1, static_cast<int>(theta / M_PI * image->height));
+      const int column = std::min(image->width - 1, static_cast<int>(phi / (2 * M_PI) * image->width));
+      const float* rgb = &image->rgb[3 * (static_cast<std::size_t>(row) * image->width + column)];
+      return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
+    };
+  }
+  const frames::NeedletFrame frame = needlet_frame(dilation, lmax, o.gauss);
+  for (int k : kept)
+    if (k > frame.size()) throw UsageError("--kept: " + std::to_string(k) + " is more than the frame's " + std::to_string(frame.size()) + " coefficients");
+  const frames::PrtReport r = frames::prt_experiment(frame, scene, transfer, sky, side, kept, table_size, io::throw_if_interrupted);
+  std::printf("%s scene, %s transfer, %s sky: %d vertices; SH bands 0..%d (%d coefficients), needlets B = %g (%d coefficients)\n", o.scene.c_str(),
+              o.transfer.c_str(), o.sky == "sun" ? "sun and sky" : o.sky.c_str(), r.vertices, lmax, r.sh_coefficients, dilation, r.needlet_coefficients);
+  std::printf("shading error against the exact integral (RMS / worst, relative to the exact RMS / largest); least value of the sky rebuilt (true: %.3g)\n", r.sky_min);
+  std::printf("%8s %12s %12s %12s %12s %12s %12s\n", "K", "SH rms", "SH worst", "needlet rms", "needlet worst", "SH sky min", "needlet min");
+  std::string csv = "# zhf needlets prt: K, SH rms, SH worst, needlet rms, needlet worst, SH sky min, needlet sky min\n";
+  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+  for (const frames::PrtRow& row : r.rows) {
+    std::printf("%8d %12.3e %12.3e %12.3e %12.3e %12.3e %12.3e\n", row.kept, row.sh_rms, row.sh_worst, row.needlet_rms, row.needlet_worst, row.sh_sky_min,
+                row.needlet_sky_min);
+    char line[256];
+    std::snprintf(line, sizeof line, "%d,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e\n", row.kept, row.sh_rms, row.sh_worst, row.needlet_rms, row.needlet_worst,
+                  row.sh_sky_min, row.needlet_sky_min);
+    csv += line;
+    rows.push_back({{"kept", row.kept}, {"sh_rms", row.sh_rms}, {"sh_worst", row.sh_worst}, {"needlet_rms", row.needlet_rms},
+                    {"needlet_worst", row.needlet_worst}, {"sh_sky_min", row.sh_sky_min}, {"needlet_sky_min", row.needlet_sky_min}});
+  }
+  std::printf("all coefficients: needlets - SH = %.2e of the exact RMS (Parseval)\n", r.parseval_gap);
+  std::printf("sky turned through %d steps: largest change of a level's energy through tabulated rotation (%d entries):", 12, table_size);
+  for (double c : r.level_energy_change) std::printf(" %.1e", c);
+  std::printf("\nenergy held by the K largest needlet coefficients of the turned sky (SH bands: the same in every turn):\n");
+  nlohmann::ordered_json held = nlohmann::ordered_json::array();
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    std::printf("  K = %d: %.6f .. %.6f\n", kept[i], r.kept_energy_least[i], r.kept_energy_greatest[i]);
+    held.push_back({{"kept", kept[i]}, {"least", r.kept_energy_least[i]}, {"greatest", r.kept_energy_greatest[i]}});
+  }
+  if (csv_out) {
+    csv_out->write(csv);
+    csv_out->commit();
+  }
+  if (out) {
+    out->write(io::json_text(nlohmann::ordered_json{{"format", "zhf-needlet-prt-1"}, {"scene", o.scene}, {"transfer", o.transfer},
+                                                    {"B", dilation}, {"lmax", lmax}, {"vertices", r.vertices},
+                                                    {"sh_coefficients", r.sh_coefficients}, {"needlet_coefficients", r.needlet_coefficients},
+                                                    {"exact_rms", r.exact_rms}, {"sky_min", r.sky_min}, {"parseval_gap", r.parseval_gap},
+                                                    {"rows", rows}, {"level_energy_change", r.level_energy_change}, {"kept_energy", held}}));
+    out->commit();
+  }
+  return kExitOk;
+}
+
 }  // namespace
 
 void add_needlets_command(CLI::App& app, Action& action, const std::string& command_line) {
@@ -458,6 +534,20 @@ void add_needlets_command(CLI::App& app, Action& action, const std::string& comm
   sc->add_option("--nside", sy->nside, "The map's Nside, 1.." + std::to_string(runtime::kMaxHealpixNside));
   sc->add_option("--ordering", sy->ordering, "ring (default) or nested");
   sc->callback([sy, &action] { action = [sy] { return run_needlet_synthesize(*sy); }; });
+  auto pr_t = std::make_shared<NeedletOptions>();
+  CLI::App* rc = nc->add_subcommand("prt", "Shadowed transfer shaded with SH and with needlets at equal coefficient counts, against the exact integral");
+  rc->add_option("--scene", pr_t->scene, "sphere (default; one sphere over the ground), corner (two walls) or spheres (three)");
+  rc->add_option("--transfer", pr_t->transfer, "diffuse (default) or glossy (Phong lobe, exponent 20)");
+  rc->add_option("--sky", pr_t->sky, "sun (default: an analytic sun and sky) or an equirectangular Radiance .hdr");
+  rc->add_option("--side", pr_t->side, "Vertices per side of the ground grid, 1..64 (default 16)");
+  rc->add_option("--kept", pr_t->kept, "Coefficient counts K per vertex, e.g. 16,64,256,1024 (the default)");
+  rc->add_option("--B", pr_t->dilation, kDilationHelp);
+  add_band_limit(rc, *pr_t, runtime::kMaxProjectionOrder - 1);
+  rc->add_option("--size", pr_t->size, kTableSizeHelp + " (the tabulated rotation of the sky)");
+  rc->add_flag("--gauss", pr_t->gauss, "Gauss product cubatures instead of the shipped designs");
+  rc->add_option("--out", pr_t->out, "Write the report here (zhf-needlet-prt-1)");
+  rc->add_option("--csv", pr_t->csv, "Write the error table here (K, SH rms, SH worst, needlet rms, needlet worst, both skies' least values)");
+  rc->callback([pr_t, &action] { action = [pr_t] { return run_needlet_prt(*pr_t); }; });
   auto t = std::make_shared<NeedletOptions>();
   CLI::App* tc = nc->add_subcommand("tables", "The needlet frame of bands 0..lmax: levels, kernel look-up error and tabulated rotation error per table size");
   tc->add_option("--B", t->dilation, kDilationHelp);

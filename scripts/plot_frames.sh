@@ -3,7 +3,9 @@
 #   docs/needlet_kernels.svg  needlets against the truncated SH delta of the same top band, each
 #                             over its peak (zhf needlets profile);
 #   docs/projection.svg       projection error per sample count of designs, Gauss rules and
-#                             equal-angle grids (zhf project --compare).
+#                             equal-angle grids (zhf project --compare);
+#   docs/prt_error.svg        shading error of SH and needlets against coefficients kept per
+#                             vertex, three scenes (zhf needlets prt).
 # Usage: bash scripts/plot_frames.sh [ZHF_BINARY]   (needs gnuplot)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -61,8 +63,36 @@ plot "$work/design.csv" using 2:4 with linespoints pt 7 title "t-designs", \
 unset multiplot
 GP
 gnuplot "$work/projection.gp"
-for plot in needlet_kernels projection; do
+
+kept=4,9,16,36,64,144,256,576,1024
+"$zhf" needlets prt --scene sphere --transfer diffuse --kept $kept --csv "$work/prt_sphere.csv" >/dev/null
+"$zhf" needlets prt --scene corner --transfer glossy --kept $kept --csv "$work/prt_corner.csv" >/dev/null
+"$zhf" needlets prt --scene spheres --transfer diffuse --kept $kept --csv "$work/prt_spheres.csv" >/dev/null
+for s in sphere corner spheres; do grep -v "^#" "$work/prt_$s.csv" | head -n -1 >"$work/prt_${s}_k.csv"; done
+cat >"$work/prt.gp" <<GP
+set terminal svg size 1200,420 font "sans,11" background "white"
+set output "$work/prt_error.svg"
+set datafile separator ","
+set multiplot layout 1,3 title "Shading error (RMS, relative) against coefficients kept per vertex: SH bands (solid), largest needlets (dashed); bands 0..31, sun and sky"
+set logscale xy
+set format y "10^{%T}"
+set xlabel "coefficients per vertex"
+set grid
+set key top right
+set yrange [5e-4:0.5]
+GP
+for s in "sphere diffuse" "corner glossy" "spheres diffuse"; do
+  read -r scene transfer <<<"$s"
+  cat >>"$work/prt.gp" <<GP
+set title "$scene, $transfer"
+plot "$work/prt_${scene}_k.csv" using 1:2 with linespoints lw 2 pt 7 lc rgb "#d62728" title "SH", \
+     "" using 1:4 with linespoints lw 2 dt 2 pt 5 lc rgb "#1f77b4" title "needlets"
+GP
+done
+echo "unset multiplot" >>"$work/prt.gp"
+gnuplot "$work/prt.gp"
+for plot in needlet_kernels projection prt_error; do
   cp "$work/$plot.svg" "$root/docs/$plot.svg.tmp"
   mv "$root/docs/$plot.svg.tmp" "$root/docs/$plot.svg"
 done
-echo "wrote docs/needlet_kernels.svg and docs/projection.svg"
+echo "wrote docs/needlet_kernels.svg, docs/projection.svg and docs/prt_error.svg"

@@ -94,3 +94,34 @@ TEST(FramesCli, BadInputGetsOneLineAndNoOutput) {
 
 }  // namespace
 }  // namespace zhf
+
+namespace zhf {
+namespace {
+
+TEST(NeedletPrtCli, ReportsErrorsPerCoefficientCountAndRefusesBadOptions) {
+  const test::TempDir dir;
+  const std::string out = (dir / "prt.json").string(), csv = (dir / "prt.csv").string();
+  const test::RunResult r = test::run_zhf({"needlets", "prt", "--side", "2", "--order", "9", "--kept", "4,16", "--out", out, "--csv", csv});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json report = test::read_json(out);
+  EXPECT_EQ(report["format"], "zhf-needlet-prt-1");
+  ASSERT_EQ(report["rows"].size(), 3u);
+  EXPECT_LE(report["parseval_gap"].get<double>(), runtime::tolerance::kParsevalShading);
+  EXPECT_EQ(test::line_count(test::read_text(csv)), 4);
+  for (const auto& [args, message] : std::vector<std::pair<std::vector<std::string>, std::string>>{
+           {{"needlets", "prt", "--scene", "teapot"}, "--scene: 'teapot' is not sphere, corner or spheres"},
+           {{"needlets", "prt", "--transfer", "mirror"}, "--transfer: 'mirror'"},
+           {{"needlets", "prt", "--order", "9", "--kept", "5000"}, "--kept: 5000 is more than the frame's"},
+           {{"needlets", "prt", "--side", "65"}, "--side"},
+       }) {
+    const test::RunResult bad = test::run_zhf(args);
+    EXPECT_EQ(bad.exit_code, 2) << message << ": " << bad.err;
+    EXPECT_NE(bad.err.find(message), std::string::npos) << bad.err;
+  }
+  const test::RunResult missing = test::run_zhf({"needlets", "prt", "--order", "5", "--sky", (dir / "none.hdr").string(), "--out", out + "2"});
+  EXPECT_EQ(missing.exit_code, 3) << missing.err;
+  EXPECT_FALSE(std::filesystem::exists(out + "2"));
+}
+
+}  // namespace
+}  // namespace zhf

@@ -1,0 +1,68 @@
+// Precomputed radiance transfer (Sloan, Kautz and Snyder 2002) with SH and with needlets, against
+// the integral itself: the founding talk's case for needlets, measured.
+//
+// Receivers are vertices on the ground plane z = 0 (normal +z) under occluders; vertex p's
+// transfer is T_p(w) = V_p(w) max(0, w_z) / pi (diffuse, albedo 1) or V_p(w) max(0, w_z)
+// (e + 2) / (2 pi) max(0, w . r)^e (glossy Phong lobe about r, the mirror of the viewer
+// (1, 0, 1) / sqrt2, e = kGlossyExponent), V_p(w) = 1 when the ray p + s w, s > 0, misses every
+// occluder. Shading under sky L is  s_p = int L T_p.
+//  - exact: a composite Gauss-Legendre x equal-phi rule (8 panels of 64 nodes in z, 1024 in phi);
+//  - SH with K = n^2 coefficients: sum over bands < n of L_lm T_lm (the projections by the Gauss
+//    product rule of degree 126);
+//  - needlets with K coefficients: the frame's coefficients of T_p (analysed from those SH to the
+//    band limit), the K largest |beta_T| kept per vertex, sum beta_T beta_L over them. With every
+//    coefficient this is the SH sum exactly (Parseval: the frame is tight).
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "zhf/frames/needlets.h"
+
+namespace zhf::frames {
+
+enum class PrtScene { kSphere, kCorner, kSpheres };
+enum class PrtTransfer { kDiffuse, kGlossy };
+inline constexpr int kGlossyExponent = 20;
+// Names as the CLI spells them ("sphere", "corner", "spheres"; "diffuse", "glossy"); false if unknown.
+bool parse_prt_scene(const std::string& name, PrtScene& scene);
+bool parse_prt_transfer(const std::string& name, PrtTransfer& transfer);
+
+using Radiance = std::function<double(const Point&)>;
+
+// The vertices: a side x side grid over [-1.5, 1.5]^2 on z = 0.
+std::vector<Point> prt_vertices(int side);
+// 1 when the ray from p towards w (unit) leaves the scene unoccluded, else 0.
+double prt_visibility(PrtScene scene, const Point& p, const Point& w);
+double prt_transfer(PrtScene scene, PrtTransfer transfer, const Point& p, const Point& w);
+// A clear sky with a sun: 0.25 + 0.75 w_z above the horizon, 0.15 below (ground), plus a sun of
+// peak 40 and width ~1/sqrt(300) rad towards (0.5, 0.3, 0.8) normalised.
+double sun_and_sky(const Point& w);
+
+struct PrtRow {
+  int kept = 0;                        // coefficients per vertex
+  double sh_rms = 0, sh_worst = 0;     // shading error relative to the RMS / largest exact value
+  double needlet_rms = 0, needlet_worst = 0;
+  double sh_sky_min = 0, needlet_sky_min = 0;  // least value of the sky rebuilt from K coefficients
+};
+struct PrtReport {
+  int vertices = 0, sh_coefficients = 0, needlet_coefficients = 0;
+  double exact_rms = 0, sky_min = 0;   // the true sky's least value
+  double parseval_gap = 0;             // max |needlets, all kept - SH, all kept| / exact RMS
+  std::vector<PrtRow> rows;            // one per K asked, then all coefficients
+  // Rotation of the sky through a sweep of turns: per needlet level, the largest relative change
+  // of its energy through the tabulated rotation (exact rotation changes none); and the energy
+  // the K largest needlet coefficients of the turned sky hold, least and greatest over the sweep
+  // (SH bands hold the same energy in every turn).
+  std::vector<double> level_energy_change;
+  std::vector<double> kept_energy_least, kept_energy_greatest;  // per K asked
+};
+
+// Throws std::invalid_argument for side outside 1..64 or a K outside 1..frame.size(). Calls
+// checkpoint (which may throw) between vertices. Cost: vertices x (8128 + 524288 sky and
+// visibility samples + frame size x L^2).
+PrtReport prt_experiment(const NeedletFrame& frame, PrtScene scene, PrtTransfer transfer, const Radiance& sky, int side,
+                         const std::vector<int>& kept, int table_size, const std::function<void()>& checkpoint = {});
+
+}  // namespace zhf::frames
