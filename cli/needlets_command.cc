@@ -439,7 +439,7 @@ int run_needlet_prt(const NeedletOptions& o) {
   if (!frames::parse_prt_scene(o.scene, scene)) throw UsageError("--scene: '" + io::excerpt(o.scene) + "' is not sphere, corner or spheres");
   frames::PrtTransfer transfer;
   if (!frames::parse_prt_transfer(o.transfer, transfer)) throw UsageError("--transfer: '" + io::excerpt(o.transfer) + "' is not diffuse or glossy");
-  const int side = static_cast<int>(integer_option("--side", o.side, 1, 64));
+  const int side = static_cast<int>(integer_option("--side", o.side, 1, runtime::kMaxPrtSide));
   const int table_size = static_cast<int>(integer_option("--size", o.size, runtime::kMinNeedletTableSize, runtime::kMaxNeedletTableSize));
   const std::vector<int> kept = orders_option("--kept", o.kept, 1, 1 << 20);
   if (kept.size() > 16) throw UsageError("--kept: at most 16 counts (got " + std::to_string(kept.size()) + ")");
@@ -539,7 +539,7 @@ void add_needlets_command(CLI::App& app, Action& action, const std::string& comm
   rc->add_option("--scene", pr_t->scene, "sphere (default; one sphere over the ground), corner (two walls) or spheres (three)");
   rc->add_option("--transfer", pr_t->transfer, "diffuse (default) or glossy (Phong lobe, exponent 20)");
   rc->add_option("--sky", pr_t->sky, "sun (default: an analytic sun and sky) or an equirectangular Radiance .hdr");
-  rc->add_option("--side", pr_t->side, "Vertices per side of the ground grid, 1..64 (default 16)");
+  rc->add_option("--side", pr_t->side, "Vertices per side of the ground grid, 1.." + std::to_string(runtime::kMaxPrtSide) + " (default 16)");
   rc->add_option("--kept", pr_t->kept, "Coefficient counts K per vertex, e.g. 16,64,256,1024 (the default)");
   rc->add_option("--B", pr_t->dilation, kDilationHelp);
   add_band_limit(rc, *pr_t, runtime::kMaxProjectionOrder - 1);

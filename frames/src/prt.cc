@@ -7,6 +7,7 @@
 
 #include "zhf/frames/cubature.h"
 #include "zhf/frames/projection.h"
+#include "zhf/runtime/limits.h"
 #include "zhf/runtime/parallel.h"
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/sh_eval.h"
@@ -16,7 +17,6 @@ namespace zhf::frames {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr int kMaxSide = 64;
 // The reference rule: Gauss-Legendre panels in z times equal steps in phi.
 constexpr int kReferencePanels = 8, kReferencePanelNodes = 64, kReferencePhi = 1024;
 // The projections' rule: the largest Gauss product (degree 126, 8128 nodes).
@@ -104,7 +104,8 @@ bool parse_prt_transfer(const std::string& name, PrtTransfer& transfer) {
 }
 
 std::vector<Point> prt_vertices(int side) {
-  if (side < 1 || side > kMaxSide) throw std::invalid_argument("vertices per side " + std::to_string(side) + " is outside 1.." + std::to_string(kMaxSide));
+  if (side < 1 || side > runtime::kMaxPrtSide)
+    throw std::invalid_argument("vertices per side " + std::to_string(side) + " is outside 1.." + std::to_string(runtime::kMaxPrtSide));
   std::vector<Point> v;
   for (int i = 0; i < side; ++i)
     for (int j = 0; j < side; ++j) v.push_back({-1.5 + 3.0 * (j + 0.5) / side, -1.5 + 3.0 * (i + 0.5) / side, 0.0});
@@ -195,7 +196,8 @@ PrtReport prt_experiment(const NeedletFrame& frame, PrtScene scene, PrtTransfer 
     if (checkpoint) checkpoint();
     PrtRow row;
     row.kept = k;
-    const int bands = std::min(order, static_cast<int>(std::sqrt(static_cast<double>(k)) + 1e-9));
+    int bands = 1;  // SH keeps whole bands: the most with bands^2 <= K
+    while (bands < order && (bands + 1) * (bands + 1) <= k) ++bands;
     double sh_square = 0, needlet_square = 0;
     for (int v = 0; v < count; ++v) {
       double sh = 0, needlet = 0;

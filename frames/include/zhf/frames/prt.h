@@ -59,7 +59,7 @@ struct PrtReport {
   std::vector<double> kept_energy_least, kept_energy_greatest;  // per K asked
 };
 
-// Throws std::invalid_argument for side outside 1..64 or a K outside 1..frame.size(). Calls
+// Throws std::invalid_argument for side outside 1..runtime::kMaxPrtSide or a K outside 1..frame.size(). Calls
 // checkpoint (which may throw) between vertices. Cost: vertices x (8128 + 524288 sky and
 // visibility samples + frame size x L^2).
 PrtReport prt_experiment(const NeedletFrame& frame, PrtScene scene, PrtTransfer transfer, const Radiance& sky, int side,

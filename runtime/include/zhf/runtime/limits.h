@@ -131,6 +131,8 @@ inline constexpr std::size_t kMaxHdrBytes = std::size_t(256) << 20;
 inline constexpr std::size_t kMaxHdrHeader = 64 << 10;
 inline constexpr int kMaxHdrSide = 32767;
 inline constexpr long long kMaxHdrPixels = 1LL << 25;
+// zhf needlets prt: vertices per side of the ground grid (64^2 = 4096 vertices: about 80 s here).
+inline constexpr int kMaxPrtSide = 64;
 // HEALPix FITS maps: Nside (12 Nside^2 pixels: 805 million, 6.4 GB as doubles, at the limit) and
 // the bytes of the headers before the map's table (a map's are a few kilobytes).
 inline constexpr long long kMaxHealpixNside = 8192;
