@@ -370,6 +370,9 @@ int run_needlet_analyze(const NeedletOptions& o) {
   if (o.out.empty()) throw UsageError("--out: required");
   io::PendingFile out(o.out);
   const healpix::MaskedSignal signal = healpix::read_masked_signal(o.healpix, o.mask);
+  if (lmax + 1 - 1 > healpix::max_analysis_band(signal.nside))
+    throw UsageError("--order: band " + std::to_string(lmax + 1 - 1) + " is above 4 Nside = " + std::to_string(healpix::max_analysis_band(signal.nside)) + ", the most " +
+                     io::excerpt(o.healpix) + "'s pixels resolve");
   const std::vector<double> sh = healpix::analyze_map(signal.nside, signal.ring, lmax + 1, iterations, io::throw_if_interrupted);
   const frames::NeedletFrame frame = needlet_frame(dilation, lmax, o.gauss);
   const std::vector<double> beta = frame.analyze(sh);

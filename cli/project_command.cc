@@ -84,6 +84,9 @@ int run_project(const ProjectOptions& o) {
   std::vector<std::vector<double>> coefficients;
   if (!o.healpix.empty()) {
     const healpix::MaskedSignal signal = healpix::read_masked_signal(o.healpix, o.mask);
+    if (order - 1 > healpix::max_analysis_band(signal.nside))
+      throw UsageError("--order: band " + std::to_string(order - 1) + " is above 4 Nside = " + std::to_string(healpix::max_analysis_band(signal.nside)) + ", the most " +
+                       io::excerpt(o.healpix) + "'s pixels resolve");
     coefficients = {healpix::analyze_map(signal.nside, signal.ring, order, iterations, io::throw_if_interrupted)};
     std::printf("%s: Nside %lld (%zu pixels), sky fraction %.4f, projected to order %d with %d Jacobi steps\n", o.healpix.c_str(),
                 static_cast<long long>(signal.nside), signal.ring.size(), signal.sky_fraction, order, iterations);

@@ -112,6 +112,8 @@ std::int64_t pixel_at(std::int64_t nside, const Point& direction) {
 std::vector<double> analyze_map(std::int64_t nside, const std::vector<double>& ring, int order, int iterations, const Checkpoint& checkpoint) {
   check_nside(nside, ring.size());
   check_order(order);
+  if (order - 1 > max_analysis_band(nside))
+    throw std::invalid_argument("band " + std::to_string(order - 1) + " is above 4 Nside = " + std::to_string(max_analysis_band(nside)) + ", what the map's rings resolve");
   if (iterations < 0 || iterations > runtime::kMaxHealpixIterations)
     throw std::invalid_argument("iterations " + std::to_string(iterations) + " is outside 0.." + std::to_string(runtime::kMaxHealpixIterations));
   const Healpix_Map<double> map = ring_map(nside, ring);

@@ -137,6 +137,8 @@ TEST(HealpixCli, MalformedMapsAreRefusedInOneLineAndNothingIsWritten) {
   ASSERT_EQ(test::run_zhf({"needlets", "analyze", "--healpix", good, "--order", "5", "--out", beta}).exit_code, 0);
   for (const auto& [args, message] : std::vector<std::pair<std::vector<std::string>, std::string>>{
            {{"project", "--healpix", good, "--iterations", "21", "--out", out}, "--iterations"},
+           {{"project", "--healpix", good, "--order", "20", "--out", out}, "--order: band 19 is above 4 Nside = 16"},
+           {{"needlets", "analyze", "--healpix", good, "--order", "18", "--out", out}, "--order: band 17 is above 4 Nside = 16"},
            {{"project", "--image", good, "--healpix", good, "--out", out}, "give exactly one"},
            {{"project", "--function", "cap", "--mask", good, "--out", out}, "--mask: only with --healpix"},
            {{"needlets", "synthesize", "--in", beta, "--healpix-out", out, "--nside", "3", "--ordering", "nested"}, "--nside: 3 is not a power of two"},

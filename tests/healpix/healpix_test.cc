@@ -193,6 +193,7 @@ TEST(HealpixMaps, AnalysisIsThePixelQuadratureWhateverTheThreadCount) {
   for (int l = 0; l < order; ++l)
     for (int m = -l; m <= l; ++m) ASSERT_NEAR(sh[runtime::index(l, m)], sum[runtime::index(l, m)], tol::kDouble) << "band " << l << ", m " << m;
   // libsharp's OpenMP threads never change the result.
+  EXPECT_THROW(analyze_map(nside, values, 4 * nside + 2, 0), std::invalid_argument);  // beyond what the rings resolve
   for (const int iterations : {0, 3}) {
     omp_set_num_threads(1);
     const std::vector<double> one = analyze_map(nside, values, order, iterations);

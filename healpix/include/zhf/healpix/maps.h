@@ -7,6 +7,7 @@
 // library's; tests/healpix checks them against pixel-by-pixel sums of runtime::eval_sh.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -44,6 +45,10 @@ std::int64_t pixel_at(std::int64_t nside, const Point& direction);
 // Called between the transforms' passes (to poll an interrupt: it may throw).
 using Checkpoint = std::function<void()>;
 
+// The highest band an analysis of a map of this Nside may ask for, 4 Nside (the HEALPix library's
+// bound: beyond it the rings cannot tell the bands apart; healpy's default is 3 Nside - 1).
+inline int max_analysis_band(std::int64_t nside) { return static_cast<int>(std::min<std::int64_t>(4 * nside, 1 << 30)); }
+
 // The SH coefficients of order N (bands 0..N-1) of a RING map by the pixel quadrature
 //   f_lm = (4 pi / N_pix) sum_p f(p) y_l^m(p)
 // (healpy's map2alm without ring weights), then `iterations` Jacobi steps f_lm += analysis of
@@ -52,7 +57,8 @@ using Checkpoint = std::function<void()>;
 // The transforms are the HEALPix library's (libsharp: FFTs along rings, Legendre recurrences;
 // OpenMP threads, results independent of their count); the coefficients converted to zhf's
 // convention. Cost per pass ~ N_pix log(Nside) + rings N^2; 1 + 2 iterations passes.
-// Throws std::invalid_argument for an order outside 1..runtime::kMaxProjectionOrder, iterations
+// Throws std::invalid_argument for an order outside 1..runtime::kMaxProjectionOrder or above
+// max_analysis_band(nside) + 1, iterations
 // outside 0..runtime::kMaxHealpixIterations or a pixel count that is not 12 nside^2.
 std::vector<double> analyze_map(std::int64_t nside, const std::vector<double>& ring, int order, int iterations,
                                 const Checkpoint& checkpoint = {});
