@@ -37,7 +37,7 @@ struct NeedletOptions {
   std::string j = "1", cut = "10", margin = "4";
   std::string window = "standard", mexican_order = "1", level;
   std::string healpix, mask, iterations = "3", in, healpix_out, nside, ordering = "ring";
-  std::string scene = "sphere", transfer = "diffuse", sky = "sun", side = "16", kept = "16,64,256,1024", csv;
+  std::string scene = "sphere", transfer = "diffuse", sky = "sun", side = "16", kept = "16,64,256,1024", csv, shading_csv;
 };
 
 // The top band L of a needlet command's signals, in [lo, hi]: --order N means bands 0..N-1 (as in
@@ -449,6 +449,8 @@ int run_needlet_prt(const NeedletOptions& o) {
   std::unique_ptr<io::PendingFile> out, csv_out;
   if (!o.out.empty()) out = std::make_unique<io::PendingFile>(o.out);
   if (!o.csv.empty()) csv_out = std::make_unique<io::PendingFile>(o.csv);
+  std::unique_ptr<io::PendingFile> shading_out;
+  if (!o.shading_csv.empty()) shading_out = std::make_unique<io::PendingFile>(o.shading_csv);
   frames::Radiance sky = frames::sun_and_sky;
   if (o.sky != "sun") {
     // An equirectangular .hdr (row 0 at +z, phi from +x towards +y), its luminance at the
@@ -494,6 +496,23 @@ int run_needlet_prt(const NeedletOptions& o) {
   if (csv_out) {
     csv_out->write(csv);
     csv_out->commit();
+  }
+  if (shading_out) {
+    std::string text = "# zhf needlets prt: x, y, exact";
+    for (const frames::PrtRow& row : r.rows) text += ", SH K=" + std::to_string(row.kept) + ", needlets K=" + std::to_string(row.kept);
+    text += "\n";
+    for (int v = 0; v < r.vertices; ++v) {
+      char cell[64];
+      std::snprintf(cell, sizeof cell, "%.6f,%.6f,%.6e", r.vertex_positions[v][0], r.vertex_positions[v][1], r.exact[v]);
+      text += cell;
+      for (const frames::PrtRow& row : r.rows) {
+        std::snprintf(cell, sizeof cell, ",%.6e,%.6e", row.sh[v], row.needlet[v]);
+        text += cell;
+      }
+      text += "\n";
+    }
+    shading_out->write(text);
+    shading_out->commit();
   }
   if (out) {
     out->write(io::json_text(nlohmann::ordered_json{{"format", "zhf-needlet-prt-1"}, {"scene", o.scene}, {"transfer", o.transfer},
@@ -549,6 +568,7 @@ void add_needlets_command(CLI::App& app, Action& action, const std::string& comm
   rc->add_option("--size", pr_t->size, kTableSizeHelp + " (the tabulated rotation of the sky)");
   rc->add_flag("--gauss", pr_t->gauss, "Gauss product cubatures instead of the shipped designs");
   rc->add_option("--out", pr_t->out, "Write the report here (zhf-needlet-prt-1)");
+  rc->add_option("--shading-csv", pr_t->shading_csv, "Write each vertex's shading here (x, y, exact, then SH and needlets per K): the images");
   rc->add_option("--csv", pr_t->csv, "Write the error table here (K, SH rms, SH worst, needlet rms, needlet worst, both skies' least values)");
   rc->callback([pr_t, &action] { action = [pr_t] { return run_needlet_prt(*pr_t); }; });
   auto t = std::make_shared<NeedletOptions>();

@@ -5,7 +5,9 @@
 #   docs/projection.svg       projection error per sample count of designs, Gauss rules and
 #                             equal-angle grids (zhf project --compare);
 #   docs/prt_error.svg        shading error of SH and needlets against coefficients kept per
-#                             vertex, three scenes (zhf needlets prt).
+#                             vertex, three scenes (zhf needlets prt);
+#   docs/prt_images.svg       the three spheres' ground shaded exactly, by SH and by needlets at
+#                             64 coefficients a vertex, and both errors.
 # Usage: bash scripts/plot_frames.sh [ZHF_BINARY]   (needs gnuplot)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -91,8 +93,36 @@ GP
 done
 echo "unset multiplot" >>"$work/prt.gp"
 gnuplot "$work/prt.gp"
-for plot in needlet_kernels projection prt_error; do
+"$zhf" needlets prt --scene spheres --side 40 --kept 64 --shading-csv "$work/prt_images.csv" >/dev/null
+grep -v "^#" "$work/prt_images.csv" >"$work/prt_images_data.csv"
+cat >"$work/prt_images.gp" <<GP
+set terminal svg size 1500,330 font "sans,11" background "white"
+set output "$work/prt_images.svg"
+set datafile separator ","
+set multiplot layout 1,5 title "Three spheres over the ground, diffuse, sun and sky: shading (exact, then 64 coefficients a vertex) and the errors"
+set size ratio -1
+unset xtics
+unset ytics
+set palette grey
+set cbrange [0:1.4]
+set title "exact"
+plot "$work/prt_images_data.csv" using 1:2:3 with image notitle
+set title "SH, bands 0..7"
+plot "" using 1:2:4 with image notitle
+set title "needlets, largest 64"
+plot "" using 1:2:5 with image notitle
+set palette defined (-1 "#2166ac", 0 "white", 1 "#b2182b")
+set cbrange [-0.12:0.12]
+set title "SH - exact"
+plot "" using 1:2:(\$4-\$3) with image notitle
+set title "needlets - exact"
+plot "" using 1:2:(\$5-\$3) with image notitle
+unset multiplot
+GP
+gnuplot "$work/prt_images.gp"
+
+for plot in needlet_kernels projection prt_error prt_images; do
   cp "$work/$plot.svg" "$root/docs/$plot.svg.tmp"
   mv "$root/docs/$plot.svg.tmp" "$root/docs/$plot.svg"
 done
-echo "wrote docs/needlet_kernels.svg, docs/projection.svg and docs/prt_error.svg"
+echo "wrote docs/needlet_kernels.svg, docs/projection.svg, docs/prt_error.svg and docs/prt_images.svg"

@@ -174,6 +174,8 @@ PrtReport prt_experiment(const NeedletFrame& frame, PrtScene scene, PrtTransfer 
   double exact_square = 0, exact_largest = 0;
   for (double e : exact) exact_square += e * e, exact_largest = std::max(exact_largest, std::abs(e));
   report.exact_rms = std::sqrt(exact_square / count);
+  report.vertex_positions = vertices;
+  report.exact = exact;
 
   // SH of the sky and of every vertex's transfer; needlets from those.
   const Cubature nodes = gauss_product_cubature(kProjectionDegree);
@@ -203,6 +205,8 @@ PrtReport prt_experiment(const NeedletFrame& frame, PrtScene scene, PrtTransfer 
       double sh = 0, needlet = 0;
       for (int i = 0; i < bands * bands; ++i) sh += sky_sh[i] * transfer_sh[v][i];
       for (int i : largest(transfer_beta[v], k)) needlet += sky_beta[i] * transfer_beta[v][i];
+      row.sh.push_back(sh);
+      row.needlet.push_back(needlet);
       sh_square += (sh - exact[v]) * (sh - exact[v]);
       needlet_square += (needlet - exact[v]) * (needlet - exact[v]);
       row.sh_worst = std::max(row.sh_worst, std::abs(sh - exact[v]) / exact_largest);

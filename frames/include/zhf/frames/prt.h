@@ -42,6 +42,7 @@ double sun_and_sky(const Point& w);
 
 struct PrtRow {
   int kept = 0;                        // coefficients per vertex
+  std::vector<double> sh, needlet;     // each vertex's shading
   double sh_rms = 0, sh_worst = 0;     // shading error relative to the RMS / largest exact value
   double needlet_rms = 0, needlet_worst = 0;
   double sh_sky_min = 0, needlet_sky_min = 0;  // least value of the sky rebuilt from K coefficients
@@ -49,6 +50,8 @@ struct PrtRow {
 struct PrtReport {
   int vertices = 0, sh_coefficients = 0, needlet_coefficients = 0;
   double exact_rms = 0, sky_min = 0;   // the true sky's least value
+  std::vector<Point> vertex_positions;
+  std::vector<double> exact;           // each vertex's exact shading
   double parseval_gap = 0;             // max |needlets, all kept - SH, all kept| / exact RMS
   std::vector<PrtRow> rows;            // one per K asked, then all coefficients
   // Rotation of the sky through a sweep of turns: per needlet level, the largest relative change
