@@ -1,6 +1,7 @@
 // zhf designs, zhf frame and zhf needlets window from the command line: byte-identical designs
 // whatever the thread count, the checked-in designs reproduced, frame reports, window reports,
 // bad input refused in one line.
+#include <algorithm>
 #include <filesystem>
 #include <string>
 
@@ -100,14 +101,18 @@ namespace {
 
 TEST(NeedletPrtCli, ReportsErrorsPerCoefficientCountAndRefusesBadOptions) {
   const test::TempDir dir;
-  const std::string out = (dir / "prt.json").string(), csv = (dir / "prt.csv").string();
-  const test::RunResult r = test::run_zhf({"needlets", "prt", "--side", "2", "--order", "9", "--kept", "4,16", "--out", out, "--csv", csv});
+  const std::string out = (dir / "prt.json").string(), csv = (dir / "prt.csv").string(), shading = (dir / "shading.csv").string();
+  const test::RunResult r =
+      test::run_zhf({"needlets", "prt", "--side", "2", "--order", "9", "--kept", "4,16", "--out", out, "--csv", csv, "--shading-csv", shading});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json report = test::read_json(out);
   EXPECT_EQ(report["format"], "zhf-needlet-prt-1");
   ASSERT_EQ(report["rows"].size(), 3u);
   EXPECT_LE(report["parseval_gap"].get<double>(), runtime::tolerance::kParsevalShading);
   EXPECT_EQ(test::line_count(test::read_text(csv)), 4);
+  const std::string images = test::read_text(shading);
+  EXPECT_EQ(test::line_count(images), 5);  // a header and 2 x 2 vertices
+  EXPECT_EQ(std::count(images.begin(), images.end(), ','), 4 * 8 + 8);  // x, y, exact and 3 x (SH, needlets) a vertex; the header's 8
   for (const auto& [args, message] : std::vector<std::pair<std::vector<std::string>, std::string>>{
            {{"needlets", "prt", "--scene", "teapot"}, "--scene: 'teapot' is not sphere, corner or spheres"},
            {{"needlets", "prt", "--transfer", "mirror"}, "--transfer: 'mirror'"},
