@@ -19,7 +19,7 @@ namespace {
 
 struct DesignsOptions {
   std::string t, count = "0", starts = "64", seed = "1", threads = "0";
-  bool symmetric = false, quiet = false;
+  bool symmetric = false, tetrahedral = false, quiet = false;
   std::string out;
 };
 
@@ -37,15 +37,23 @@ int run_designs(const DesignsOptions& o) {
   frames::DesignSearch s;
   s.t = static_cast<int>(integer_option("--t", o.t, 1, runtime::kMaxDesignStrength));
   s.symmetric = o.symmetric;
+  s.tetrahedral = o.tetrahedral;
   const int best = frames::best_known_count(s.t);
   const frames::DesignChoice choice = frames::default_design(s.t);
   s.points = static_cast<int>(integer_option("--count", o.count, 0, runtime::kMaxDesignPoints));
+  if (s.symmetric && s.tetrahedral) throw UsageError("--symmetric and --tetrahedral: choose one");
   if (s.points == 0) {
-    s.points = choice.points;
-    s.symmetric = s.symmetric || choice.symmetric;
+    if (s.tetrahedral) {
+      s.points = frames::tetrahedral_count(s.t);
+    } else {
+      s.points = choice.points;
+      s.tetrahedral = choice.tetrahedral && !s.symmetric;
+      s.symmetric = s.symmetric || choice.symmetric;
+    }
   }
   if (s.points < 2) throw UsageError("--count: a design needs at least 2 points");
   if (s.symmetric && s.points % 2) throw UsageError("--count: a symmetric design has an even count (got " + std::to_string(s.points) + ")");
+  if (s.tetrahedral && s.points % 12) throw UsageError("--count: a tetrahedral design is whole orbits of 12 points (got " + std::to_string(s.points) + ")");
   s.starts = static_cast<int>(integer_option("--starts", o.starts, 1, runtime::kMaxDesignStarts));
   s.seed = seed_option("--seed", o.seed);
   s.threads = runtime::worker_count(static_cast<int>(integer_option("--threads", o.threads, 0, runtime::kMaxThreads)));
@@ -71,6 +79,7 @@ int run_designs(const DesignsOptions& o) {
     j["t"] = s.t;
     j["count"] = d.points.size();
     j["symmetric"] = s.symmetric;
+    j["tetrahedral"] = s.tetrahedral;
     j["residual"] = d.residual;
     j["best_known_count"] = best > 0 ? nlohmann::ordered_json(best) : nlohmann::ordered_json(nullptr);
     j["search"] = {{"seed", s.seed}, {"start", d.start}};
@@ -92,8 +101,9 @@ void add_designs_command(CLI::App& app, Action& action) {
   c->add_option("--t", d->t, "Strength t (exact for every SH of degree <= t), 1.." + std::to_string(runtime::kMaxDesignStrength))->required();
   CLI::Option* count = c->add_option("--count", d->count,
                 "Point count (default: the smallest known for t <= 10, antipodal sets of the smallest known count for odd t "
-                "(Womersley's 192 and 234 at 19 and 21), the efficient count ceil((t+1)^2/2)+1 for even t >= 12)");
+                "(Womersley's 192 and 234 at 19 and 21), tetrahedral sets for even t >= 12 (the smallest known up to 20))");
   c->add_flag("--symmetric", d->symmetric, "Antipodal pairs: x and -x (odd bands vanish; half the unknowns)");
+  c->add_flag("--tetrahedral", d->tetrahedral, "Whole orbits of the chiral tetrahedral group (12 rotations; count a multiple of 12): only its invariant harmonics remain");
   keep_old_spelling(c, count, "--points", d->count);
   c->add_option("--starts", d->starts, "Starts to try, 1.." + std::to_string(runtime::kMaxDesignStarts) + " (default 64); the first that converges wins");
   c->add_option("--seed", d->seed, "Random seed, 0..2^64-1 (default 1)");

@@ -13,6 +13,7 @@
 #include "zhf/runtime/limits.h"
 #include "zhf/runtime/parallel.h"
 #include "zhf/runtime/read_file.h"
+#include "zhf/runtime/rotation.h"
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/runtime/tolerances.h"
 #include "zhf/sh/random.h"
@@ -21,6 +22,14 @@ namespace zhf::frames {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+// Levenberg-Marquardt steps of one tetrahedral start, and its stall test: every kStallIterations
+// steps the residual's norm must have fallen below kStallFactor of what it was.
+constexpr int kTetrahedralIterations = 400;
+constexpr int kStallIterations = 25;
+// Odd strengths search antipodal sets (fewer points) up to here; above, those take minutes where
+// tetrahedral sets take seconds.
+constexpr int kLargestAntipodalDefault = 31;
+constexpr double kStallFactor = 0.5;
 
 Point normalized(const Point& p) {
   const double n = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
@@ -207,6 +216,110 @@ Design run_start(int t, int count, bool symmetric, int k, std::uint64_t seed) {
   return d;
 }
 
+// The chiral tetrahedral group: the 12 rotations that map the cube's diagonals to each other, a
+// cyclic permutation of the axes times a diagonal of signs with an even number of -1.
+std::array<runtime::Matrix3, 12> tetrahedral_group() {
+  std::array<runtime::Matrix3, 12> group{};
+  const double signs[4][3] = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+  int n = 0;
+  for (int shift = 0; shift < 3; ++shift)
+    for (const auto& sign : signs) {
+      runtime::Matrix3 r{};
+      for (int row = 0; row < 3; ++row) r[3 * row + (row + shift) % 3] = sign[row];
+      group[n++] = r;
+    }
+  return group;
+}
+
+// Sum over one orbit {R g} of the SH of bands 1..t.
+void orbit_sum(const std::array<runtime::Matrix3, 12>& group, const Point& g, Evaluator& e, double* out, std::vector<double>& y) {
+  std::fill(out, out + e.size(), 0.0);
+  for (const runtime::Matrix3& r : group) {
+    const Point x{r[0] * g[0] + r[1] * g[1] + r[2] * g[2], r[3] * g[0] + r[4] * g[1] + r[5] * g[2], r[6] * g[0] + r[7] * g[1] + r[8] * g[2]};
+    e.at(x, y.data());
+    for (int k = 0; k < e.size(); ++k) out[k] += y[k];
+  }
+}
+
+// One start of a tetrahedral design: count / 12 generators from random directions, each standing
+// for its orbit under the group (so only the group's invariant harmonics can be non-zero: a square
+// system at Hardin and Sloane's counts for even t <= 20), then Levenberg-Marquardt on the
+// generators.
+Design run_tetrahedral_start(int t, int count, int k, std::uint64_t seed, const std::function<bool()>& interrupted) {
+  const auto group = tetrahedral_group();
+  const int m = count / 12;
+  std::mt19937_64 rng(seed * 1000003 + static_cast<std::uint64_t>(k));
+  sh::Normal<> normal;
+  std::vector<Point> g(m);
+  for (Point& p : g) p = normalized({normal(rng), normal(rng), normal(rng)});
+  Evaluator e(t, false);
+  const int rows = e.size(), cols = 2 * m;
+  std::vector<double> y(rows);
+  auto residual = [&](const std::vector<Point>& generators) {
+    Eigen::VectorXd r = Eigen::VectorXd::Zero(rows), one(rows);
+    for (const Point& p : generators) {
+      orbit_sum(group, p, e, one.data(), y);
+      r += one;
+    }
+    return r;
+  };
+  Eigen::VectorXd r = residual(g);
+  double lambda = runtime::tolerance::kDampingStart;
+  const double h = runtime::tolerance::kDesignDifferenceStep;
+  Eigen::VectorXd plus(rows), minus(rows);
+  double norm_at_check = r.norm();
+  for (int iteration = 0; iteration < kTetrahedralIterations && r.cwiseAbs().maxCoeff() > 0; ++iteration) {
+    if (interrupted && interrupted()) break;
+    // A start that stalls in a local minimum is given up: Newton's steps near a design shrink the
+    // residual far faster than this.
+    if (iteration % kStallIterations == kStallIterations - 1) {
+      if (r.norm() > kStallFactor * norm_at_check) break;
+      norm_at_check = r.norm();
+    }
+    Eigen::MatrixXd j(rows, cols);
+    std::vector<Point> us(m), vs(m);
+    for (int i = 0; i < m; ++i) {
+      tangents(g[i], us[i], vs[i]);
+      for (int c = 0; c < 2; ++c) {
+        const Point& w = c == 0 ? us[i] : vs[i];
+        orbit_sum(group, normalized({g[i][0] + h * w[0], g[i][1] + h * w[1], g[i][2] + h * w[2]}), e, plus.data(), y);
+        orbit_sum(group, normalized({g[i][0] - h * w[0], g[i][1] - h * w[1], g[i][2] - h * w[2]}), e, minus.data(), y);
+        j.col(2 * i + c) = (plus - minus) / (2 * h);
+      }
+    }
+    const Eigen::MatrixXd normal_matrix = j.transpose() * j;
+    const Eigen::VectorXd gradient = j.transpose() * r;
+    bool improved = false;
+    for (int attempt = 0; attempt < 12 && !improved; ++attempt) {
+      Eigen::MatrixXd a = normal_matrix;
+      a.diagonal().array() += lambda * (1 + a.diagonal().array());
+      const Eigen::VectorXd step = -a.ldlt().solve(gradient);
+      std::vector<Point> trial(m);
+      for (int i = 0; i < m; ++i)
+        for (int c = 0; c < 3; ++c) trial[i][c] = g[i][c] + step[2 * i] * us[i][c] + step[2 * i + 1] * vs[i][c];
+      for (Point& p : trial) p = normalized(p);
+      const Eigen::VectorXd next = residual(trial);
+      if (next.squaredNorm() < r.squaredNorm()) {
+        g.swap(trial);
+        r = next;
+        lambda = std::max(lambda / 10, runtime::tolerance::kDampingFloor);
+        improved = true;
+      } else {
+        lambda *= 10;
+      }
+    }
+    if (!improved) break;
+  }
+  Design d;
+  d.t = t;
+  for (const Point& p : g)
+    for (const runtime::Matrix3& q : group)
+      d.points.push_back({q[0] * p[0] + q[1] * p[1] + q[2] * p[2], q[3] * p[0] + q[4] * p[1] + q[5] * p[2], q[6] * p[0] + q[7] * p[1] + q[8] * p[2]});
+  d.residual = design_residual(d.points, t);
+  d.start = d.residual <= runtime::tolerance::kDesignResidual ? k : -1;
+  return d;
+}
+
 }  // namespace
 
 double design_residual(const std::vector<Point>& points, int t) {
@@ -228,9 +341,18 @@ int symmetric_count(int t) {
   return 2 * ((equations + 3 + 1) / 2);  // 2K - 3 unknowns (the set turns freely) >= equations
 }
 
+int tetrahedral_count(int t) {
+  // dim of band l's invariants = (1/12) sum over the group of the band's character,
+  // (2l + 1 + 3 (-1)^l + 8 c_l) / 12 with c_l = 1, 0, -1 for l = 0, 1, 2 mod 3 (identity, three
+  // half turns, eight third turns); two free parameters per orbit of 12.
+  int invariants = 0;
+  for (int l = 1; l <= t; ++l) invariants += (2 * l + 1 + (l % 2 ? -3 : 3) + 8 * (l % 3 == 0 ? 1 : l % 3 == 1 ? 0 : -1)) / 12;
+  return 12 * ((invariants + 1) / 2);
+}
+
 DesignChoice default_design(int t) {
   if (t <= 10) return {best_known_count(t), false};
-  if (t % 2 == 0) return {efficient_count(t), false};
+  if (t % 2 == 0 || t > kLargestAntipodalDefault) return {tetrahedral_count(t), false, true};
   if (t <= 21) return {t == 19 || t == 21 ? symmetric_count(t) : best_known_count(t), true};
   return {symmetric_count(t), true};
 }
@@ -240,6 +362,8 @@ Design search_design(const DesignSearch& s) {
     throw std::invalid_argument("t " + std::to_string(s.t) + " is outside 1.." + std::to_string(runtime::kMaxDesignStrength));
   if (s.points < 2) throw std::invalid_argument("a design needs at least 2 points (got " + std::to_string(s.points) + ")");
   if (s.symmetric && s.points % 2) throw std::invalid_argument("a symmetric design has an even point count (got " + std::to_string(s.points) + ")");
+  if (s.tetrahedral && (s.points % 12 || s.symmetric))
+    throw std::invalid_argument("a tetrahedral design is whole orbits of 12 points, not antipodal (got " + std::to_string(s.points) + ")");
   const int threads = std::max(1, s.threads);
   Design best;
   best.t = s.t;
@@ -251,7 +375,8 @@ Design search_design(const DesignSearch& s) {
     const int batch = std::min(threads, s.starts - first);
     std::vector<Design> results(batch);
     runtime::parallel_for(batch, batch, [&](int b) {
-      results[b] = run_start(s.t, s.symmetric ? s.points / 2 : s.points, s.symmetric, first + b, s.seed);
+      results[b] = s.tetrahedral ? run_tetrahedral_start(s.t, s.points, first + b, s.seed, s.interrupted)
+                                 : run_start(s.t, s.symmetric ? s.points / 2 : s.points, s.symmetric, first + b, s.seed);
     });
     for (int b = 0; b < batch; ++b) {
       if (results[b].start >= 0) return results[b];

@@ -78,7 +78,7 @@ TEST(FramesCli, BadInputGetsOneLineAndNoOutput) {
     int exit_code;
     std::string says;
   };
-  for (const Case& c : {Case{"designs --t 0 --json '" + out + "'", 2, "--t"}, Case{"designs --t 51 --json '" + out + "'", 2, "--t"},
+  for (const Case& c : {Case{"designs --t 0 --json '" + out + "'", 2, "--t"}, Case{"designs --t 101 --json '" + out + "'", 2, "--t"},
                         Case{"designs --t 3 --points 7 --symmetric --json '" + out + "'", 2, "even count"},
                         Case{"designs --t 12 --points 13 --starts 1 --json '" + out + "'", 1, "no 13-point 12-design"},
                         Case{"frame --points '" + zero + "' --bands 0..1 --json '" + out + "'", 3, "[1]: not a direction"},

@@ -53,6 +53,9 @@ TEST(Designs, ShippedDesignsIntegrateEveryPolynomialOfTheirDegree) {
     const std::vector<Point> points = read_points(entry.path().string());
     ASSERT_EQ(points.size(), j.at("count").get<size_t>()) << entry.path();
     EXPECT_LE(design_residual(points, t), runtime::tolerance::kDesignResidual) << "t " << t;
+    if (t <= 21) {
+      EXPECT_LE(points.size(), static_cast<size_t>(best_known_count(t))) << "t " << t << ": more points than the best known";
+    }
     if (j.at("symmetric")) {
       for (size_t i = 0; i < points.size() / 2; ++i)
         for (int c = 0; c < 3; ++c) ASSERT_EQ(points[i][c], -points[i + points.size() / 2][c]) << "t " << t << ", point " << i;
@@ -94,6 +97,39 @@ TEST(Designs, SearchIsDeterministicWhateverTheThreads) {
   const Design antipodal = search_design(s);
   ASSERT_GE(antipodal.start, 0);
   EXPECT_LE(design_residual(antipodal.points, 9), runtime::tolerance::kDesignResidual);
+}
+
+TEST(Designs, TetrahedralSetsReachTheSmallestKnownCountsAtEvenStrengths) {
+  for (int t = 12; t <= 20; t += 2) EXPECT_EQ(tetrahedral_count(t), best_known_count(t)) << "t " << t;
+  EXPECT_LT(tetrahedral_count(50), efficient_count(50));
+  DesignSearch s;
+  s.t = 12;
+  s.points = 84;
+  s.tetrahedral = true;
+  s.starts = 16;
+  s.threads = 1;
+  const Design one = search_design(s);
+  s.threads = 2;
+  const Design two = search_design(s);
+  ASSERT_GE(one.start, 0);
+  EXPECT_EQ(one.start, two.start);
+  EXPECT_EQ(one.points, two.points);
+  EXPECT_LE(design_residual(one.points, 12), runtime::tolerance::kDesignResidual);
+  // Independently of the search: every monomial of degree <= 12, in long double.
+  for (int a = 0; a <= 12; ++a)
+    for (int b = 0; a + b <= 12; ++b)
+      for (int c = 0; a + b + c <= 12; ++c)
+        EXPECT_NEAR(double(rule(one.points, a, b, c)), double(monomial_integral(a, b, c)), runtime::tolerance::kDesignQuadrature)
+            << "x^" << a << " y^" << b << " z^" << c;
+  // The set is whole orbits: the half turn about z and the third turn about (1, 1, 1) map it to itself.
+  for (const Point& p : one.points) {
+    const Point half{-p[0], -p[1], p[2]}, third{p[2], p[0], p[1]};
+    int found = 0;
+    for (const Point& q : one.points) found += (q == half) + (q == third);
+    EXPECT_EQ(found, 2);
+  }
+  s.points = 90;
+  EXPECT_THROW(search_design(s), std::invalid_argument);  // not whole orbits
 }
 
 TEST(Designs, RefusesWhatItCannotSearch) {

@@ -3,6 +3,9 @@
 // design energy E = sum_{1<=l<=t} sum_m (sum_i y_l^m(x_i))^2 with nlopt's L-BFGS from spiral starts,
 // then polished by Levenberg-Marquardt on the residual vector itself to the rounding floor.
 // Antipodal sets (x and -x) need only the even bands: half the points, a third fewer equations.
+// Tetrahedral sets (whole orbits of the 12 rotations of the chiral tetrahedral group) leave only
+// the group's invariant harmonics, about (t+1)^2 / 12 of them: Levenberg-Marquardt on the orbits'
+// generators alone, from random directions, a few dozen to a few hundred parameters.
 //
 // Accuracy: a design is accepted when its residual, max_{l,m} |sum_i y_l^m(x_i)| / M, is at most
 // runtime::tolerance::kDesignResidual (1e-14). Cost per start: O(M t^2) per energy evaluation and gradient, O(M^3) per
@@ -34,14 +37,19 @@ int efficient_count(int t);
 // whose free parameters, 2 (M/2) - 3, match the equations of the even bands 2..t. Womersley's
 // symmetric designs reach it (t = 19: 192, t = 21: 234).
 int symmetric_count(int t);
+// Sets of whole orbits of the chiral tetrahedral group (12 rotations): only the group's invariant
+// harmonics can be non-zero, so the smallest multiple of 12 whose free parameters (2 per orbit)
+// match their count. Hardin and Sloane's counts at even t = 12..20; 2 to 6 below the efficient
+// count at larger even t.
+int tetrahedral_count(int t);
 
 // What zhf designs searches by default: the smallest known count for t <= 10; antipodal sets for
-// odd t >= 11 (the smallest known count up to 21, Womersley's at 19 and 21, the symmetric count
-// above); the efficient count for even t >= 12, where the smallest known (symmetric
-// constructions, more equations than unknowns) are out of reach of random starts.
+// odd t = 11..31 (the smallest known count up to 21, Womersley's at 19 and 21, the symmetric count
+// above); tetrahedral sets for even t >= 12 (the smallest known count up to 20) and odd t >= 33.
 struct DesignChoice {
   int points = 0;
   bool symmetric = false;
+  bool tetrahedral = false;
 };
 DesignChoice default_design(int t);
 
@@ -52,6 +60,7 @@ struct DesignSearch {
   std::uint64_t seed = 1;
   int threads = 1;           // starts run in parallel; the result does not depend on this
   bool symmetric = false;    // antipodal pairs (points even)
+  bool tetrahedral = false;  // whole orbits of the chiral tetrahedral group (points a multiple of 12)
   std::function<bool()> interrupted;  // checked between starts
   std::function<void(int)> progress;  // told how many starts were tried, between starts
 };

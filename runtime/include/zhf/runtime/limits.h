@@ -57,7 +57,7 @@ inline constexpr int kMaxTripleCouplingOrder = 8;
 // Frames (frames/): design strengths searched (efficient designs of 1302 points at t = 50);
 // points in a point-set file; Gauss product cubatures (64 Gauss-Legendre nodes, the most sh/'s
 // root finder gives); projection orders; frame reports' and the tight-frame rotation's bands.
-inline constexpr int kMaxDesignStrength = 50;
+inline constexpr int kMaxDesignStrength = 100;
 inline constexpr int kMaxDesignPoints = 100000;
 inline constexpr int kMaxDesignStarts = 100000;
 inline constexpr int kMaxCubatureDegree = 126;
