@@ -26,6 +26,8 @@ constexpr double kPi = 3.14159265358979323846;
 // steps the residual's norm must have fallen below kStallFactor of what it was.
 constexpr int kTetrahedralIterations = 400;
 constexpr int kStallIterations = 25;
+// Dampings tried in one Levenberg-Marquardt step before the search gives up.
+constexpr int kDampingAttempts = 12;
 // Odd strengths search antipodal sets (fewer points) up to here; above, those take minutes where
 // tetrahedral sets take seconds.
 constexpr int kLargestAntipodalDefault = 31;
@@ -108,6 +110,30 @@ double energy(unsigned n, const double* p, double* gradient, void* data) {
   return r.squaredNorm();
 }
 
+// One Levenberg-Marquardt step on points moved in their tangent planes (us, vs): step(lambda)
+// gives the move, two coordinates a point; the damping grows tenfold after each move that fails to
+// lower |r|, and the first that lowers it is kept (and the damping eased). False: none did.
+template <class Step, class Residual>
+bool damped_step(std::vector<Point>& x, const std::vector<Point>& us, const std::vector<Point>& vs, Eigen::VectorXd& r, double& lambda, Step&& step,
+                 Residual&& residual) {
+  for (int attempt = 0; attempt < kDampingAttempts; ++attempt) {
+    const Eigen::VectorXd d = step(lambda);
+    std::vector<Point> trial(x.size());
+    for (std::size_t i = 0; i < x.size(); ++i)
+      trial[i] = normalized({x[i][0] + d[2 * i] * us[i][0] + d[2 * i + 1] * vs[i][0], x[i][1] + d[2 * i] * us[i][1] + d[2 * i + 1] * vs[i][1],
+                             x[i][2] + d[2 * i] * us[i][2] + d[2 * i + 1] * vs[i][2]});
+    const Eigen::VectorXd next = residual(trial);
+    if (next.squaredNorm() < r.squaredNorm()) {
+      x.swap(trial);
+      r = next;
+      lambda = std::max(lambda / 10, runtime::tolerance::kDampingFloor);
+      return true;
+    }
+    lambda *= 10;
+  }
+  return false;
+}
+
 // Levenberg-Marquardt on the residual vector, moving each point in its tangent plane.
 void polish(std::vector<Point>& x, int t, bool symmetric) {
   Evaluator e(t, symmetric);
@@ -124,33 +150,15 @@ void polish(std::vector<Point>& x, int t, bool symmetric) {
       e.derivative(x[i], us[i], j.col(2 * i).data());
       e.derivative(x[i], vs[i], j.col(2 * i + 1).data());
     }
-    bool improved = false;
-    for (int attempt = 0; attempt < 12 && !improved; ++attempt) {
-      // The smaller normal system: J^T (J J^T + lambda I)^-1 r when there are fewer equations.
-      Eigen::VectorXd step;
-      if (rows < cols) {
-        Eigen::MatrixXd a = j * j.transpose();
-        a.diagonal().array() += lambda * (1 + a.diagonal().array());
-        step = -j.transpose() * a.ldlt().solve(r);
-      } else {
-        Eigen::MatrixXd a = j.transpose() * j;
-        a.diagonal().array() += lambda * (1 + a.diagonal().array());
-        step = -a.ldlt().solve(j.transpose() * r);
-      }
-      std::vector<Point> trial(m);
-      for (int i = 0; i < m; ++i)
-        for (int c = 0; c < 3; ++c) trial[i][c] = x[i][c] + step[2 * i] * us[i][c] + step[2 * i + 1] * vs[i][c];
-      for (Point& p : trial) p = normalized(p);
-      const Eigen::VectorXd next = residual_vector(trial, e);
-      if (next.squaredNorm() < r.squaredNorm()) {
-        x.swap(trial);
-        r = next;
-        lambda = std::max(lambda / 10, runtime::tolerance::kDampingFloor);
-        improved = true;
-      } else {
-        lambda *= 10;
-      }
-    }
+    // The smaller normal system: J^T (J J^T + lambda I)^-1 r when there are fewer equations.
+    const bool wide = rows < cols;
+    const Eigen::MatrixXd normal = wide ? Eigen::MatrixXd(j * j.transpose()) : Eigen::MatrixXd(j.transpose() * j);
+    const Eigen::VectorXd rhs = wide ? r : Eigen::VectorXd(j.transpose() * r);
+    const bool improved = damped_step(x, us, vs, r, lambda, [&](double damping) {
+      Eigen::MatrixXd a = normal;
+      a.diagonal().array() += damping * (1 + a.diagonal().array());
+      return wide ? Eigen::VectorXd(-j.transpose() * a.ldlt().solve(rhs)) : Eigen::VectorXd(-a.ldlt().solve(rhs));
+    }, [&](const std::vector<Point>& trial) { return residual_vector(trial, e); });
     if (!improved) break;
   }
 }
@@ -289,25 +297,11 @@ Design run_tetrahedral_start(int t, int count, int k, std::uint64_t seed, const 
     }
     const Eigen::MatrixXd normal_matrix = j.transpose() * j;
     const Eigen::VectorXd gradient = j.transpose() * r;
-    bool improved = false;
-    for (int attempt = 0; attempt < 12 && !improved; ++attempt) {
+    const bool improved = damped_step(g, us, vs, r, lambda, [&](double damping) {
       Eigen::MatrixXd a = normal_matrix;
-      a.diagonal().array() += lambda * (1 + a.diagonal().array());
-      const Eigen::VectorXd step = -a.ldlt().solve(gradient);
-      std::vector<Point> trial(m);
-      for (int i = 0; i < m; ++i)
-        for (int c = 0; c < 3; ++c) trial[i][c] = g[i][c] + step[2 * i] * us[i][c] + step[2 * i + 1] * vs[i][c];
-      for (Point& p : trial) p = normalized(p);
-      const Eigen::VectorXd next = residual(trial);
-      if (next.squaredNorm() < r.squaredNorm()) {
-        g.swap(trial);
-        r = next;
-        lambda = std::max(lambda / 10, runtime::tolerance::kDampingFloor);
-        improved = true;
-      } else {
-        lambda *= 10;
-      }
-    }
+      a.diagonal().array() += damping * (1 + a.diagonal().array());
+      return Eigen::VectorXd(-a.ldlt().solve(gradient));
+    }, residual);
     if (!improved) break;
   }
   Design d;
