@@ -453,15 +453,16 @@ TEST(Hostile, InterruptsStopChildrenAndLeaveThePreviousOutputs) {
       exit == 130 && snapshot(box.dir()) == before && leftovers(box).empty();
 }
 
-// One start of a large design search runs for minutes without polling: the watchdog ends it a
-// grace period after the signal, its temporary output gone and the previous file as it was.
+// One start of a large antipodal design search runs for a minute without polling (tetrahedral
+// ones poll every step): the watchdog ends it a grace period after the signal, its temporary
+// output gone and the previous file as it was.
 TEST(Hostile, WorkThatCannotPollIsEndedByTheWatchdog) {
   Sandbox box;
   box.write("design.json", "previous design\n");
   const Snapshot before = snapshot(box.dir());
   const test::TempDir errors_dir;
   const std::string errors = errors_dir.string() + "/stderr.txt";
-  const int exit = interrupted_exit(box, {"designs", "--t", "40", "--starts", "1", "--quiet", "--out", box.path("design.json")},
+  const int exit = interrupted_exit(box, {"designs", "--t", "31", "--starts", "1", "--quiet", "--out", box.path("design.json")},
                                     SIGTERM, 1500, errors);
   EXPECT_EQ(exit, 143);
   // The watchdog's own line: the search did not poll, so the watchdog ended it (not the search's end).
