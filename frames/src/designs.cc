@@ -38,6 +38,11 @@ Point normalized(const Point& p) {
   return {p[0] / n, p[1] / n, p[2] / n};
 }
 
+// R p for a row-major 3x3 R.
+Point turned(const double* r, const Point& p) {
+  return {r[0] * p[0] + r[1] * p[1] + r[2] * p[2], r[3] * p[0] + r[4] * p[1] + r[5] * p[2], r[6] * p[0] + r[7] * p[1] + r[8] * p[2]};
+}
+
 // Two unit vectors spanning the tangent plane at x.
 void tangents(const Point& x, Point& u, Point& v) {
   const int k = std::abs(x[0]) < std::abs(x[1]) ? (std::abs(x[0]) < std::abs(x[2]) ? 0 : 2) : (std::abs(x[1]) < std::abs(x[2]) ? 1 : 2);
@@ -186,7 +191,7 @@ std::vector<Point> start_points(int count, int k, std::uint64_t seed) {
                        2 * (a * c - w * b),     2 * (b * c + w * a),     1 - 2 * (a * a + b * b)};
   const double spacing = std::sqrt(4 * kPi / count);
   for (Point& p : x) {
-    p = {r[0] * p[0] + r[1] * p[1] + r[2] * p[2], r[3] * p[0] + r[4] * p[1] + r[5] * p[2], r[6] * p[0] + r[7] * p[1] + r[8] * p[2]};
+    p = turned(r, p);
     Point u, v;
     tangents(p, u, v);
     const double du = 0.5 * spacing * normal(rng) / 2, dv = 0.5 * spacing * normal(rng) / 2;
@@ -243,8 +248,7 @@ std::array<runtime::Matrix3, 12> tetrahedral_group() {
 void orbit_sum(const std::array<runtime::Matrix3, 12>& group, const Point& g, Evaluator& e, double* out, std::vector<double>& y) {
   std::fill(out, out + e.size(), 0.0);
   for (const runtime::Matrix3& r : group) {
-    const Point x{r[0] * g[0] + r[1] * g[1] + r[2] * g[2], r[3] * g[0] + r[4] * g[1] + r[5] * g[2], r[6] * g[0] + r[7] * g[1] + r[8] * g[2]};
-    e.at(x, y.data());
+    e.at(turned(r.data(), g), y.data());
     for (int k = 0; k < e.size(); ++k) out[k] += y[k];
   }
 }
@@ -308,7 +312,7 @@ Design run_tetrahedral_start(int t, int count, int k, std::uint64_t seed, const 
   d.t = t;
   for (const Point& p : g)
     for (const runtime::Matrix3& q : group)
-      d.points.push_back({q[0] * p[0] + q[1] * p[1] + q[2] * p[2], q[3] * p[0] + q[4] * p[1] + q[5] * p[2], q[6] * p[0] + q[7] * p[1] + q[8] * p[2]});
+      d.points.push_back(turned(q.data(), p));
   d.residual = design_residual(d.points, t);
   d.start = d.residual <= runtime::tolerance::kDesignResidual ? k : -1;
   return d;

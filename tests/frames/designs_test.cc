@@ -43,6 +43,21 @@ long double rule(const std::vector<Point>& points, int a, int b, int c) {
   return 4 * kPi * sum / points.size();
 }
 
+// Every monomial of degree <= t, and a random polynomial of degree t, against the closed form.
+void expect_exact_to_degree(const std::vector<Point>& points, int t, std::mt19937_64& rng, sh::Normal<>& normal) {
+  long double random_rule = 0, random_exact = 0;
+  for (int a = 0; a <= t; ++a)
+    for (int b = 0; a + b <= t; ++b)
+      for (int c = 0; a + b + c <= t; ++c) {
+        const long double got = rule(points, a, b, c), exact = monomial_integral(a, b, c);
+        EXPECT_NEAR(double(got), double(exact), runtime::tolerance::kDesignQuadrature) << "t " << t << ", x^" << a << " y^" << b << " z^" << c;
+        const double w = normal(rng);
+        random_rule += w * got;
+        random_exact += w * exact;
+      }
+  EXPECT_NEAR(double(random_rule), double(random_exact), 10 * runtime::tolerance::kDesignQuadrature) << "t " << t;
+}
+
 TEST(Designs, ShippedDesignsIntegrateEveryPolynomialOfTheirDegree) {
   std::mt19937_64 rng(9);
   sh::Normal<> normal;
@@ -60,18 +75,7 @@ TEST(Designs, ShippedDesignsIntegrateEveryPolynomialOfTheirDegree) {
       for (size_t i = 0; i < points.size() / 2; ++i)
         for (int c = 0; c < 3; ++c) ASSERT_EQ(points[i][c], -points[i + points.size() / 2][c]) << "t " << t << ", point " << i;
     }
-    // Every monomial of degree <= t, and random polynomials of degree t.
-    long double random_rule = 0, random_exact = 0;
-    for (int a = 0; a <= t; ++a)
-      for (int b = 0; a + b <= t; ++b)
-        for (int c = 0; a + b + c <= t; ++c) {
-          const long double got = rule(points, a, b, c), exact = monomial_integral(a, b, c);
-          EXPECT_NEAR(double(got), double(exact), runtime::tolerance::kDesignQuadrature) << "t " << t << ", x^" << a << " y^" << b << " z^" << c;
-          const double w = normal(rng);
-          random_rule += w * got;
-          random_exact += w * exact;
-        }
-    EXPECT_NEAR(double(random_rule), double(random_exact), 10 * runtime::tolerance::kDesignQuadrature) << "t " << t;
+    expect_exact_to_degree(points, t, rng, normal);
     ++checked;
   }
   EXPECT_GE(checked, 21);
@@ -116,11 +120,9 @@ TEST(Designs, TetrahedralSetsReachTheSmallestKnownCountsAtEvenStrengths) {
   EXPECT_EQ(one.points, two.points);
   EXPECT_LE(design_residual(one.points, 12), runtime::tolerance::kDesignResidual);
   // Independently of the search: every monomial of degree <= 12, in long double.
-  for (int a = 0; a <= 12; ++a)
-    for (int b = 0; a + b <= 12; ++b)
-      for (int c = 0; a + b + c <= 12; ++c)
-        EXPECT_NEAR(double(rule(one.points, a, b, c)), double(monomial_integral(a, b, c)), runtime::tolerance::kDesignQuadrature)
-            << "x^" << a << " y^" << b << " z^" << c;
+  std::mt19937_64 rng(9);
+  sh::Normal<> normal;
+  expect_exact_to_degree(one.points, 12, rng, normal);
   // The set is whole orbits: the half turn about z and the third turn about (1, 1, 1) map it to itself.
   for (const Point& p : one.points) {
     const Point half{-p[0], -p[1], p[2]}, third{p[2], p[0], p[1]};
