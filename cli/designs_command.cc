@@ -19,7 +19,7 @@ namespace {
 
 struct DesignsOptions {
   std::string t, count = "0", starts = "64", seed = "1", threads = "0";
-  bool symmetric = false, tetrahedral = false, quiet = false;
+  bool symmetric = false, tetrahedral = false, threefold = false, quiet = false;
   std::string out;
 };
 
@@ -36,24 +36,24 @@ std::string known_counts(int t) {
 int run_designs(const DesignsOptions& o) {
   frames::DesignSearch s;
   s.t = static_cast<int>(integer_option("--t", o.t, 1, runtime::kMaxDesignStrength));
-  s.symmetric = o.symmetric;
-  s.tetrahedral = o.tetrahedral;
+  if (o.symmetric + o.tetrahedral + o.threefold > 1) throw UsageError("--symmetric, --tetrahedral and --threefold: choose one");
   const int best = frames::best_known_count(s.t);
   const frames::DesignChoice choice = frames::default_design(s.t);
   s.points = static_cast<int>(integer_option("--count", o.count, 0, runtime::kMaxDesignPoints));
-  if (s.symmetric && s.tetrahedral) throw UsageError("--symmetric and --tetrahedral: choose one");
+  s.symmetry = o.symmetric     ? frames::Symmetry::kAntipodal
+               : o.tetrahedral ? frames::Symmetry::kTetrahedral
+               : o.threefold   ? frames::Symmetry::kThreefold
+                               : s.points ? frames::Symmetry::kFree : choice.symmetry;
   if (s.points == 0) {
-    if (s.tetrahedral) {
-      s.points = frames::tetrahedral_count(s.t);
-    } else {
-      s.points = choice.points;
-      s.tetrahedral = choice.tetrahedral && !s.symmetric;
-      s.symmetric = s.symmetric || choice.symmetric;
-    }
+    s.points = s.symmetry == frames::Symmetry::kTetrahedral ? frames::tetrahedral_count(s.t)
+               : s.symmetry == frames::Symmetry::kThreefold ? frames::threefold_count(s.t)
+                                                            : choice.points;
   }
   if (s.points < 2) throw UsageError("--count: a design needs at least 2 points");
-  if (s.symmetric && s.points % 2) throw UsageError("--count: a symmetric design has an even count (got " + std::to_string(s.points) + ")");
-  if (s.tetrahedral && s.points % 12) throw UsageError("--count: a tetrahedral design is whole orbits of 12 points (got " + std::to_string(s.points) + ")");
+  const int orbit = frames::orbit_size(s.symmetry);
+  if (s.points % orbit)
+    throw UsageError("--count: " + std::string(o.symmetric ? "a symmetric design has an even count" : "a design of whole orbits has a multiple of " + std::to_string(orbit) + " points") +
+                     " (got " + std::to_string(s.points) + ")");
   s.starts = static_cast<int>(integer_option("--starts", o.starts, 1, runtime::kMaxDesignStarts));
   s.seed = seed_option("--seed", o.seed);
   s.threads = runtime::worker_count(static_cast<int>(integer_option("--threads", o.threads, 0, runtime::kMaxThreads)));
@@ -78,8 +78,9 @@ int run_designs(const DesignsOptions& o) {
     j["format"] = frames::kDesignFormat;
     j["t"] = s.t;
     j["count"] = d.points.size();
-    j["symmetric"] = s.symmetric;
-    j["tetrahedral"] = s.tetrahedral;
+    j["symmetric"] = s.symmetry == frames::Symmetry::kAntipodal;
+    j["tetrahedral"] = s.symmetry == frames::Symmetry::kTetrahedral;
+    j["threefold"] = s.symmetry == frames::Symmetry::kThreefold;
     j["residual"] = d.residual;
     j["best_known_count"] = best > 0 ? nlohmann::ordered_json(best) : nlohmann::ordered_json(nullptr);
     j["search"] = {{"seed", s.seed}, {"start", d.start}};
@@ -101,9 +102,11 @@ void add_designs_command(CLI::App& app, Action& action) {
   c->add_option("--t", d->t, "Strength t (exact for every SH of degree <= t), 1.." + std::to_string(runtime::kMaxDesignStrength))->required();
   CLI::Option* count = c->add_option("--count", d->count,
                 "Point count (default: the smallest known for t <= 10, antipodal sets of the smallest known count for odd t "
-                "(Womersley's 192 and 234 at 19 and 21), tetrahedral sets for even t >= 12 (the smallest known up to 20))");
+                "(Womersley's 192 and 234 at 19 and 21) to 31, whole orbits (tetrahedral or threefold) for even t >= 12 (the smallest known up to 20) "
+                "and odd t >= 33)");
   c->add_flag("--symmetric", d->symmetric, "Antipodal pairs: x and -x (odd bands vanish; half the unknowns)");
   c->add_flag("--tetrahedral", d->tetrahedral, "Whole orbits of the chiral tetrahedral group (12 rotations; count a multiple of 12): only its invariant harmonics remain");
+  c->add_flag("--threefold", d->threefold, "Whole orbits of the turns about z by 120 degrees (count a multiple of 3): only the harmonics with 3 | m remain");
   keep_old_spelling(c, count, "--points", d->count);
   c->add_option("--starts", d->starts, "Starts to try, 1.." + std::to_string(runtime::kMaxDesignStarts) + " (default 64); the first that converges wins");
   c->add_option("--seed", d->seed, "Random seed, 0..2^64-1 (default 1)");

@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <random>
 #include <stdexcept>
 
 #include <Eigen/Dense>
 #include <nlopt.hpp>
 
+#include "zhf/runtime/band_recurrence.h"
 #include "zhf/runtime/errors.h"
 #include "zhf/runtime/json.h"
 #include "zhf/runtime/limits.h"
@@ -22,14 +24,14 @@ namespace zhf::frames {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-// Levenberg-Marquardt steps of one tetrahedral start, and its stall test: every kStallIterations
+// Levenberg-Marquardt steps of one start of whole orbits, and its stall test: every kStallIterations
 // steps the residual's norm must have fallen below kStallFactor of what it was.
-constexpr int kTetrahedralIterations = 400;
+constexpr int kOrbitIterations = 400;
 constexpr int kStallIterations = 25;
 // Dampings tried in one Levenberg-Marquardt step before the search gives up.
 constexpr int kDampingAttempts = 12;
 // Odd strengths search antipodal sets (fewer points) up to here; above, those take minutes where
-// tetrahedral sets take seconds.
+// sets of whole orbits take seconds.
 constexpr int kLargestAntipodalDefault = 31;
 constexpr double kStallFactor = 0.5;
 
@@ -229,37 +231,123 @@ Design run_start(int t, int count, bool symmetric, int k, std::uint64_t seed) {
   return d;
 }
 
+// A rotation group a design is made of whole orbits of, and its orbit sums in a cheap form: the
+// SH of bands 1..t summed over an orbit {R g} equal weights (.) sum over copies of y(C g).
+struct OrbitGroup {
+  std::vector<runtime::Matrix3> rotations;
+  std::vector<runtime::Matrix3> copies;
+  std::vector<double> weights;  // per row of bands 1..t, in index order
+};
+
 // The chiral tetrahedral group: the 12 rotations that map the cube's diagonals to each other, a
-// cyclic permutation of the axes times a diagonal of signs with an even number of -1.
-std::array<runtime::Matrix3, 12> tetrahedral_group() {
-  std::array<runtime::Matrix3, 12> group{};
+// cyclic permutation of the axes times a diagonal of signs with an even number of -1. Its orbit
+// sums take three evaluations instead of twelve: over the half turns about the axes each y_l^m
+// sums to 4 y_l^m or to 0 (y_l^m(-x, -y, z) = (-1)^m y_l^m, and y_l^m(x, -y, -z) = (-1)^(l+m)
+// y_l^m for m >= 0, -(-1)^(l+m) y_l^m for m < 0): 4 when m is even and l is even exactly when
+// m >= 0; the copies are the three cyclic permutations.
+OrbitGroup tetrahedral_group(int t) {
+  OrbitGroup group;
   const double signs[4][3] = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
-  int n = 0;
-  for (int shift = 0; shift < 3; ++shift)
+  for (int shift = 0; shift < 3; ++shift) {
+    runtime::Matrix3 cycle{};
+    for (int row = 0; row < 3; ++row) cycle[3 * row + (row + shift) % 3] = 1;
+    group.copies.push_back(cycle);
     for (const auto& sign : signs) {
       runtime::Matrix3 r{};
       for (int row = 0; row < 3; ++row) r[3 * row + (row + shift) % 3] = sign[row];
-      group[n++] = r;
+      group.rotations.push_back(r);
     }
+  }
+  for (int l = 1; l <= t; ++l)
+    for (int m = -l; m <= l; ++m) group.weights.push_back(m % 2 == 0 && (l % 2 == 0) == (m >= 0) ? 4.0 : 0.0);
   return group;
 }
 
-// Sum over one orbit {R g} of the SH of bands 1..t.
-void orbit_sum(const std::array<runtime::Matrix3, 12>& group, const Point& g, Evaluator& e, double* out, std::vector<double>& y) {
-  std::fill(out, out + e.size(), 0.0);
-  for (const runtime::Matrix3& r : group) {
-    e.at(turned(r.data(), g), y.data());
-    for (int k = 0; k < e.size(); ++k) out[k] += y[k];
-  }
+// The three turns about z by multiples of 120 degrees: over them y_l^m sums to 3 y_l^m when 3
+// divides m and to 0 otherwise, so one evaluation an orbit.
+OrbitGroup threefold_group(int t) {
+  OrbitGroup group;
+  const double c = -0.5, s = std::sqrt(3.0) / 2;
+  group.rotations = {runtime::kIdentity, {c, -s, 0, s, c, 0, 0, 0, 1}, {c, s, 0, -s, c, 0, 0, 0, 1}};
+  group.copies = {runtime::kIdentity};
+  for (int l = 1; l <= t; ++l)
+    for (int m = -l; m <= l; ++m) group.weights.push_back(m % 3 == 0 ? 3.0 : 0.0);
+  return group;
 }
 
-// One start of a tetrahedral design: count / 12 generators from random directions, each standing
-// for its orbit under the group (so only the group's invariant harmonics can be non-zero: a square
-// system at Hardin and Sloane's counts for even t <= 20), then Levenberg-Marquardt on the
-// generators.
-Design run_tetrahedral_start(int t, int count, int k, std::uint64_t seed, const std::function<bool()>& interrupted) {
-  const auto group = tetrahedral_group();
-  const int m = count / 12;
+// Band l's invariants: the multiplicity of the trivial representation, (1/|G|) sum over the group
+// of the band's character. Tetrahedral: (2l + 1 + 3 (-1)^l + 8 c_l) / 12 with c_l = 1, 0, -1 for
+// l = 0, 1, 2 mod 3 (identity, three half turns, eight third turns). Threefold: 1 + 2 floor(l / 3)
+// (m = 0 and the pairs +-m with 3 | m).
+int tetrahedral_invariants(int l) { return (2 * l + 1 + (l % 2 ? -3 : 3) + 8 * (l % 3 == 0 ? 1 : l % 3 == 1 ? 0 : -1)) / 12; }
+int threefold_invariants(int l) { return 1 + 2 * (l / 3); }
+
+// Whole orbits with two free parameters each, at least as many as the invariants of bands 1..t.
+int orbit_count(int t, int group_size, int (*invariants)(int)) {
+  int sum = 0;
+  for (int l = 1; l <= t; ++l) sum += invariants(l);
+  return group_size * ((sum + 1) / 2);
+}
+
+// An orthonormal basis of each band's invariant subspace: the eigenvectors of eigenvalue 1 of the
+// projector P_l = (1/|G|) sum_g D_l(g) (band matrices by the recurrence, in long double). An orbit
+// sum is |G| P y, so its residual lives in this subspace (about (t+1)^2 / |G| coordinates instead
+// of (t+1)^2 - 1), and a derivative needs the SH at the generator only, not at its images.
+class InvariantBasis {
+ public:
+  // Stops early, incomplete, when interrupted() says so (polled about every 0.1 s at t = 100).
+  InvariantBasis(const std::vector<runtime::Matrix3>& rotations, int t, const std::function<bool()>& interrupted) {
+    std::vector<std::vector<std::vector<long double>>> d;
+    for (const runtime::Matrix3& r : rotations) {
+      if (interrupted && interrupted()) return;
+      d.push_back(runtime::recurrence_band_matrices<long double>(r.data(), t + 1));
+    }
+    for (int l = 1; l <= t; ++l) {
+      if (interrupted && interrupted()) return;
+      const int side = 2 * l + 1;
+      Eigen::MatrixXd p(side, side);
+      for (int i = 0; i < side; ++i)
+        for (int k = 0; k < side; ++k) {
+          long double sum = 0;
+          for (const auto& bands : d) sum += bands[l][i * side + k] + bands[l][k * side + i];
+          p(i, k) = static_cast<double>(sum / (2 * d.size()));
+        }
+      const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(p);
+      // Eigenvalues ascending: 0s, then as many 1s as the trace (the subspace's dimension).
+      const int count = static_cast<int>(std::lround(p.trace()));
+      if (count && !(eigen.eigenvalues()(side - count) > 0.5 && (count == side || eigen.eigenvalues()(side - count - 1) < 0.5)))
+        throw std::logic_error("band " + std::to_string(l) + "'s orbit projector has not " + std::to_string(count) + " unit eigenvalues");
+      bands_.push_back(eigen.eigenvectors().rightCols(count));
+      size_ += count;
+    }
+  }
+  int size() const { return size_; }
+  // Coordinates in the basis of the columns of a matrix whose rows are bands 1..t (the
+  // Evaluator's rows): one product per band.
+  Eigen::MatrixXd reduce(const Eigen::MatrixXd& full) const {
+    Eigen::MatrixXd out(size_, full.cols());
+    int at = 0;
+    for (std::size_t b = 0; b < bands_.size(); ++b) {
+      const int l = static_cast<int>(b) + 1, count = static_cast<int>(bands_[b].cols());
+      out.middleRows(at, count).noalias() = bands_[b].transpose() * full.middleRows(l * l - 1, 2 * l + 1);
+      at += count;
+    }
+    return out;
+  }
+
+ private:
+  std::vector<Eigen::MatrixXd> bands_;  // band l: (2l+1) x its invariants
+  int size_ = 0;
+};
+
+// One start of a design of whole orbits: count / |G| generators from random directions, each
+// standing for its orbit (so only the group's invariant harmonics can be non-zero: a square system
+// when the count is orbit_count's), then Levenberg-Marquardt on the generators. The residual is
+// the exact orbit sums; the Jacobian is |G| Q^T dy at each generator, the derivative of Q^T r up to
+// the basis' rounding.
+Design run_orbit_start(int t, int count, int k, std::uint64_t seed, const OrbitGroup& group, const InvariantBasis& basis,
+                       const std::function<bool()>& interrupted) {
+  const int order = static_cast<int>(group.rotations.size()), m = count / order;
   std::mt19937_64 rng(seed * 1000003 + static_cast<std::uint64_t>(k));
   sh::Normal<> normal;
   std::vector<Point> g(m);
@@ -268,19 +356,19 @@ Design run_tetrahedral_start(int t, int count, int k, std::uint64_t seed, const 
   const int rows = e.size(), cols = 2 * m;
   std::vector<double> y(rows);
   auto residual = [&](const std::vector<Point>& generators) {
-    Eigen::VectorXd r = Eigen::VectorXd::Zero(rows), one(rows);
-    for (const Point& p : generators) {
-      orbit_sum(group, p, e, one.data(), y);
-      r += one;
-    }
+    Eigen::VectorXd r = Eigen::VectorXd::Zero(rows);
+    for (const Point& p : generators)
+      for (const runtime::Matrix3& c : group.copies) {
+        e.at(turned(c.data(), p), y.data());
+        for (int i = 0; i < rows; ++i) r[i] += group.weights[i] * y[i];
+      }
     return r;
   };
   Eigen::VectorXd r = residual(g);
   double lambda = runtime::tolerance::kDampingStart;
-  const double h = runtime::tolerance::kDesignDifferenceStep;
-  Eigen::VectorXd plus(rows), minus(rows);
+  Eigen::MatrixXd dy(rows, cols);  // the SH's derivatives at the generators, reused across steps
   double norm_at_check = r.norm();
-  for (int iteration = 0; iteration < kTetrahedralIterations && r.cwiseAbs().maxCoeff() > 0; ++iteration) {
+  for (int iteration = 0; iteration < kOrbitIterations && r.cwiseAbs().maxCoeff() > 0; ++iteration) {
     if (interrupted && interrupted()) break;
     // A start that stalls in a local minimum is given up: Newton's steps near a design shrink the
     // residual far faster than this.
@@ -288,31 +376,31 @@ Design run_tetrahedral_start(int t, int count, int k, std::uint64_t seed, const 
       if (r.norm() > kStallFactor * norm_at_check) break;
       norm_at_check = r.norm();
     }
-    Eigen::MatrixXd j(rows, cols);
     std::vector<Point> us(m), vs(m);
     for (int i = 0; i < m; ++i) {
       tangents(g[i], us[i], vs[i]);
-      for (int c = 0; c < 2; ++c) {
-        const Point& w = c == 0 ? us[i] : vs[i];
-        orbit_sum(group, normalized({g[i][0] + h * w[0], g[i][1] + h * w[1], g[i][2] + h * w[2]}), e, plus.data(), y);
-        orbit_sum(group, normalized({g[i][0] - h * w[0], g[i][1] - h * w[1], g[i][2] - h * w[2]}), e, minus.data(), y);
-        j.col(2 * i + c) = (plus - minus) / (2 * h);
-      }
+      e.derivative(g[i], us[i], dy.col(2 * i).data());
+      e.derivative(g[i], vs[i], dy.col(2 * i + 1).data());
     }
-    const Eigen::MatrixXd normal_matrix = j.transpose() * j;
-    const Eigen::VectorXd gradient = j.transpose() * r;
+    const Eigen::MatrixXd j = order * basis.reduce(dy);
+    // J^T J's lower half (all that LDLT reads).
+    Eigen::MatrixXd normal_matrix = Eigen::MatrixXd::Zero(cols, cols);
+    normal_matrix.selfadjointView<Eigen::Lower>().rankUpdate(j.transpose());
+    const Eigen::VectorXd gradient = j.transpose() * basis.reduce(r);
+    if (interrupted && interrupted()) break;  // a step takes about a second at t = 100
     const bool improved = damped_step(g, us, vs, r, lambda, [&](double damping) {
+      // Damped, J^T J is positive definite: Cholesky, blocked (LDLT's unblocked updates took a
+      // quarter of a step at t = 43).
       Eigen::MatrixXd a = normal_matrix;
       a.diagonal().array() += damping * (1 + a.diagonal().array());
-      return Eigen::VectorXd(-a.ldlt().solve(gradient));
+      return Eigen::VectorXd(-a.llt().solve(gradient));
     }, residual);
     if (!improved) break;
   }
   Design d;
   d.t = t;
   for (const Point& p : g)
-    for (const runtime::Matrix3& q : group)
-      d.points.push_back(turned(q.data(), p));
+    for (const runtime::Matrix3& q : group.rotations) d.points.push_back(turned(q.data(), p));
   d.residual = design_residual(d.points, t);
   d.start = d.residual <= runtime::tolerance::kDesignResidual ? k : -1;
   return d;
@@ -339,30 +427,44 @@ int symmetric_count(int t) {
   return 2 * ((equations + 3 + 1) / 2);  // 2K - 3 unknowns (the set turns freely) >= equations
 }
 
-int tetrahedral_count(int t) {
-  // dim of band l's invariants = (1/12) sum over the group of the band's character,
-  // (2l + 1 + 3 (-1)^l + 8 c_l) / 12 with c_l = 1, 0, -1 for l = 0, 1, 2 mod 3 (identity, three
-  // half turns, eight third turns); two free parameters per orbit of 12.
-  int invariants = 0;
-  for (int l = 1; l <= t; ++l) invariants += (2 * l + 1 + (l % 2 ? -3 : 3) + 8 * (l % 3 == 0 ? 1 : l % 3 == 1 ? 0 : -1)) / 12;
-  return 12 * ((invariants + 1) / 2);
+int tetrahedral_count(int t) { return orbit_count(t, 12, tetrahedral_invariants); }
+int threefold_count(int t) { return orbit_count(t, 3, threefold_invariants); }
+
+int orbit_size(Symmetry symmetry) {
+  switch (symmetry) {
+    case Symmetry::kFree: return 1;
+    case Symmetry::kAntipodal: return 2;
+    case Symmetry::kTetrahedral: return 12;
+    case Symmetry::kThreefold: return 3;
+  }
+  return 1;
 }
 
 DesignChoice default_design(int t) {
-  if (t <= 10) return {best_known_count(t), false};
-  if (t % 2 == 0 || t > kLargestAntipodalDefault) return {tetrahedral_count(t), false, true};
-  if (t <= 21) return {t == 19 || t == 21 ? symmetric_count(t) : best_known_count(t), true};
-  return {symmetric_count(t), true};
+  if (t <= 10) return {best_known_count(t), Symmetry::kFree};
+  if (t % 2 == 0 || t > kLargestAntipodalDefault) {
+    // Tetrahedral sets are faster (a quarter of the unknowns); threefold ones reach the efficient
+    // count where tetrahedral ones miss it by 3 (odd t = 39, 43, 51, ...).
+    if (threefold_count(t) < tetrahedral_count(t)) return {threefold_count(t), Symmetry::kThreefold};
+    return {tetrahedral_count(t), Symmetry::kTetrahedral};
+  }
+  if (t <= 21) return {t == 19 || t == 21 ? symmetric_count(t) : best_known_count(t), Symmetry::kAntipodal};
+  return {symmetric_count(t), Symmetry::kAntipodal};
 }
 
 Design search_design(const DesignSearch& s) {
   if (s.t < 1 || s.t > runtime::kMaxDesignStrength)
     throw std::invalid_argument("t " + std::to_string(s.t) + " is outside 1.." + std::to_string(runtime::kMaxDesignStrength));
   if (s.points < 2) throw std::invalid_argument("a design needs at least 2 points (got " + std::to_string(s.points) + ")");
-  if (s.symmetric && s.points % 2) throw std::invalid_argument("a symmetric design has an even point count (got " + std::to_string(s.points) + ")");
-  if (s.tetrahedral && (s.points % 12 || s.symmetric))
-    throw std::invalid_argument("a tetrahedral design is whole orbits of 12 points, not antipodal (got " + std::to_string(s.points) + ")");
+  const int size = orbit_size(s.symmetry);
+  if (s.points % size)
+    throw std::invalid_argument("a design of this symmetry is whole orbits of " + std::to_string(size) + " points (got " + std::to_string(s.points) + ")");
   const int threads = std::max(1, s.threads);
+  std::optional<OrbitGroup> group;
+  if (s.symmetry == Symmetry::kTetrahedral) group = tetrahedral_group(s.t);
+  if (s.symmetry == Symmetry::kThreefold) group = threefold_group(s.t);
+  std::optional<InvariantBasis> basis;
+  if (group) basis.emplace(group->rotations, s.t, s.interrupted);
   Design best;
   best.t = s.t;
   // Batches of `threads` starts; the lowest start that converged wins, whatever the thread count,
@@ -373,8 +475,9 @@ Design search_design(const DesignSearch& s) {
     const int batch = std::min(threads, s.starts - first);
     std::vector<Design> results(batch);
     runtime::parallel_for(batch, batch, [&](int b) {
-      results[b] = s.tetrahedral ? run_tetrahedral_start(s.t, s.points, first + b, s.seed, s.interrupted)
-                                 : run_start(s.t, s.symmetric ? s.points / 2 : s.points, s.symmetric, first + b, s.seed);
+      const bool antipodal = s.symmetry == Symmetry::kAntipodal;
+      results[b] = group ? run_orbit_start(s.t, s.points, first + b, s.seed, *group, *basis, s.interrupted)
+                         : run_start(s.t, antipodal ? s.points / 2 : s.points, antipodal, first + b, s.seed);
     });
     for (int b = 0; b < batch; ++b) {
       if (results[b].start >= 0) return results[b];

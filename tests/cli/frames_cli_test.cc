@@ -80,6 +80,8 @@ TEST(FramesCli, BadInputGetsOneLineAndNoOutput) {
   };
   for (const Case& c : {Case{"designs --t 0 --json '" + out + "'", 2, "--t"}, Case{"designs --t 101 --json '" + out + "'", 2, "--t"},
                         Case{"designs --t 3 --points 7 --symmetric --json '" + out + "'", 2, "even count"},
+                        Case{"designs --t 13 --count 100 --threefold --json '" + out + "'", 2, "multiple of 3 points"},
+                        Case{"designs --t 13 --threefold --tetrahedral --json '" + out + "'", 2, "choose one"},
                         Case{"designs --t 12 --points 13 --starts 1 --json '" + out + "'", 1, "no 13-point 12-design"},
                         Case{"frame --points '" + zero + "' --bands 0..1 --json '" + out + "'", 3, "[1]: not a direction"},
                         Case{"frame --points '" + zero + "' --json '" + out + "'", 2, "--bands"},

@@ -1,6 +1,7 @@
 // Spherical t-designs and frames (frames/): the shipped designs checked by a path that shares no
 // code with the search (monomials integrated in long double against their closed form), the
 // search's determinism, and frame bounds against what designs and lobe tables must give.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <random>
@@ -95,7 +96,7 @@ TEST(Designs, SearchIsDeterministicWhateverTheThreads) {
   EXPECT_EQ(one.start, three.start);
   ASSERT_EQ(one.points.size(), three.points.size());
   for (size_t i = 0; i < one.points.size(); ++i) EXPECT_EQ(one.points[i], three.points[i]) << "point " << i;
-  s.symmetric = true;
+  s.symmetry = Symmetry::kAntipodal;
   s.t = 9;
   s.points = symmetric_count(9);  // 48, the smallest known count
   const Design antipodal = search_design(s);
@@ -109,7 +110,7 @@ TEST(Designs, TetrahedralSetsReachTheSmallestKnownCountsAtEvenStrengths) {
   DesignSearch s;
   s.t = 12;
   s.points = 84;
-  s.tetrahedral = true;
+  s.symmetry = Symmetry::kTetrahedral;
   s.starts = 16;
   s.threads = 1;
   const Design one = search_design(s);
@@ -134,6 +135,47 @@ TEST(Designs, TetrahedralSetsReachTheSmallestKnownCountsAtEvenStrengths) {
   EXPECT_THROW(search_design(s), std::invalid_argument);  // not whole orbits
 }
 
+TEST(Designs, ThreefoldSetsAreWholeOrbitsAndExact) {
+  DesignSearch s;
+  s.t = 17;
+  s.points = threefold_count(17);  // 162, one below the efficient count
+  EXPECT_LT(s.points, efficient_count(17));
+  s.symmetry = Symmetry::kThreefold;
+  s.starts = 16;
+  s.threads = 1;
+  const Design one = search_design(s);
+  s.threads = 2;
+  const Design two = search_design(s);
+  ASSERT_GE(one.start, 0);
+  EXPECT_EQ(one.points, two.points);
+  std::mt19937_64 rng(9);
+  sh::Normal<> normal;
+  expect_exact_to_degree(one.points, 17, rng, normal);
+  // The turn by 120 degrees about z maps the set to itself (up to the rounding of its sine).
+  const double c = -0.5, sn = std::sqrt(3.0) / 2;
+  for (const Point& p : one.points) {
+    const Point turned{c * p[0] - sn * p[1], sn * p[0] + c * p[1], p[2]};
+    double nearest = 1;
+    for (const Point& q : one.points) nearest = std::min(nearest, std::hypot(q[0] - turned[0], q[1] - turned[1], q[2] - turned[2]));
+    EXPECT_LE(nearest, runtime::tolerance::kExactToRounding);
+  }
+}
+
+TEST(Designs, DefaultCountsNeverExceedTheEfficientCount) {
+  for (int t = 1; t <= runtime::kMaxDesignStrength; ++t) {
+    const DesignChoice choice = default_design(t);
+    EXPECT_EQ(choice.points % orbit_size(choice.symmetry), 0) << "t " << t;
+    if (t <= 21) {
+      EXPECT_LE(choice.points, best_known_count(t)) << "t " << t;
+    }
+    if (t > 10) {
+      EXPECT_LE(choice.points, efficient_count(t)) << "t " << t;
+    }
+  }
+  EXPECT_EQ(default_design(39).symmetry, Symmetry::kThreefold);  // 801 points, tetrahedral 804
+  EXPECT_EQ(default_design(40).symmetry, Symmetry::kTetrahedral);
+}
+
 TEST(Designs, RefusesWhatItCannotSearch) {
   DesignSearch s;
   s.points = 10;
@@ -145,8 +187,11 @@ TEST(Designs, RefusesWhatItCannotSearch) {
   s.points = 1;
   EXPECT_THROW(search_design(s), std::invalid_argument);
   s.points = 7;
-  s.symmetric = true;
+  s.symmetry = Symmetry::kAntipodal;
   EXPECT_THROW(search_design(s), std::invalid_argument);
+  s.symmetry = Symmetry::kThreefold;
+  s.points = 10;
+  EXPECT_THROW(search_design(s), std::invalid_argument);  // not whole orbits of 3
 }
 
 TEST(Frames, DesignsMakeTightFramesUpToHalfTheirStrength) {

@@ -3,13 +3,15 @@
 // design energy E = sum_{1<=l<=t} sum_m (sum_i y_l^m(x_i))^2 with nlopt's L-BFGS from spiral starts,
 // then polished by Levenberg-Marquardt on the residual vector itself to the rounding floor.
 // Antipodal sets (x and -x) need only the even bands: half the points, a third fewer equations.
-// Tetrahedral sets (whole orbits of the 12 rotations of the chiral tetrahedral group) leave only
-// the group's invariant harmonics, about (t+1)^2 / 12 of them: Levenberg-Marquardt on the orbits'
-// generators alone, from random directions, a few dozen to a few hundred parameters.
+// Sets of whole orbits of a rotation group (the 12 rotations of the chiral tetrahedral group, or
+// the 3 turns about z by 120 degrees) leave only the group's invariant harmonics, about
+// (t+1)^2 / |G| of them: Levenberg-Marquardt on the orbits' generators alone, from random
+// directions, on the residual's coordinates in an orthonormal basis of those harmonics.
 //
 // Accuracy: a design is accepted when its residual, max_{l,m} |sum_i y_l^m(x_i)| / M, is at most
 // runtime::tolerance::kDesignResidual (1e-14). Cost per start: O(M t^2) per energy evaluation and gradient, O(M^3) per
-// Levenberg-Marquardt step (M ~ t^2 / 2).
+// Levenberg-Marquardt step (M ~ t^2 / 2; for orbits O(M t^2 / |G| + M t^3 / |G|^2 + (M / |G|)^3),
+// and the basis once, O(|G| t^3) for the band matrices and O(t^4) for their eigenvectors).
 #pragma once
 
 #include <array>
@@ -42,14 +44,22 @@ int symmetric_count(int t);
 // match their count. Hardin and Sloane's counts at even t = 12..20; 2 to 6 below the efficient
 // count at larger even t.
 int tetrahedral_count(int t);
+// The same for the 3 turns about z (orbits of 3): at most the efficient count for every t >= 11,
+// 3 below the tetrahedral count at odd t = 39, 43, 51, ...
+int threefold_count(int t);
+
+// The symmetry a search keeps: free points, antipodal pairs (x and -x: odd bands vanish, half the
+// unknowns), or whole orbits of the tetrahedral or the threefold group.
+enum class Symmetry { kFree, kAntipodal, kTetrahedral, kThreefold };
+int orbit_size(Symmetry symmetry);  // 1, 2, 12, 3: the count is a multiple of it
 
 // What zhf designs searches by default: the smallest known count for t <= 10; antipodal sets for
 // odd t = 11..31 (the smallest known count up to 21, Womersley's at 19 and 21, the symmetric count
-// above); tetrahedral sets for even t >= 12 (the smallest known count up to 20) and odd t >= 33.
+// above); for even t >= 12 and odd t >= 33 whole orbits, tetrahedral unless the threefold count
+// is smaller (the smallest known count at even t up to 20; never above the efficient count).
 struct DesignChoice {
   int points = 0;
-  bool symmetric = false;
-  bool tetrahedral = false;
+  Symmetry symmetry = Symmetry::kFree;
 };
 DesignChoice default_design(int t);
 
@@ -59,8 +69,7 @@ struct DesignSearch {
   int starts = 32;           // tried in order; the first that converges wins
   std::uint64_t seed = 1;
   int threads = 1;           // starts run in parallel; the result does not depend on this
-  bool symmetric = false;    // antipodal pairs (points even)
-  bool tetrahedral = false;  // whole orbits of the chiral tetrahedral group (points a multiple of 12)
+  Symmetry symmetry = Symmetry::kFree;  // points a multiple of orbit_size(symmetry)
   std::function<bool()> interrupted;  // checked between starts
   std::function<void(int)> progress;  // told how many starts were tried, between starts
 };
@@ -72,7 +81,8 @@ struct Design {
   int start = -1;            // which start converged (-1: none did; points are the best found)
 };
 
-// Throws std::invalid_argument for t outside 1..runtime::kMaxDesignStrength or a count below 2.
+// Throws std::invalid_argument for t outside 1..runtime::kMaxDesignStrength, a count below 2 or
+// not whole orbits.
 Design search_design(const DesignSearch& search);
 
 // Point sets in files: a JSON array of [x, y, z], or an object with "points" such (a design file,
