@@ -10,7 +10,7 @@
 // Out of place, each written line is first read (write-allocate), a third more traffic than the
 // copy's; in place it is not.
 // Build for the ISA to report (bench/CMakeLists.txt builds it with the project's flags), e.g.
-//   g++ -O3 -march=x86-64-v3 -DNDEBUG -std=c++17 -Iruntime/include -Igenerated/cpp bench/bulk_bench.cc -pthread
+//   g++ -O3 -march=x86-64-v3 -DNDEBUG -std=c++17 -Iruntime/include -Ish/include -Igenerated/cpp bench/bulk_bench.cc -pthread
 //   zhf_bulk_bench [items=1048576] [runs=7]
 #include <algorithm>
 #include <cmath>

@@ -104,6 +104,22 @@ TEST(Designs, SearchIsDeterministicWhateverTheThreads) {
   EXPECT_LE(design_residual(antipodal.points, 9), runtime::tolerance::kDesignResidual);
 }
 
+// The search on 1 and on 2 threads (the same design expected), and that design checked by every
+// monomial of degree <= t in long double, independently of the search.
+Design search_on_one_and_two_threads(DesignSearch s) {
+  s.threads = 1;
+  const Design one = search_design(s);
+  s.threads = 2;
+  const Design two = search_design(s);
+  EXPECT_EQ(one.start, two.start);
+  EXPECT_EQ(one.points, two.points);
+  EXPECT_LE(design_residual(one.points, s.t), runtime::tolerance::kDesignResidual);
+  std::mt19937_64 rng(9);
+  sh::Normal<> normal;
+  expect_exact_to_degree(one.points, s.t, rng, normal);
+  return one;
+}
+
 TEST(Designs, TetrahedralSetsReachTheSmallestKnownCountsAtEvenStrengths) {
   for (int t = 12; t <= 20; t += 2) EXPECT_EQ(tetrahedral_count(t), best_known_count(t)) << "t " << t;
   EXPECT_LT(tetrahedral_count(50), efficient_count(50));
@@ -112,18 +128,8 @@ TEST(Designs, TetrahedralSetsReachTheSmallestKnownCountsAtEvenStrengths) {
   s.points = 84;
   s.symmetry = Symmetry::kTetrahedral;
   s.starts = 16;
-  s.threads = 1;
-  const Design one = search_design(s);
-  s.threads = 2;
-  const Design two = search_design(s);
+  const Design one = search_on_one_and_two_threads(s);
   ASSERT_GE(one.start, 0);
-  EXPECT_EQ(one.start, two.start);
-  EXPECT_EQ(one.points, two.points);
-  EXPECT_LE(design_residual(one.points, 12), runtime::tolerance::kDesignResidual);
-  // Independently of the search: every monomial of degree <= 12, in long double.
-  std::mt19937_64 rng(9);
-  sh::Normal<> normal;
-  expect_exact_to_degree(one.points, 12, rng, normal);
   // The set is whole orbits: the half turn about z and the third turn about (1, 1, 1) map it to itself.
   for (const Point& p : one.points) {
     const Point half{-p[0], -p[1], p[2]}, third{p[2], p[0], p[1]};
@@ -142,15 +148,8 @@ TEST(Designs, ThreefoldSetsAreWholeOrbitsAndExact) {
   EXPECT_LT(s.points, efficient_count(17));
   s.symmetry = Symmetry::kThreefold;
   s.starts = 16;
-  s.threads = 1;
-  const Design one = search_design(s);
-  s.threads = 2;
-  const Design two = search_design(s);
+  const Design one = search_on_one_and_two_threads(s);
   ASSERT_GE(one.start, 0);
-  EXPECT_EQ(one.points, two.points);
-  std::mt19937_64 rng(9);
-  sh::Normal<> normal;
-  expect_exact_to_degree(one.points, 17, rng, normal);
   // The turn by 120 degrees about z maps the set to itself (up to the rounding of its sine).
   const double c = -0.5, sn = std::sqrt(3.0) / 2;
   for (const Point& p : one.points) {
