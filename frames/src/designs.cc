@@ -383,7 +383,7 @@ Design run_orbit_start(int t, int count, int k, std::uint64_t seed, const OrbitG
       e.derivative(g[i], vs[i], dy.col(2 * i + 1).data());
     }
     const Eigen::MatrixXd j = order * basis.reduce(dy);
-    // J^T J's lower half (all that LDLT reads).
+    // J^T J's lower half (all that the Cholesky factorisation reads).
     Eigen::MatrixXd normal_matrix = Eigen::MatrixXd::Zero(cols, cols);
     normal_matrix.selfadjointView<Eigen::Lower>().rankUpdate(j.transpose());
     const Eigen::VectorXd gradient = j.transpose() * basis.reduce(r);
