@@ -70,7 +70,7 @@ struct DesignSearch {
   std::uint64_t seed = 1;
   int threads = 1;           // starts run in parallel; the result does not depend on this
   Symmetry symmetry = Symmetry::kFree;  // points a multiple of orbit_size(symmetry)
-  std::function<bool()> interrupted;  // checked between starts
+  std::function<bool()> interrupted;  // checked between starts, and within orbit searches (basis, steps)
   std::function<void(int)> progress;  // told how many starts were tried, between starts
 };
 
