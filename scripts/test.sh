@@ -20,12 +20,11 @@ echo "== stage 1 done at $(elapsed)"
 echo "== stage 2: tests under ASan + UBSan"
 asan_build="${ZHF_BUILD}-asan"
 # -g1 (line tables, enough for symbolised reports): with -g, GCC's variable tracking over the
-# generated order-8 kernels in bench/src/suite.cc ran out of memory on CI's machine.
-debug_flags="-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -g1 -DNDEBUG"
-# -O1 and no use-after-scope poisoning: GCC at -O2 poisoning every scoped temporary of the
-# straight-line generated kernels (instantiated by the tests at every order, float and double) took
-# 4.5x as long to compile them, and this stage's build twice as long (about 45 min against 23 on
-# 2 cores). The readers keep use-after-scope checks in stage 3 (clang's default).
+# generated order-8 kernels in bench/src/suite.cc ran out of memory on CI's machine. -O1 and no
+# use-after-scope poisoning: GCC at -O2 poisoning every scoped temporary of the straight-line
+# generated kernels (instantiated by the tests at every order, float and double) took 4.5x as long
+# to compile them, and this stage's build twice as long (about 45 min against 23 on 2 cores). The
+# readers keep use-after-scope checks in stage 3 (clang's default).
 asan_flags="-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG -fno-sanitize-address-use-after-scope"
 cmake -S "$ZHF_ROOT" -B "$asan_build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "$asan_flags" -DZHF_SANITIZE=ON -DZHF_BENCH=OFF -DZHF_PYTHON=OFF >/dev/null
 cmake --build "$asan_build" -j "$ZHF_JOBS"
@@ -35,7 +34,8 @@ echo "== stage 2 done at $(elapsed)"
 
 echo "== stage 3: fuzzing"
 fuzz_build="${ZHF_BUILD}-fuzz"
-CC=clang CXX=clang++ cmake -S "$ZHF_ROOT" -B "$fuzz_build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "$debug_flags" -DZHF_FUZZ=ON >/dev/null
+fuzz_flags="-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -g1 -DNDEBUG"
+CC=clang CXX=clang++ cmake -S "$ZHF_ROOT" -B "$fuzz_build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "$fuzz_flags" -DZHF_FUZZ=ON >/dev/null
 cmake --build "$fuzz_build" -j "$ZHF_JOBS"
 # One fuzzer per core at a time: each for ZHF_FUZZ_SECONDS on a private copy of its corpus.
 fuzz_one() {
