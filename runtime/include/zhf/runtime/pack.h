@@ -94,6 +94,40 @@ struct Pack {
     for (int i = 0; i < kLanes; ++i) r.v[i] = T(1) / std::sqrt(x.v[i]);
     return r;
   }
+  // Groups of four lanes, for layouts that keep four related values side by side (zxzxz's classes).
+  // Every group holds p[0..3].
+  static Pack broadcast4(const T* p) {
+    static_assert(kLanes % 4 == 0, "whole groups of four");
+    Pack r;
+#if defined(__GNUC__) && (defined(__clang__) || __GNUC__ >= 12)
+    if constexpr (kLanes == 8) {
+      typedef T Quad __attribute__((vector_size(4 * sizeof(T))));
+      Quad q;
+      std::memcpy(&q, p, sizeof q);
+      r.v = __builtin_shufflevector(q, q, 0, 1, 2, 3, 0, 1, 2, 3);
+      return r;
+    }
+#endif
+    for (int i = 0; i < kLanes; ++i) r.v[i] = p[i % 4];
+    return r;
+  }
+  // Lane i takes lane i ^ kFlip within its group of four: 1 swaps neighbours, 2 swaps the halves.
+  template <int kFlip>
+  Pack flip4() const {
+    static_assert(kLanes % 4 == 0 && kFlip > 0 && kFlip < 4, "a permutation within groups of four");
+    Pack r;
+#if defined(__GNUC__) && (defined(__clang__) || __GNUC__ >= 12)
+    if constexpr (kLanes == 8) {
+      r.v = __builtin_shufflevector(v, v, 0 ^ kFlip, 1 ^ kFlip, 2 ^ kFlip, 3 ^ kFlip, 4 ^ kFlip, 5 ^ kFlip, 6 ^ kFlip, 7 ^ kFlip);
+      return r;
+    } else if constexpr (kLanes == 4) {
+      r.v = __builtin_shufflevector(v, v, 0 ^ kFlip, 1 ^ kFlip, 2 ^ kFlip, 3 ^ kFlip);
+      return r;
+    }
+#endif
+    for (int i = 0; i < kLanes; ++i) r.v[i] = v[i ^ kFlip];
+    return r;
+  }
   Pack& operator+=(const Pack& b) { return *this = *this + b; }
   Pack& operator-=(const Pack& b) { return *this = *this - b; }
   Pack& operator*=(const Pack& b) { return *this = *this * b; }

@@ -9,11 +9,11 @@
 // grows with l (x86-64's 80-bit long double: 2.6e-10 at order 128; where long double is double,
 // ~5e-7 there, below float's tolerance still).
 //
-// Layout: X commutes with the mirror x -> -x, which keeps cos(m phi) for even m and sin(m phi) for
-// odd m (class E) and flips the others (class O). Band l is held as E_m = f_{l,m} (m even) or
-// f_{l,-m} (m odd) and O_m = f_{l,-m} (m even; O_0 = 0) or f_{l,m} (m odd), m = 0..l, so X is two
-// dense (l+1)^2 blocks, applied as packs of rows (pack.h), and a turn is elementwise:
-// E' = c E + s' O, O' = c O - s' E with s' = (-1)^(m+1) sin(m t).
+// Layout: each band is held in four classes by its parities under the mirrors x -> -x and
+// y -> -y (cos(m phi) and sin(m phi), each for even and for odd m, indexed by m). X keeps the
+// first parity and carries the second to z -> -z, so it sends each class onto one class: four
+// dense blocks of about (l/2 + 1)^2 (X's other entries, three quarters of them, are zero),
+// applied as packs of rows (pack.h); a turn is elementwise on the (cos, sin) pairs of classes.
 //
 // The angles are never formed: (cos a, sin a) is R's last column in xy normalised (a = 0 at
 // gimbal lock, where any a works), Rz(-a) R = Ry(b) Rz(g) gives g's from its middle row and b's
@@ -21,14 +21,15 @@
 //
 // A call gathers a group of bands into class form in a local stage (one pass over the input),
 // rotates band by band there, with the block products unrolled over a band's packs at orders to
-// 32, and scatters the group back.
+// 64, and scatters the group back.
 //
 // Convention as Rotator. Accuracy: X to ~1e-15 (the recurrence), T's rounding over two band
 // products and three turns: float below 1e-6 on unit inputs at order 32 (tested). Cost per call:
-// 2 sum_l (l+1) ceil((l+1)/lanes) pack multiply-adds, ~12 N^2 lane operations for the turns, one
-// square root; no allocation.
+// 8 sum_l h ceil(h/lanes) pack multiply-adds (h = l/2 + 1), ~12 N^2 lane operations for the
+// turns, one square root; no allocation.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <stdexcept>
@@ -76,6 +77,7 @@ class ZxzxzRotation {
  public:
   using P = Pack<T>;
   static constexpr int kLanes = P::kLanes;
+  static_assert(kLanes % 4 == 0, "a pack holds whole quads");
 
   ZxzxzRotation() = default;
   // Any order 1..kMaxZxzxzOrder; throws std::invalid_argument for any other.
@@ -85,29 +87,27 @@ class ZxzxzRotation {
                                   std::to_string(kMaxZxzxzOrder));
     const std::vector<std::vector<long double>> x = quarter_turn_bands<long double>(order);
     offset_.assign(order + 1, 0);
-    for (int l = 0; l < order; ++l) offset_[l + 1] = offset_[l] + 2 * (l + 1) * packs(l);
-    // Band l's class-k block, column j, row i at lanes[(offset_[l] + (k (l+1) + j) packs(l)) kLanes + i].
+    for (int l = 0; l < order; ++l) offset_[l + 1] = offset_[l] + 2 * quads(l) * packs(l);
+    // Band l's quarter turn `second` (0: from layout L, 1: back to it), column j (input quad j),
+    // lane e (output quad e / 4, place e % 4) at lanes[(offset_[l] + (second quads(l) + j) packs(l))
+    // kLanes + e]. Place q of the first's output holds class partner(l, q), which comes from class
+    // q of its input; the second undoes that.
     std::vector<T> lanes(std::size_t(offset_[order]) * kLanes, T(0));
     for (int l = 1; l < order; ++l)
-      for (int k = 0; k < 2; ++k)
-        for (int j = 0; j <= l; ++j)
-          for (int i = 0; i <= l; ++i) {
-            const int row = position(l, k, i), col = position(l, k, j);
+      for (int second = 0; second < 2; ++second)
+        for (int j = 0; j < quads(l); ++j)
+          for (int e = 0; e < 4 * quads(l); ++e) {
+            const int q = e % 4, out_class = second ? q : partner(l, q), in_class = second ? partner(l, q) : q;
+            const int row = position(l, out_class, e / 4), col = position(l, in_class, j);
             if (row >= 0 && col >= 0)
-              lanes[std::size_t(offset_[l] + (k * (l + 1) + j) * packs(l)) * kLanes + i] = T(x[l][row * (2 * l + 1) + col]);
+              lanes[std::size_t(offset_[l] + (second * quads(l) + j) * packs(l)) * kLanes + e] =
+                  T(x[l][row * (2 * l + 1) + col]);
           }
     blocks_.reserve(offset_[order]);
     for (int p = 0; p < offset_[order]; ++p) blocks_.push_back(P::load(&lanes[std::size_t(p) * kLanes]));
-    // Band l's classes, padded to whole packs, at stage positions [class_begin_[l], class_begin_[l + 1]):
-    // E then O, packs(l) kLanes values each; input i (band l, i >= 1) at class_slot_[i].
-    class_begin_.assign(order + 1, 0);
-    class_slot_.assign(std::size_t(order) * order, 0);
-    for (int l = 1; l < order; ++l) {
-      class_begin_[l + 1] = class_begin_[l] + 2 * packs(l) * kLanes;
-      for (int k = 0; k < 2; ++k)
-        for (int m = 0; m <= l; ++m)
-          if (position(l, k, m) >= 0) class_slot_[l * l + position(l, k, m)] = class_begin_[l] + k * packs(l) * kLanes + m;
-    }
+    // Band l in layout L, padded to whole packs, at stage positions [band_begin_[l], band_begin_[l + 1]).
+    band_begin_.assign(order + 1, 0);
+    for (int l = 1; l < order; ++l) band_begin_[l + 1] = band_begin_[l] + packs(l) * kLanes;
   }
 
   int order() const { return order_; }
@@ -117,21 +117,24 @@ class ZxzxzRotation {
   void rotate(const T r[9], const T* in, T* out, int channels) const {
     double rd[9];
     for (int i = 0; i < 9; ++i) rd[i] = double(r[i]);
-    // The turns in the order applied: g, then b + pi and a + pi (the signs (-1)^m), in class form
-    // padded to whole packs.
-    double c[3][kMaxZxzxzOrder], s[3][kMaxZxzxzOrder];
-    zyz_multiples(rd, order_, c[2], s[2], c[1], s[1], c[0], s[0]);
-    constexpr int kPacks = (kMaxZxzxzOrder + kLanes - 1) / kLanes;
-    const int used = packs(order_ - 1);
-    P cos_turn[3][kPacks], sin_turn[3][kPacks];
-    for (int k = 0; k < 3; ++k) {
-      T cs[kPacks * kLanes], sn[kPacks * kLanes];
-      for (int m = 0; m < used * kLanes; ++m) {
-        const double shift = k > 0 && m % 2 ? -1.0 : 1.0;
-        cs[m] = m < order_ ? T(shift * c[k][m]) : T(0);
-        sn[m] = m < order_ ? T((m % 2 ? shift : -shift) * s[k][m]) : T(0);
-      }
-      for (int p = 0; p < used; ++p) cos_turn[k][p] = P::load(cs + p * kLanes), sin_turn[k][p] = P::load(sn + p * kLanes);
+    // The angles' multiples, zero past the order to the last quad's m + 1.
+    const int quads_used = packs(order_ - 1) * kLanes / 4;
+    double c[3][2 * kMaxQuads], s[3][2 * kMaxQuads];
+    zyz_multiples(rd, order_, c[0], s[0], c[1], s[1], c[2], s[2]);
+    for (int k = 0; k < 3; ++k)
+      for (int m = order_; m < 2 * quads_used; ++m) c[k][m] = s[k][m] = 0;
+    // Each lane's factors, by the class at its place (layout L for g and a, L' for b) and its m;
+    // b + pi and a + pi carry the sign (-1)^m.
+    alignas(64) Turns turns;
+    for (int j = 0; j < quads_used; ++j) {
+      const int m = 2 * j;
+      const T g0 = T(c[2][m]), g1 = T(c[2][m + 1]), gs0 = T(s[2][m]), gs1 = T(s[2][m + 1]);
+      const T a0 = T(c[0][m]), a1 = T(-c[0][m + 1]), as0 = T(s[0][m]), as1 = T(-s[0][m + 1]);
+      const T b0 = T(c[1][m]), b1 = T(-c[1][m + 1]), bs0 = T(s[1][m]), bs1 = T(-s[1][m + 1]);
+      quad(turns, kTurnG, j, {g0, g0, g1, g1}, {-gs0, gs0, -gs1, gs1});
+      quad(turns, kTurnBEven, j, {b0, b1, b0, b1}, {-bs0, -bs1, bs0, bs1});
+      quad(turns, kTurnBOdd, j, {b1, b0, b1, b0}, {bs1, bs0, -bs1, -bs0});
+      quad(turns, kTurnA, j, {a0, a0, a1, a1}, {-as0, as0, -as1, as1});
     }
     const int n = order_ * order_;
     T stage[kStageValues];
@@ -139,118 +142,152 @@ class ZxzxzRotation {
       const T* f = in + ch * n;
       T* o = out + ch * n;
       o[0] = f[0];
-      // Bands in groups whose classes fit the stage: all of a group's inputs are gathered into
-      // class order before its first band is loaded as packs (a pack loaded right after its lanes'
-      // scalar stores waits for them), the bands rotated there, then scattered back.
+      // Bands in groups that fit the stage: all of a group's inputs are gathered into layout L
+      // before its first band is loaded as packs (a pack loaded right after its lanes' scalar
+      // stores waits for them), the bands rotated there, then scattered back.
       for (int first = 1, last = 1; first < order_; first = last) {
-        while (last < order_ && class_begin_[last + 1] - class_begin_[first] <= kStageValues) ++last;
-        const int begin = class_begin_[first], values = class_begin_[last] - begin;
-        const int* slot = class_slot_.data();
-        for (int i = 0; i < values; ++i) stage[i] = T(0);  // padding and O_0
-        for (int i = first * first; i < last * last; ++i) stage[slot[i] - begin] = f[i];
+        while (last < order_ && band_begin_[last + 1] - band_begin_[first] <= kStageValues) ++last;
+        const int begin = band_begin_[first];
         for (int l = first; l < last; ++l) {
-          T* band = stage + class_begin_[l] - begin;
+          // Layout L is the pairs (cos m phi, sin m phi) of m = 0..l, then zeros.
+          T* band = stage + band_begin_[l] - begin;
+          const T* centre = f + l * l + l;
+          for (int m = 0; m <= l; ++m) band[2 * m] = centre[m], band[2 * m + 1] = centre[-m];
+          band[1] = T(0);
+          for (int i = 2 * l + 2; i < packs(l) * kLanes; ++i) band[i] = T(0);
+        }
+        for (int l = first; l < last; ++l) {
+          T* band = stage + band_begin_[l] - begin;
           switch (packs(l)) {
-            case 1: rotate_band<1>(l, band, cos_turn, sin_turn); break;
-            case 2: rotate_band<2>(l, band, cos_turn, sin_turn); break;
-            case 3: rotate_band<3>(l, band, cos_turn, sin_turn); break;
-            case 4: rotate_band<4>(l, band, cos_turn, sin_turn); break;
-            default: rotate_band<0>(l, band, cos_turn, sin_turn); break;
+            case 1: rotate_band<1>(l, band, turns); break;
+            case 2: rotate_band<2>(l, band, turns); break;
+            case 3: rotate_band<3>(l, band, turns); break;
+            case 4: rotate_band<4>(l, band, turns); break;
+            case 5: rotate_band<5>(l, band, turns); break;
+            case 6: rotate_band<6>(l, band, turns); break;
+            case 7: rotate_band<7>(l, band, turns); break;
+            case 8: rotate_band<8>(l, band, turns); break;
+            default: rotate_band<0>(l, band, turns); break;
           }
         }
-        for (int i = first * first; i < last * last; ++i) o[i] = stage[slot[i] - begin];
+        for (int l = first; l < last; ++l) {
+          const T* band = stage + band_begin_[l] - begin;
+          T* centre = o + l * l + l;
+          centre[0] = band[0];
+          for (int m = 1; m <= l; ++m) centre[m] = band[2 * m], centre[-m] = band[2 * m + 1];
+        }
       }
     }
   }
 
  private:
-  static int packs(int l) { return (l + 1 + kLanes - 1) / kLanes; }
-  // Where class k's element m of band l sits in the band (m + l), or -1 for O_0.
-  static int position(int l, int k, int m) {
-    const bool cosine = (m % 2 == 0) == (k == 0);
-    if (!cosine && m == 0) return -1;
+  // The mirrors x -> -x and y -> -y split a band into four classes: 0 cos(m phi) and 1 sin(m phi)
+  // for even m, 2 cos(m phi) and 3 sin(m phi) for odd m. Quad j holds m = 2j and 2j + 1, in
+  // layout L class k at place k (sin(0 phi) and m > l are zeros), so a quad is what X mixes and a
+  // turn mixes neighbours within it.
+  static int quads(int l) { return l / 2 + 1; }
+  static int packs(int l) { return (4 * quads(l) + kLanes - 1) / kLanes; }
+  static constexpr int kMaxQuads = (kMaxZxzxzOrder - 1) / 2 + 1;
+  static constexpr int kMaxPacks = (4 * kMaxQuads + kLanes - 1) / kLanes;
+  // Where class k's quad j of band l sits in the band (m + l), or -1 for sin(0 phi) and m > l.
+  static int position(int l, int k, int j) {
+    const int m = 2 * j + k / 2;
+    const bool cosine = k % 2 == 0;
+    if (m > l || (!cosine && m == 0)) return -1;
     return cosine ? l + m : l - m;
   }
-  // Stage for rotate's band groups, in values: the largest band's classes (2 x 16 packs at order
-  // 128) and more; 16 KiB of floats.
+  // X keeps a function's parity under x -> -x and carries its parity under y -> -y to z -> -z
+  // (Rx(90) Sy Rx(90)^T = Sz); y_l^m's z-parity is (-1)^(l+m). So class k of X f comes from class
+  // partner(l, k) of f alone, a swap of two classes fixed by l's parity; in the layout X leaves,
+  // L' (place q holds class partner(l, q)), a class's turn partner is two places away.
+  static int partner(int l, int k) {
+    static constexpr int kEven[4] = {0, 2, 1, 3}, kOdd[4] = {3, 1, 2, 0};
+    return l % 2 == 0 ? kEven[k] : kOdd[k];
+  }
+  // A turn's lane factors: out = cos * v + sin * (v with each class's partner swapped in).
+  enum TurnIndex { kTurnG, kTurnBEven, kTurnBOdd, kTurnA, kTurns };
+  struct Turns {
+    T cos[kTurns][kMaxPacks * kLanes], sin[kTurns][kMaxPacks * kLanes];
+  };
+  static void quad(Turns& turns, int which, int j, const std::array<T, 4>& cos, const std::array<T, 4>& sin) {
+    for (int q = 0; q < 4; ++q) turns.cos[which][4 * j + q] = cos[q], turns.sin[which][4 * j + q] = sin[q];
+  }
+  // Stage for rotate's band groups, in values: the largest band (4 x 64 values at order 128) and
+  // more; 16 KiB of floats.
   static constexpr int kStageValues = 4096;
-  static_assert(kStageValues >= 2 * ((kMaxZxzxzOrder + kLanes - 1) / kLanes) * kLanes, "a band fits the stage");
+  static_assert(kStageValues >= kMaxPacks * kLanes, "a band fits the stage");
 
-  // One band in class form (E then O, count packs each) through the three turns and two quarter
-  // turns; Count = packs(l) known to the compiler (1..4: orders to 32) or 0 (read at run time).
-  template <int Count, class Turns>
-  void rotate_band(int l, T* band, const Turns& cos_turn, const Turns& sin_turn) const {
-    constexpr int kPacks = (kMaxZxzxzOrder + kLanes - 1) / kLanes;
-    const int count = Count > 0 ? Count : packs(l);
-    P e[Count > 0 ? Count : kPacks], q[Count > 0 ? Count : kPacks];
-    for (int p = 0; p < count; ++p) e[p] = P::load(band + p * kLanes), q[p] = P::load(band + (count + p) * kLanes);
-    turn(count, cos_turn[0], sin_turn[0], e, q);
-    quarter_turn<Count>(l, band, e, 0);
-    quarter_turn<Count>(l, band, q, 1);
-    turn(count, cos_turn[1], sin_turn[1], e, q);
-    quarter_turn<Count>(l, band, e, 0);
-    quarter_turn<Count>(l, band, q, 1);
-    turn(count, cos_turn[2], sin_turn[2], e, q);
-    for (int p = 0; p < count; ++p) e[p].store(band + p * kLanes), q[p].store(band + (count + p) * kLanes);
-  }
-  static void turn(int count, const P* c, const P* s, P* e, P* q) {
-    for (int p = 0; p < count; ++p) {
-      const P x = e[p], y = q[p];
-      e[p] = c[p] * x + s[p] * y;
-      q[p] = c[p] * y - s[p] * x;
-    }
-  }
-  // Class k of band l through its block, in place: out = sum_j column_j * in_j, the class's values
-  // passing through scratch to be broadcast one by one. With Count packs known, each broadcast
-  // serves all packs and Count x kChains independent sums (8 where registers allow) keep both
-  // multiply-add pipes busy; otherwise four sums per pack.
+  // One band in layout L (count packs) through the three turns and two quarter turns; Count =
+  // packs(l) known to the compiler (1..8: float to order 32) or 0 (read at run time).
   template <int Count>
-  void quarter_turn(int l, T* scratch, P* packs_of_class, int k) const {
+  void rotate_band(int l, T* band, const Turns& turns) const {
     const int count = Count > 0 ? Count : packs(l);
-    for (int p = 0; p < count; ++p) packs_of_class[p].store(scratch + p * kLanes);
-    const P* block = blocks_.data() + offset_[l] + k * (l + 1) * count;
+    P v[Count > 0 ? Count : kMaxPacks];
+    for (int p = 0; p < count; ++p) v[p] = P::load(band + p * kLanes);
+    turn<1>(count, turns, kTurnG, v);
+    quarter_turn<Count>(l, band, v, 0);
+    turn<2>(count, turns, l % 2 ? kTurnBOdd : kTurnBEven, v);
+    quarter_turn<Count>(l, band, v, 1);
+    turn<1>(count, turns, kTurnA, v);
+    for (int p = 0; p < count; ++p) v[p].store(band + p * kLanes);
+  }
+  // (cos, sin) weights (x, y) -> (x cos mt - y sin mt, x sin mt + y cos mt): g(phi) = f(phi - t);
+  // the partners kFlip places apart (1 in layout L, 2 in L').
+  template <int kFlip>
+  static void turn(int count, const Turns& turns, int which, P* v) {
+    for (int p = 0; p < count; ++p)
+      v[p] = P::load(turns.cos[which] + p * kLanes) * v[p] + P::load(turns.sin[which] + p * kLanes) * v[p].template flip4<kFlip>();
+  }
+  // The band through X: out = sum_j column_j * quad j of the input, the input passing through
+  // scratch so that each quad is broadcast to every group of four lanes. With Count packs known
+  // each broadcast serves all packs, and interleaved halves of the columns add sums where
+  // Count is small; otherwise four sums per pack.
+  template <int Count>
+  void quarter_turn(int l, T* scratch, P* v, int second) const {
+    const int count = Count > 0 ? Count : packs(l), h = quads(l);
+    for (int p = 0; p < count; ++p) v[p].store(scratch + p * kLanes);
+    const P* block = blocks_.data() + offset_[l] + second * h * count;
     if constexpr (Count > 0) {
-      constexpr int kChains = Count >= 4 ? 2 : 8 / Count;
-      P sum[kChains][Count];
-      for (int u = 0; u < kChains; ++u)
-        for (int p = 0; p < Count; ++p) sum[u][p] = P(0.0);
+      constexpr int kSplit = Count <= 4 ? 2 : 1;
+      P sum[kSplit][Count];
+      for (auto& a : sum)
+        for (P& x : a) x = P(0.0);
       int j = 0;
-      for (; j + kChains <= l + 1; j += kChains)
-        for (int u = 0; u < kChains; ++u) {
-          const P x = P::broadcast(scratch[j + u]);
+      for (; j + kSplit <= h; j += kSplit)
+        for (int u = 0; u < kSplit; ++u) {
+          const P x = P::broadcast4(scratch + 4 * (j + u));
           for (int p = 0; p < Count; ++p) sum[u][p] += block[(j + u) * Count + p] * x;
         }
-      for (; j <= l; ++j) {
-        const P x = P::broadcast(scratch[j]);
+      for (; j < h; ++j) {
+        const P x = P::broadcast4(scratch + 4 * j);
         for (int p = 0; p < Count; ++p) sum[0][p] += block[j * Count + p] * x;
       }
       for (int p = 0; p < Count; ++p) {
         P total = sum[0][p];
-        for (int u = 1; u < kChains; ++u) total += sum[u][p];
-        packs_of_class[p] = total;
+        for (int u = 1; u < kSplit; ++u) total += sum[u][p];
+        v[p] = total;
       }
     } else {
       for (int p = 0; p < count; ++p) {
         const P* column = block + p;
         P s0(0.0), s1(0.0), s2(0.0), s3(0.0);
         int j = 0;
-        for (; j + 3 <= l; j += 4) {
-          s0 += column[j * count] * P::broadcast(scratch[j]);
-          s1 += column[(j + 1) * count] * P::broadcast(scratch[j + 1]);
-          s2 += column[(j + 2) * count] * P::broadcast(scratch[j + 2]);
-          s3 += column[(j + 3) * count] * P::broadcast(scratch[j + 3]);
+        for (; j + 4 <= h; j += 4) {
+          s0 += column[j * count] * P::broadcast4(scratch + 4 * j);
+          s1 += column[(j + 1) * count] * P::broadcast4(scratch + 4 * (j + 1));
+          s2 += column[(j + 2) * count] * P::broadcast4(scratch + 4 * (j + 2));
+          s3 += column[(j + 3) * count] * P::broadcast4(scratch + 4 * (j + 3));
         }
-        for (; j <= l; ++j) s0 += column[j * count] * P::broadcast(scratch[j]);
-        packs_of_class[p] = (s0 + s1) + (s2 + s3);
+        for (; j < h; ++j) s0 += column[j * count] * P::broadcast4(scratch + 4 * j);
+        v[p] = (s0 + s1) + (s2 + s3);
       }
     }
   }
 
   int order_ = 0;
-  std::vector<int> offset_;   // band l's blocks start at offset_[l] (packs)
-  std::vector<P> blocks_;     // per band: class E then O, (l+1) columns of packs(l) packs each
-  std::vector<int> class_begin_;  // band l's classes in a stage of all bands (values)
-  std::vector<int> class_slot_;   // input i's place in that stage
+  std::vector<int> offset_;      // band l's blocks start at offset_[l] (packs)
+  std::vector<P> blocks_;        // per band: the two quarter turns, quads(l) columns of packs(l) packs each
+  std::vector<int> band_begin_;  // band l in a stage of all bands (values)
 };
 
 }  // namespace zhf::runtime
