@@ -32,6 +32,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -90,14 +91,14 @@ class ZxzxzRotation {
     for (int l = 0; l < order; ++l) offset_[l + 1] = offset_[l] + 2 * quads(l) * packs(l);
     // Band l's quarter turn `second` (0: from layout L, 1: back to it), column j (input quad j),
     // lane e (output quad e / 4, place e % 4) at lanes[(offset_[l] + (second quads(l) + j) packs(l))
-    // kLanes + e]. Place q of the first's output holds class partner(l, q), which comes from class
-    // q of its input; the second undoes that.
+    // kLanes + e]. Place q of the first's output holds class partner(l, kPlaceClass[q]), which comes
+    // from the input's class at q; the second undoes that.
     std::vector<T> lanes(std::size_t(offset_[order]) * kLanes, T(0));
     for (int l = 1; l < order; ++l)
       for (int second = 0; second < 2; ++second)
         for (int j = 0; j < quads(l); ++j)
           for (int e = 0; e < 4 * quads(l); ++e) {
-            const int q = e % 4, out_class = second ? q : partner(l, q), in_class = second ? partner(l, q) : q;
+            const int k = kPlaceClass[e % 4], out_class = second ? k : partner(l, k), in_class = second ? partner(l, k) : k;
             const int row = position(l, out_class, e / 4), col = position(l, in_class, j);
             if (row >= 0 && col >= 0)
               lanes[std::size_t(offset_[l] + (second * quads(l) + j) * packs(l)) * kLanes + e] =
@@ -124,17 +125,17 @@ class ZxzxzRotation {
     for (int k = 0; k < 3; ++k)
       for (int m = order_; m < 2 * quads_used; ++m) c[k][m] = s[k][m] = 0;
     // Each lane's factors, by the class at its place (layout L for g and a, L' for b) and its m;
-    // b + pi and a + pi carry the sign (-1)^m.
+    // b + pi and a + pi carry the sign (-1)^m. Cosines' lanes take -sin, sines' +sin.
     alignas(64) Turns turns;
     for (int j = 0; j < quads_used; ++j) {
       const int m = 2 * j;
       const T g0 = T(c[2][m]), g1 = T(c[2][m + 1]), gs0 = T(s[2][m]), gs1 = T(s[2][m + 1]);
       const T a0 = T(c[0][m]), a1 = T(-c[0][m + 1]), as0 = T(s[0][m]), as1 = T(-s[0][m + 1]);
       const T b0 = T(c[1][m]), b1 = T(-c[1][m + 1]), bs0 = T(s[1][m]), bs1 = T(-s[1][m + 1]);
-      quad(turns, kTurnG, j, {g0, g0, g1, g1}, {-gs0, gs0, -gs1, gs1});
-      quad(turns, kTurnBEven, j, {b0, b1, b0, b1}, {-bs0, -bs1, bs0, bs1});
-      quad(turns, kTurnBOdd, j, {b1, b0, b1, b0}, {bs1, bs0, -bs1, -bs0});
-      quad(turns, kTurnA, j, {a0, a0, a1, a1}, {-as0, as0, -as1, as1});
+      quad(turns, kTurnG, j, {g0, g1, g1, g0}, {-gs0, -gs1, gs1, gs0});        // L: classes 0 2 3 1
+      quad(turns, kTurnBEven, j, {b0, b0, b1, b1}, {-bs0, bs0, bs1, -bs1});    // L', even l: 0 1 3 2
+      quad(turns, kTurnBOdd, j, {b1, b1, b0, b0}, {bs1, -bs1, -bs0, bs0});     // L', odd l: 3 2 0 1
+      quad(turns, kTurnA, j, {a0, a1, a1, a0}, {-as0, -as1, as1, as0});
     }
     const int n = order_ * order_;
     T stage[kStageValues];
@@ -148,14 +149,7 @@ class ZxzxzRotation {
       for (int first = 1, last = 1; first < order_; first = last) {
         while (last < order_ && band_begin_[last + 1] - band_begin_[first] <= kStageValues) ++last;
         const int begin = band_begin_[first];
-        for (int l = first; l < last; ++l) {
-          // Layout L is the pairs (cos m phi, sin m phi) of m = 0..l, then zeros.
-          T* band = stage + band_begin_[l] - begin;
-          const T* centre = f + l * l + l;
-          for (int m = 0; m <= l; ++m) band[2 * m] = centre[m], band[2 * m + 1] = centre[-m];
-          band[1] = T(0);
-          for (int i = 2 * l + 2; i < packs(l) * kLanes; ++i) band[i] = T(0);
-        }
+        for (int l = first; l < last; ++l) gather(l, f + l * l + l, stage + band_begin_[l] - begin);
         for (int l = first; l < last; ++l) {
           T* band = stage + band_begin_[l] - begin;
           switch (packs(l)) {
@@ -170,12 +164,7 @@ class ZxzxzRotation {
             default: rotate_band<0>(l, band, turns); break;
           }
         }
-        for (int l = first; l < last; ++l) {
-          const T* band = stage + band_begin_[l] - begin;
-          T* centre = o + l * l + l;
-          centre[0] = band[0];
-          for (int m = 1; m <= l; ++m) centre[m] = band[2 * m], centre[-m] = band[2 * m + 1];
-        }
+        for (int l = first; l < last; ++l) scatter(l, stage + band_begin_[l] - begin, o + l * l + l);
       }
     }
   }
@@ -183,8 +172,9 @@ class ZxzxzRotation {
  private:
   // The mirrors x -> -x and y -> -y split a band into four classes: 0 cos(m phi) and 1 sin(m phi)
   // for even m, 2 cos(m phi) and 3 sin(m phi) for odd m. Quad j holds m = 2j and 2j + 1, in
-  // layout L class k at place k (sin(0 phi) and m > l are zeros), so a quad is what X mixes and a
-  // turn mixes neighbours within it.
+  // layout L as cos 2j, cos(2j + 1), sin(2j + 1), sin 2j (sin(0 phi) and m > l are zeros): two
+  // runs of the input band each (f_{l,m} is at m + l), and what X mixes; a turn mixes the two
+  // ends and the two middles.
   static int quads(int l) { return l / 2 + 1; }
   static int packs(int l) { return (4 * quads(l) + kLanes - 1) / kLanes; }
   static constexpr int kMaxQuads = (kMaxZxzxzOrder - 1) / 2 + 1;
@@ -196,10 +186,33 @@ class ZxzxzRotation {
     if (m > l || (!cosine && m == 0)) return -1;
     return cosine ? l + m : l - m;
   }
+  static constexpr int kPlaceClass[4] = {0, 2, 3, 1};
+  // Band l (centre[m] = f_{l,m}) into layout L, zeros to the end of its packs: a pair of values per
+  // copy; the last quad of an even l has m = l alone (reading m = l + 1 would leave the band).
+  static void gather(int l, const T* centre, T* band) {
+    const int pairs = (l + 1) / 2;
+    for (int j = 0; j < pairs; ++j) {
+      std::memcpy(band + 4 * j, centre + 2 * j, 2 * sizeof(T));
+      std::memcpy(band + 4 * j + 2, centre - 2 * j - 1, 2 * sizeof(T));
+    }
+    band[3] = T(0);  // sin(0 phi): the copy brought f_{l,0}
+    int end = 4 * pairs;
+    if (l % 2 == 0) band[end] = centre[l], band[end + 1] = band[end + 2] = T(0), band[end + 3] = centre[-l], end += 4;
+    for (int i = end; i < packs(l) * kLanes; ++i) band[i] = T(0);
+  }
+  // Back from layout L: each quad's sines first, so that f_{l,0} comes from its cosine's place.
+  static void scatter(int l, const T* band, T* centre) {
+    const int pairs = (l + 1) / 2;
+    for (int j = 0; j < pairs; ++j) {
+      std::memcpy(centre - 2 * j - 1, band + 4 * j + 2, 2 * sizeof(T));
+      std::memcpy(centre + 2 * j, band + 4 * j, 2 * sizeof(T));
+    }
+    if (l % 2 == 0) centre[l] = band[4 * pairs], centre[-l] = band[4 * pairs + 3];
+  }
   // X keeps a function's parity under x -> -x and carries its parity under y -> -y to z -> -z
   // (Rx(90) Sy Rx(90)^T = Sz); y_l^m's z-parity is (-1)^(l+m). So class k of X f comes from class
   // partner(l, k) of f alone, a swap of two classes fixed by l's parity; in the layout X leaves,
-  // L' (place q holds class partner(l, q)), a class's turn partner is two places away.
+  // L' (place q holds class partner(l, kPlaceClass[q])), a class's turn partner is its neighbour.
   static int partner(int l, int k) {
     static constexpr int kEven[4] = {0, 2, 1, 3}, kOdd[4] = {3, 1, 2, 0};
     return l % 2 == 0 ? kEven[k] : kOdd[k];
@@ -224,15 +237,15 @@ class ZxzxzRotation {
     const int count = Count > 0 ? Count : packs(l);
     P v[Count > 0 ? Count : kMaxPacks];
     for (int p = 0; p < count; ++p) v[p] = P::load(band + p * kLanes);
-    turn<1>(count, turns, kTurnG, v);
+    turn<3>(count, turns, kTurnG, v);
     quarter_turn<Count>(l, band, v, 0);
-    turn<2>(count, turns, l % 2 ? kTurnBOdd : kTurnBEven, v);
+    turn<1>(count, turns, l % 2 ? kTurnBOdd : kTurnBEven, v);
     quarter_turn<Count>(l, band, v, 1);
-    turn<1>(count, turns, kTurnA, v);
+    turn<3>(count, turns, kTurnA, v);
     for (int p = 0; p < count; ++p) v[p].store(band + p * kLanes);
   }
   // (cos, sin) weights (x, y) -> (x cos mt - y sin mt, x sin mt + y cos mt): g(phi) = f(phi - t);
-  // the partners kFlip places apart (1 in layout L, 2 in L').
+  // the partners at place q ^ kFlip (3 in layout L, 1 in L').
   template <int kFlip>
   static void turn(int count, const Turns& turns, int which, P* v) {
     for (int p = 0; p < count; ++p)
