@@ -94,12 +94,15 @@ struct Pack {
     for (int i = 0; i < kLanes; ++i) r.v[i] = T(1) / std::sqrt(x.v[i]);
     return r;
   }
-  // Groups of four lanes, for layouts that keep four related values side by side (zxzxz's classes).
+  // Groups of four lanes, for layouts that keep four related values side by side (zxzxz's quads).
+  // With AVX each is one instruction; without it a 32-byte pack is two SSE registers, and the
+  // full-width shuffles would go lane by lane through memory, so each half is handled alone.
   // Every group holds p[0..3].
   static Pack broadcast4(const T* p) {
     static_assert(kLanes % 4 == 0, "whole groups of four");
+    if constexpr (kLanes == 4) return load(p);
     Pack r;
-#if defined(__GNUC__) && (defined(__clang__) || __GNUC__ >= 12)
+#if defined(__GNUC__) && defined(__AVX__) && (defined(__clang__) || __GNUC__ >= 12)
     if constexpr (kLanes == 8) {
       typedef T Quad __attribute__((vector_size(4 * sizeof(T))));
       Quad q;
@@ -108,7 +111,7 @@ struct Pack {
       return r;
     }
 #endif
-    for (int i = 0; i < kLanes; ++i) r.v[i] = p[i % 4];
+    for (int g = 0; g < kLanes / 4; ++g) std::memcpy(reinterpret_cast<char*>(&r.v) + g * 4 * sizeof(T), p, 4 * sizeof(T));
     return r;
   }
   // Lane i takes lane i ^ kFlip within its group of four: 1 swaps neighbours, 2 swaps the halves.
@@ -117,6 +120,7 @@ struct Pack {
     static_assert(kLanes % 4 == 0 && kFlip > 0 && kFlip < 4, "a permutation within groups of four");
     Pack r;
 #if defined(__GNUC__) && (defined(__clang__) || __GNUC__ >= 12)
+#if defined(__AVX__)
     if constexpr (kLanes == 8) {
       r.v = __builtin_shufflevector(v, v, 0 ^ kFlip, 1 ^ kFlip, 2 ^ kFlip, 3 ^ kFlip, 4 ^ kFlip, 5 ^ kFlip, 6 ^ kFlip, 7 ^ kFlip);
       return r;
@@ -124,6 +128,23 @@ struct Pack {
       r.v = __builtin_shufflevector(v, v, 0 ^ kFlip, 1 ^ kFlip, 2 ^ kFlip, 3 ^ kFlip);
       return r;
     }
+#else
+    if constexpr (kBytes == 32 && (kLanes == 8 || kLanes == 4)) {
+      // Half k of the result is half k ^ (kFlip >= kLanes / 2) of this, permuted by kFlip % (kLanes / 2).
+      typedef T Half __attribute__((vector_size(16)));
+      Half h[2], out[2];
+      std::memcpy(h, &v, sizeof h);
+      constexpr int kAcross = kFlip >= kLanes / 2, kWithin = kFlip % (kLanes / 2);
+      for (int k = 0; k < 2; ++k) {
+        if constexpr (kLanes == 8)
+          out[k] = __builtin_shufflevector(h[k ^ kAcross], h[k ^ kAcross], 0 ^ kWithin, 1 ^ kWithin, 2 ^ kWithin, 3 ^ kWithin);
+        else
+          out[k] = __builtin_shufflevector(h[k ^ kAcross], h[k ^ kAcross], 0 ^ kWithin, 1 ^ kWithin);
+      }
+      std::memcpy(&r.v, out, sizeof out);
+      return r;
+    }
+#endif
 #endif
     for (int i = 0; i < kLanes; ++i) r.v[i] = v[i ^ kFlip];
     return r;
