@@ -19,9 +19,9 @@
 // gimbal lock, where any a works), Rz(-a) R = Ry(b) Rz(g) gives g's from its middle row and b's
 // are (R_22, |column in xy|); their multiples by doubling and angle addition, in double.
 //
-// A call gathers a group of bands into class form in a local stage (one pass over the input),
-// rotates band by band there, with the block products unrolled over a band's packs at orders to
-// 64, and scatters the group back.
+// A call gathers a group of bands into quads in a local stage (one pass over the input), rotates
+// band by band there, with the block products unrolled over a band's 1..8 packs (float to order
+// 32, double to 16), and scatters the group back.
 //
 // Convention as Rotator. Accuracy: X to ~1e-15 (the recurrence), T's rounding over two band
 // products and three turns: float below 1e-6 on unit inputs at order 32 (tested). Cost per call:
