@@ -120,7 +120,7 @@ class ZxzxzRotation {
     for (int i = 0; i < 9; ++i) rd[i] = double(r[i]);
     // The angles' multiples, zero past the order to the last quad's m + 1.
     const int quads_used = packs(order_ - 1) * kLanes / 4;
-    double c[3][2 * kMaxQuads], s[3][2 * kMaxQuads];
+    double c[3][2 * kQuadCapacity], s[3][2 * kQuadCapacity];
     zyz_multiples(rd, order_, c[0], s[0], c[1], s[1], c[2], s[2]);
     for (int k = 0; k < 3; ++k)
       for (int m = order_; m < 2 * quads_used; ++m) c[k][m] = s[k][m] = 0;
@@ -177,8 +177,9 @@ class ZxzxzRotation {
   // ends and the two middles.
   static int quads(int l) { return l / 2 + 1; }
   static int packs(int l) { return (4 * quads(l) + kLanes - 1) / kLanes; }
-  static constexpr int kMaxQuads = (kMaxZxzxzOrder - 1) / 2 + 1;
-  static constexpr int kMaxPacks = (4 * kMaxQuads + kLanes - 1) / kLanes;
+  // Quads and packs of the largest band, l = kMaxZxzxzOrder - 1: the sizes of the local arrays.
+  static constexpr int kQuadCapacity = (kMaxZxzxzOrder - 1) / 2 + 1;
+  static constexpr int kPackCapacity = (4 * kQuadCapacity + kLanes - 1) / kLanes;
   // Where class k's quad j of band l sits in the band (m + l), or -1 for sin(0 phi) and m > l.
   static int position(int l, int k, int j) {
     const int m = 2 * j + k / 2;
@@ -220,7 +221,7 @@ class ZxzxzRotation {
   // A turn's lane factors: out = cos * v + sin * (v with each class's partner swapped in).
   enum TurnIndex { kTurnG, kTurnBEven, kTurnBOdd, kTurnA, kTurns };
   struct Turns {
-    T cos[kTurns][kMaxPacks * kLanes], sin[kTurns][kMaxPacks * kLanes];
+    T cos[kTurns][kPackCapacity * kLanes], sin[kTurns][kPackCapacity * kLanes];
   };
   static void quad(Turns& turns, int which, int j, const std::array<T, 4>& cos, const std::array<T, 4>& sin) {
     for (int q = 0; q < 4; ++q) turns.cos[which][4 * j + q] = cos[q], turns.sin[which][4 * j + q] = sin[q];
@@ -228,14 +229,14 @@ class ZxzxzRotation {
   // Stage for rotate's band groups, in values: the largest band (4 x 64 values at order 128) and
   // more; 16 KiB of floats.
   static constexpr int kStageValues = 4096;
-  static_assert(kStageValues >= kMaxPacks * kLanes, "a band fits the stage");
+  static_assert(kStageValues >= kPackCapacity * kLanes, "a band fits the stage");
 
   // One band in layout L (count packs) through the three turns and two quarter turns; Count =
   // packs(l) known to the compiler (1..8: float to order 32) or 0 (read at run time).
   template <int Count>
   void rotate_band(int l, T* band, const Turns& turns) const {
     const int count = Count > 0 ? Count : packs(l);
-    P v[Count > 0 ? Count : kMaxPacks];
+    P v[Count > 0 ? Count : kPackCapacity];
     for (int p = 0; p < count; ++p) v[p] = P::load(band + p * kLanes);
     turn<3>(count, turns, kTurnG, v);
     quarter_turn<Count>(l, band, v, 0);
