@@ -25,8 +25,8 @@
 //
 // Convention as Rotator. Accuracy: X to ~1e-15 (the recurrence), T's rounding over two band
 // products and three turns: float below 1e-6 on unit inputs at order 32 (tested). Cost per call:
-// 8 sum_l h ceil(h/lanes) pack multiply-adds (h = l/2 + 1), ~12 N^2 lane operations for the
-// turns, one square root; no allocation.
+// 2 sum_l h ceil(4h/lanes) pack multiply-adds (h = l/2 + 1 quads), 6 sum_l ceil(4h/lanes) pack
+// operations for the turns, one square root; no allocation.
 #pragma once
 
 #include <array>
@@ -226,8 +226,8 @@ class ZxzxzRotation {
   static void quad(Turns& turns, int which, int j, const std::array<T, 4>& cos, const std::array<T, 4>& sin) {
     for (int q = 0; q < 4; ++q) turns.cos[which][4 * j + q] = cos[q], turns.sin[which][4 * j + q] = sin[q];
   }
-  // Stage for rotate's band groups, in values: the largest band (4 x 64 values at order 128) and
-  // more; 16 KiB of floats.
+  // Stage for rotate's band groups, in values: the largest band (64 quads, 256 values, at order
+  // 128) and more; 16 KiB of floats.
   static constexpr int kStageValues = 4096;
   static_assert(kStageValues >= kPackCapacity * kLanes, "a band fits the stage");
 
