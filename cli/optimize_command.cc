@@ -49,6 +49,9 @@ void print_summary(const runtime::LobeTable& table) {
   }
   std::printf("  total %d/%d zeros (%.1f%% sparse), worst condition %.2f, %d multiplies\n", table.zeros, table.entries,
               100.0 * table.zeros / std::max(1, table.entries), table.worst_condition(), multiplies);
+  if (table.order <= runtime::kMaxEmitOrder)
+    std::printf("  rotate_order%d by lobes (zhf emit --method zhf): %d multiplies, %d of them depending on the lobe set\n",
+                table.order, codegen::lobe_rotation_multiplies(table), codegen::lobe_dependent_multiplies(table));
   for (const PaperFigure& p : kPaper)
     if (p.order == table.order && table.lobe_sharing)
       std::printf("  paper: %d zeros, worst condition %.2f\n", p.zeros, p.worst_condition);

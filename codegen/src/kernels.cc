@@ -236,12 +236,7 @@ class Builder {
       }
       std::vector<int> zhat(2 * l + 1);
       g.set_wide(false);  // the lobe weights only round once per term: float suffices
-      for (int d = 0; d < 2 * l + 1; ++d) {
-        std::vector<std::pair<double, int>> terms;
-        for (int k = 0; k < 2 * l + 1; ++k)
-          terms.push_back({band.inverse(k, d) * lobe_scale(band, d), g.input(in, base + k, channels)});
-        zhat[d] = g.linear(terms);
-      }
+      for (int d = 0; d < 2 * l + 1; ++d) zhat[d] = lobe_weight(g, band, d, [&](int k) { return g.input(in, base + k, channels); });
       g.set_wide(wide_lobes_);
       for (int m = -l; m <= l; ++m) {
         std::vector<std::pair<double, int>> terms;
@@ -337,9 +332,7 @@ class Builder {
         if (from_lobes) {
           zhat = g.scale(lobe_scale(band, d), g.input(light, base + d));
         } else {
-          std::vector<std::pair<double, int>> terms;
-          for (int k = 0; k < 2 * l + 1; ++k) terms.push_back({band.inverse(k, d) * lobe_scale(band, d), g.input(light, base + k)});
-          zhat = g.linear(terms);
+          zhat = lobe_weight(g, band, d, [&](int k) { return g.input(light, base + k); });
         }
         g.set_wide(wide_lobes_);
         std::vector<std::pair<double, int>> at_lobe;
@@ -427,6 +420,31 @@ class Builder {
     return f;
   }
 
+  // What of rotation(1, false) by lobes depends on the lobe set, built the same way on a graph of
+  // its own: the lobe weights zhat, R's projection where the stage has one, R u_d, and without
+  // lobe sharing the SH at R u_d. With sharing every lobe is a distinct direction (a repeat would
+  // make the top band singular), so their SH share nothing and cost the same for every set;
+  // without, one direction may serve several bands and its SH are then made once.
+  OpCount lobe_dependent_count() const {
+    Graph g;
+    std::vector<int> nodes;
+    g.set_wide(false);
+    for (const runtime::TableBand& band : table_.bands)
+      for (int d = 0; d < 2 * band.l + 1; ++d)
+        nodes.push_back(lobe_weight(g, band, d, [&](int k) { return g.input(1, band.l * band.l + k); }));
+    if (!table_.lobe_sharing) {
+      for (const std::vector<int>& h : lobe_polynomials(g, /*transpose=*/false, live_))
+        std::copy_if(h.begin(), h.end(), std::back_inserter(nodes), [](int node) { return node >= 0; });
+      return g.count(nodes);
+    }
+    const std::vector<int> r = lobe_rotation(g);
+    for (const Lobe& lobe : lobes_) {
+      const Vec3 v = rotate(g, r, lobe.scaled, /*transpose=*/false);
+      nodes.insert(nodes.end(), v.c, v.c + 3);
+    }
+    return g.count(nodes);
+  }
+
  private:
   static constexpr double kPi = 3.14159265358979323846;
 
@@ -495,6 +513,24 @@ class Builder {
     return std::pow(norm2(lobes_[band.lobes[d]].scaled), -0.5 * band.l);
   }
 
+  // zhat_{l,d} = sum_m (A_l[m][d] / |u_d|^l) f_{l,m}, f_{l,m} = input(m + l).
+  template <class Input>
+  int lobe_weight(Graph& g, const runtime::TableBand& band, int d, const Input& input) const {
+    std::vector<std::pair<double, int>> terms;
+    for (int k = 0; k < 2 * band.l + 1; ++k) terms.push_back({band.inverse(k, d) * lobe_scale(band, d), input(k)});
+    return g.linear(terms);
+  }
+
+  // R's nodes as the lobes are rotated by them: projected onto the rotations at LobeStage::kDouble.
+  // Leaves the graph at the rotation's width.
+  std::vector<int> lobe_rotation(Graph& g) const {
+    g.set_wide(wide_rotation_);
+    std::vector<int> r(9);
+    for (int i = 0; i < 9; ++i) r[i] = g.input(0, i);
+    return wide_lobes_ ? orthonormalized_rotation(g) : r;
+  }
+
+
   // y_l^m at the unit vector v for the bands marked, each times fold(l) (folded into the
   // constants); -1 elsewhere.
   template <class Fold = double (*)(int)>
@@ -536,10 +572,7 @@ class Builder {
   // wide too at kDouble. The graph is left at the SH's width: the caller narrows where float
   // suffices.
   std::vector<std::vector<int>> lobe_polynomials(Graph& g, bool transpose, const std::vector<bool>& bands) const {
-    g.set_wide(wide_rotation_);
-    std::vector<int> r(9);
-    for (int i = 0; i < 9; ++i) r[i] = g.input(0, i);
-    if (wide_lobes_) r = orthonormalized_rotation(g);
+    const std::vector<int> r = lobe_rotation(g);
     std::vector<std::vector<bool>> bands_of_lobe(lobes_.size(), std::vector<bool>(order_, false));
     for (const runtime::TableBand& band : table_.bands)
       if (bands[band.l])
@@ -849,17 +882,27 @@ std::vector<BandMethod> cheapest_band_methods(const Module& module, const Module
 
 }  // namespace
 
-Module build_module(const runtime::LobeTable& table, const ModuleOptions& options) {
-  Module module;
-  module.order = table.order;
-  module.table = table;
+namespace {
+
+std::vector<Lobe> lobes_of(const runtime::LobeTable& table) {
+  std::vector<Lobe> lobes;
   for (const runtime::TableLobe& t : table.lobes) {
     Lobe lobe;
     std::copy(t.xyz.begin(), t.xyz.end(), lobe.unit);
     scale_lobe(t.xyz.data(), lobe.scaled);
     lobe.source = t.source;
-    module.lobes.push_back(lobe);
+    lobes.push_back(lobe);
   }
+  return lobes;
+}
+
+}  // namespace
+
+Module build_module(const runtime::LobeTable& table, const ModuleOptions& options) {
+  Module module;
+  module.order = table.order;
+  module.table = table;
+  module.lobes = lobes_of(table);
   module.lobe_stage = lobe_stage_for(module.table, options);
   const sh::BandMatrices quarter_turn = sh::quarter_turn_x(std::max(table.order, 1));
   if (options.band_method == BandMethod::kQuadratic) {
@@ -924,6 +967,25 @@ Module build_lanes_module(const runtime::LobeTable& table) {
 int lobe_weight_multiplies(const runtime::Matrix& inverse) {
   Graph g;
   return g.count(band_sums(g, inverse, /*transpose=*/true, 0)).multiplies;
+}
+
+int lobe_rotation_multiplies(const runtime::LobeTable& table) {
+  ModuleOptions options;
+  options.sh_eval = options.lobe_multiplies = options.batch = options.products = options.shading = false;
+  options.standard_channels = {1};
+  options.tailored_channels = {};
+  options.band_method = BandMethod::kLobes;
+  const Module module = build_module(table, options);
+  const Function& rotate = module.functions.at(0);
+  return rotate.graph.count(rotate.output_nodes()).multiplies;
+}
+
+int lobe_dependent_multiplies(const runtime::LobeTable& table) {
+  const std::vector<Lobe> lobes = lobes_of(table);
+  const sh::BandMatrices no_quarter_turns;  // every band by lobes
+  const Builder builder(table, lobes, {}, lobe_stage_for(table, ModuleOptions{}), /*condon_shortley=*/false,
+                        std::vector<BandMethod>(std::max(table.order, 1), BandMethod::kLobes), no_quarter_turns);
+  return builder.lobe_dependent_count().multiplies;
 }
 
 }  // namespace zhf::codegen

@@ -50,6 +50,38 @@ int multiply_cost(const Eigen::MatrixXd& inverse) {
   return cost;
 }
 
+namespace {
+
+// The table of a lobe set as analysed (bands' A_l, zeros and conditions), without the lobes'
+// sources and the provenance.
+runtime::LobeTable table_of(const LobeEvaluator& evaluator, const Genome& genes, const std::vector<BandAnalysis>& bands) {
+  runtime::LobeTable table;
+  table.order = evaluator.order();
+  table.lobe_sharing = evaluator.lobe_sharing();
+  for (int c : genes) {
+    const candidates::Direction& d = evaluator.candidates().directions.at(c);
+    runtime::TableLobe lobe;
+    lobe.theta = d.theta;
+    lobe.phi = d.phi;
+    std::copy(d.xyz, d.xyz + 3, lobe.xyz.begin());
+    table.lobes.push_back(lobe);
+  }
+  for (const BandAnalysis& analysis : bands) {
+    runtime::TableBand band;
+    band.l = analysis.l;
+    band.lobes = analysis.lobes;
+    band.inverse = to_matrix(analysis.inverse);
+    band.zeros = analysis.zeros;
+    band.condition = analysis.condition;
+    table.zeros += band.zeros;
+    table.entries += static_cast<int>(analysis.inverse.size());
+    table.bands.push_back(std::move(band));
+  }
+  return table;
+}
+
+}  // namespace
+
 LobeEvaluator::LobeEvaluator(const candidates::CandidateSet& set, bool lobe_sharing, double max_condition, Scoring scoring,
                              size_t max_tabulated_values)
     : candidates_(set), order_(set.order), lobe_sharing_(lobe_sharing), max_condition_(max_condition),
@@ -81,14 +113,23 @@ Eigen::MatrixXd LobeEvaluator::band_matrix(const Genome& genes, int l) const {
   return y;
 }
 
-int LobeEvaluator::stage_multiplies(const Eigen::MatrixXd& inverse) const {
-  return scoring_.stage_multiplies ? scoring_.stage_multiplies(inverse) : multiply_cost(inverse);
+int LobeEvaluator::multiplies(const Genome& genes, const std::vector<BandAnalysis>& bands) const {
+  if (!scoring_.lobe_set_multiplies) {
+    int sum = 0;
+    for (const BandAnalysis& band : bands) sum += multiply_cost(band.inverse);
+    return sum;
+  }
+  return scoring_.lobe_set_multiplies(table_of(*this, genes, bands));
 }
 
 Fitness LobeEvaluator::evaluate(const Genome& genes) const {
   Fitness fitness;
   fitness.invertible = true;
+  std::vector<BandAnalysis> bands;
   for (int l = 2; l < order_; ++l) {
+    BandAnalysis& band = bands.emplace_back();
+    band.l = l;
+    for (int d = 0; d < 2 * l + 1; ++d) band.lobes.push_back(runtime::lobe_index(l, d, lobe_sharing_));
     const Eigen::MatrixXd y = band_matrix(genes, l);
     const Eigen::MatrixXd gram = y.transpose() * y;
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(gram, Eigen::EigenvaluesOnly);
@@ -101,10 +142,14 @@ Fitness LobeEvaluator::evaluate(const Genome& genes) const {
       return fitness;
     }
     fitness.worst_condition = std::max(fitness.worst_condition, condition);
-    Eigen::MatrixXd inverse = y.partialPivLu().inverse();
-    fitness.zeros += zero_small_entries(inverse);
-    fitness.multiplies += stage_multiplies(inverse);
+    band.condition = condition;
+    band.inverse = y.partialPivLu().inverse();
+    band.zeros = zero_small_entries(band.inverse);
+    fitness.zeros += band.zeros;
+    // Band by band, as the checked-in tables' searches ranked sets that turn out singular.
+    if (!scoring_.lobe_set_multiplies) fitness.multiplies += multiply_cost(band.inverse);
   }
+  if (scoring_.lobe_set_multiplies) fitness.multiplies = scoring_.lobe_set_multiplies(table_of(*this, genes, bands));
   fitness.feasible = fitness.worst_condition <= max_condition_;
   return fitness;
 }
@@ -126,15 +171,15 @@ std::vector<BandAnalysis> LobeEvaluator::analyze(const Genome& genes) const {
   return bands;
 }
 
-Fitness LobeEvaluator::fitness_of(const std::vector<BandAnalysis>& bands) const {
+Fitness LobeEvaluator::fitness_of(const Genome& genes, const std::vector<BandAnalysis>& bands) const {
   Fitness fitness;
   fitness.invertible = true;
   for (const BandAnalysis& band : bands) {
     if (!(band.condition <= runtime::tolerance::kSingularCondition)) fitness.invertible = false;
     fitness.zeros += band.zeros;
     fitness.worst_condition = std::max(fitness.worst_condition, band.condition);
-    fitness.multiplies += stage_multiplies(band.inverse);
   }
+  fitness.multiplies = multiplies(genes, bands);
   fitness.feasible = fitness.invertible && fitness.worst_condition <= max_condition_;
   return fitness;
 }
@@ -147,28 +192,10 @@ runtime::Matrix to_matrix(const Eigen::MatrixXd& m) {
 }
 
 runtime::LobeTable make_table(const LobeEvaluator& evaluator, const Genome& genes, const nlohmann::json& provenance) {
-  runtime::LobeTable table;
-  table.order = evaluator.order();
-  table.lobe_sharing = evaluator.lobe_sharing();
-  for (int c : genes) {
-    const candidates::Direction& d = evaluator.candidates().directions.at(c);
-    runtime::TableLobe lobe;
-    lobe.theta = d.theta;
-    lobe.phi = d.phi;
-    std::copy(d.xyz, d.xyz + 3, lobe.xyz.begin());
-    for (size_t k = 0; k < d.sources.size(); ++k) lobe.source += (k ? "; " : "") + d.sources[k];
-    table.lobes.push_back(lobe);
-  }
-  for (const BandAnalysis& analysis : evaluator.analyze(genes)) {
-    runtime::TableBand band;
-    band.l = analysis.l;
-    band.lobes = analysis.lobes;
-    band.inverse = to_matrix(analysis.inverse);
-    band.zeros = analysis.zeros;
-    band.condition = analysis.condition;
-    table.zeros += band.zeros;
-    table.entries += static_cast<int>(analysis.inverse.size());
-    table.bands.push_back(std::move(band));
+  runtime::LobeTable table = table_of(evaluator, genes, evaluator.analyze(genes));
+  for (size_t i = 0; i < genes.size(); ++i) {
+    const std::vector<std::string>& sources = evaluator.candidates().directions.at(genes[i]).sources;
+    for (size_t k = 0; k < sources.size(); ++k) table.lobes[i].source += (k ? "; " : "") + sources[k];
   }
   table.provenance = provenance.dump();
   return table;

@@ -28,19 +28,19 @@ nlohmann::json base_provenance(const SearchRequest& r) {
 }
 
 // What the lobe search ranks by: zeros (ties to the optimizer's multiply model, with which the
-// checked-in tables were made and still reproduce), or the emitted multiplies as the code
-// generator counts them.
+// checked-in tables were made and still reproduce), or the lobe rotation's multiplies that depend
+// on the lobe set, as the code generator counts them.
 optimizer::Scoring scoring(const SearchRequest& r) {
   optimizer::Scoring s;
   if (r.objective != Objective::kOperations) return s;
   s.ranking = optimizer::Ranking::kFewestMultiplies;
-  s.stage_multiplies = [](const Eigen::MatrixXd& inverse) { return codegen::lobe_weight_multiplies(optimizer::to_matrix(inverse)); };
+  s.lobe_set_multiplies = codegen::lobe_dependent_multiplies;
   return s;
 }
 
 // The search's figure of merit for the user: zeros, or multiplies and zeros.
 std::string merit(const SearchRequest& r, const optimizer::Fitness& f) {
-  return r.objective == Objective::kOperations ? format("%.0f multiplies (%.0f zeros)", f.multiplies, f.zeros)
+  return r.objective == Objective::kOperations ? format("%.0f lobe-dependent multiplies (%.0f zeros)", f.multiplies, f.zeros)
                                                : format("%.0f zeros", f.zeros);
 }
 

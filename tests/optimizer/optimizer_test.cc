@@ -127,7 +127,7 @@ TEST(Objective, PaperLobeSetsGiveThePublishedFigures) {
     const LobeEvaluator evaluator(candidate_set(order), true, 1e9);
     const Genome genome = genome_from_reference(entry, candidate_set(order));
     const std::vector<BandAnalysis> bands = evaluator.analyze(genome);
-    EXPECT_EQ(evaluator.fitness_of(bands).zeros, entry.at("zeros").get<int>()) << "order " << order;
+    EXPECT_EQ(evaluator.fitness_of(genome, bands).zeros, entry.at("zeros").get<int>()) << "order " << order;
     EXPECT_EQ(evaluator.evaluate(genome).zeros, entry.at("zeros").get<int>()) << "order " << order << " fast path";
     for (size_t b = 0; b < bands.size(); ++b) {
       const auto& expected = entry.at("bands")[b];
@@ -157,16 +157,18 @@ TEST(Objective, RankingsOrderZerosAndMultiplies) {
   outside.feasible = false;
   outside.multiplies = 1;
   EXPECT_TRUE(better(sparse, outside, Ranking::kFewestMultiplies));
-  // A supplied count replaces the model in the fitness, on both paths (no order-4 band has 1000
-  // entries, so the model cannot give this sum).
+  // A supplied count replaces the model in the fitness, on both paths, and is given the set's
+  // table (no order-4 set has 1000 entries, so the model cannot give this figure).
   Scoring scoring;
   scoring.ranking = Ranking::kFewestMultiplies;
-  scoring.stage_multiplies = [](const Eigen::MatrixXd&) { return 1000; };
+  scoring.lobe_set_multiplies = [](const runtime::LobeTable& t) {
+    return t.order == 4 && t.lobes.size() == 7 && t.bands.size() == 2 && t.bands[1].inverse.rows == 7 ? 1000 : -1;
+  };
   const LobeEvaluator counted(candidate_set(4), true, kDefaultMaxCondition, scoring);
   const Genome genome = genome_from_reference(paper_entry(4), candidate_set(4));
   EXPECT_EQ(counted.ranking(), Ranking::kFewestMultiplies);
-  EXPECT_EQ(counted.fitness_of(counted.analyze(genome)).multiplies, 2000);
-  EXPECT_EQ(counted.evaluate(genome).multiplies, 2000);
+  EXPECT_EQ(counted.fitness_of(genome, counted.analyze(genome)).multiplies, 1000);
+  EXPECT_EQ(counted.evaluate(genome).multiplies, 1000);
 }
 
 // The genetic and local searches give the same lobe set for the same seed whatever the thread

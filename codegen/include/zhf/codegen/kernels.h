@@ -169,10 +169,22 @@ Function product_function(int order, bool square, bool condon_shortley = false);
 // The flat indices of odd m below count: where S = (-1)^m negates.
 std::vector<int> odd_m_indices(int count);
 
-// The multiplies of one band's lobe weights z = A^T f as emitted (equal magnitudes in a column
-// share a multiply, shared sums are made once), for A = inverse: the part of a lobe kernel's cost
-// that depends on its lobes, and what `zhf optimize --objective operations` minimises.
+// The multiplies of one band's lobe weights z = A^T f as emitted by lobe_weights (equal
+// magnitudes in a column share a multiply, shared sums are made once), for A = inverse.
 int lobe_weight_multiplies(const runtime::Matrix& inverse);
+
+// The multiplies of rotate_orderN with every band by lobes (--method zhf), one channel.
+int lobe_rotation_multiplies(const runtime::LobeTable& table);
+// The part of lobe_rotation_multiplies that depends on the lobe set, built as the kernel builds
+// it: each band's lobe weights with the lobes' scales folded in, R's projection onto the
+// rotations where the table's condition puts the lobe stage in double, R u_d (products shared
+// where the lobes' coordinates repeat) and, without lobe sharing, the SH at R u_d (a direction
+// that serves several bands is evaluated once). The rest (band 1, with sharing the SH at the
+// rotated lobes, the sums over the lobes, the output scales) is the same for every table of one
+// order and lobe sharing (tests/codegen/codegen_test.cc), so ranking lobe sets by this ranks them
+// by the whole kernel: what `zhf optimize --objective operations` minimises. With sharing it
+// builds a graph of the lobe weights' size, a fraction of the kernel's.
+int lobe_dependent_multiplies(const runtime::LobeTable& table);
 
 // Order 2 needs no table: pass runtime::lobe_free_table().
 Module build_module(const runtime::LobeTable& table, const ModuleOptions& options);

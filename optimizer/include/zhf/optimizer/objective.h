@@ -1,6 +1,6 @@
 // The objectives of the lobe search: how many entries of A_l = Y_l^-1 vanish for a lobe set
-// (sparsity), or how many multiplies its emitted lobe-weight stage z = A^T f costs (operations),
-// with the conditioning bound and tie-breaks that decide between equal sets.
+// (sparsity), or how many multiplies it costs as emitted (operations), with the conditioning
+// bound and tie-breaks that decide between equal sets.
 #pragma once
 
 #include <functional>
@@ -27,7 +27,7 @@ struct Fitness {
   bool feasible = false;      // ... and <= the bound
   int zeros = 0;              // summed over bands 2..N-1
   double worst_condition = 0;
-  int multiplies = 0;         // of z = A^T f, summed over bands 2..N-1: see Scoring::stage_multiplies
+  int multiplies = 0;         // see Scoring::lobe_set_multiplies
 };
 
 // What a search ranks first after the condition bound.
@@ -48,10 +48,11 @@ int multiply_cost(const Eigen::MatrixXd& inverse);
 
 struct Scoring {
   Ranking ranking = Ranking::kMostZeros;
-  // One band's multiplies for its A_l; must be safe to call from several threads at once. Unset:
-  // multiply_cost. zhf's pipeline passes the code generator's exact count for the operations
-  // objective.
-  std::function<int(const Eigen::MatrixXd& inverse)> stage_multiplies;
+  // A lobe set's multiplies, given as its table (lobes, each band's A_l with its exact zeros and
+  // condition; no provenance); must be safe to call from several threads at once. Unset: the sum
+  // of multiply_cost over the bands. zhf's pipeline passes the code generator's count of the lobe
+  // rotation's multiplies that depend on the lobe set for the operations objective.
+  std::function<int(const runtime::LobeTable& table)> lobe_set_multiplies;
 };
 
 struct BandAnalysis {
@@ -83,11 +84,12 @@ class LobeEvaluator {
   Fitness evaluate(const Genome& genes) const;
   // Slow path for tables and tests: SVD condition, exact zeros.
   std::vector<BandAnalysis> analyze(const Genome& genes) const;
-  Fitness fitness_of(const std::vector<BandAnalysis>& bands) const;
+  Fitness fitness_of(const Genome& genes, const std::vector<BandAnalysis>& bands) const;
 
  private:
   Eigen::MatrixXd band_matrix(const Genome& genes, int l) const;
-  int stage_multiplies(const Eigen::MatrixXd& inverse) const;
+  // Scoring's count for the set: the bands' A_l and conditions as analysed.
+  int multiplies(const Genome& genes, const std::vector<BandAnalysis>& bands) const;
 
   const candidates::CandidateSet& candidates_;
   int order_;
