@@ -530,7 +530,6 @@ class Builder {
     return wide_lobes_ ? orthonormalized_rotation(g) : r;
   }
 
-
   // y_l^m at the unit vector v for the bands marked, each times fold(l) (folded into the
   // constants); -1 elsewhere.
   template <class Fold = double (*)(int)>
@@ -879,10 +878,6 @@ std::vector<BandMethod> cheapest_band_methods(const Module& module, const Module
            "; every band by zxzxz: " + describe(all_zxzxz) + ")";
   return best;
 }
-
-}  // namespace
-
-namespace {
 
 std::vector<Lobe> lobes_of(const runtime::LobeTable& table) {
   std::vector<Lobe> lobes;
