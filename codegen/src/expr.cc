@@ -3,13 +3,25 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace zhf::codegen {
+
+std::size_t Graph::KeyHash::operator()(const Key& k) const {
+  std::uint64_t bits = 0;
+  const double value = k.value == 0 ? 0.0 : k.value;  // -0 == +0 as keys: one hash
+  std::memcpy(&bits, &value, sizeof bits);
+  std::uint64_t h = bits;
+  for (int part : {k.op, k.a, k.b, k.c, k.param, k.element, int(k.wide)})
+    h = (h ^ std::uint32_t(part)) * 0x100000001b3ULL + (h >> 29);
+  return static_cast<std::size_t>(h);
+}
 
 int Graph::intern(const Node& n) {
   Node node = n;
   node.wide = wide_;
-  const auto key = std::make_tuple(static_cast<int>(node.op), node.a, node.b, node.c, node.value, node.param, node.element, node.wide);
+  const Key key{static_cast<int>(node.op), node.a, node.b, node.c, node.value, node.param, node.element, node.wide};
   auto it = index_.find(key);
   if (it != index_.end()) return it->second;
   nodes_.push_back(node);

@@ -5,9 +5,9 @@
 // same algorithm and the same operation counts by construction.
 #pragma once
 
-#include <map>
+#include <cstddef>
 #include <string>
-#include <tuple>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -74,7 +74,21 @@ class Graph {
   int binary(Op op, int a, int b);
   std::vector<Node> nodes_;
   std::vector<std::pair<int, int>> negated_;  // (param, element)
-  std::map<std::tuple<int, int, int, int, double, int, int, bool>, int> index_;
+  // Each node's identity (Node without lanes, which follow from the operands), for sharing.
+  struct Key {
+    int op, a, b, c;
+    double value;
+    int param, element;
+    bool wide;
+    bool operator==(const Key& o) const {
+      return op == o.op && a == o.a && b == o.b && c == o.c && value == o.value && param == o.param &&
+             element == o.element && wide == o.wide;
+    }
+  };
+  struct KeyHash {
+    std::size_t operator()(const Key& k) const;
+  };
+  std::unordered_map<Key, int, KeyHash> index_;
   bool wide_ = false;
 };
 
