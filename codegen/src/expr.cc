@@ -12,9 +12,15 @@ std::size_t Graph::KeyHash::operator()(const Key& k) const {
   std::uint64_t bits = 0;
   const double value = k.value == 0 ? 0.0 : k.value;  // -0 == +0 as keys: one hash
   std::memcpy(&bits, &value, sizeof bits);
-  std::uint64_t h = bits;
-  for (int part : {k.op, k.a, k.b, k.c, k.param, k.element, int(k.wide)})
-    h = (h ^ std::uint32_t(part)) * 0x100000001b3ULL + (h >> 29);
+  auto mix = [](std::uint64_t x) {  // splitmix64's finaliser
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+    return x ^ (x >> 31);
+  };
+  std::uint64_t h = mix(bits);
+  h = mix(h ^ (std::uint64_t(std::uint32_t(k.a)) << 32 | std::uint32_t(k.b)));
+  h = mix(h ^ (std::uint64_t(std::uint32_t(k.c)) << 32 | std::uint32_t(k.op) << 1 | std::uint32_t(k.wide)));
+  h = mix(h ^ (std::uint64_t(std::uint32_t(k.param)) << 32 | std::uint32_t(k.element)));
   return static_cast<std::size_t>(h);
 }
 
