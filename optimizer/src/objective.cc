@@ -69,7 +69,7 @@ runtime::LobeTable table_of(const LobeEvaluator& evaluator, const Genome& genes,
   for (const BandAnalysis& analysis : bands) {
     runtime::TableBand band;
     band.l = analysis.l;
-    band.lobes = analysis.lobes;
+    for (int d = 0; d < 2 * band.l + 1; ++d) band.lobes.push_back(runtime::lobe_index(band.l, d, table.lobe_sharing));
     band.inverse = to_matrix(analysis.inverse);
     band.zeros = analysis.zeros;
     band.condition = analysis.condition;
@@ -129,7 +129,6 @@ Fitness LobeEvaluator::evaluate(const Genome& genes) const {
   for (int l = 2; l < order_; ++l) {
     BandAnalysis& band = bands.emplace_back();
     band.l = l;
-    for (int d = 0; d < 2 * l + 1; ++d) band.lobes.push_back(runtime::lobe_index(l, d, lobe_sharing_));
     const Eigen::MatrixXd y = band_matrix(genes, l);
     const Eigen::MatrixXd gram = y.transpose() * y;
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(gram, Eigen::EigenvaluesOnly);
@@ -149,7 +148,7 @@ Fitness LobeEvaluator::evaluate(const Genome& genes) const {
     // Band by band, as the checked-in tables' searches ranked sets that turn out singular.
     if (!scoring_.lobe_set_multiplies) fitness.multiplies += multiply_cost(band.inverse);
   }
-  if (scoring_.lobe_set_multiplies) fitness.multiplies = scoring_.lobe_set_multiplies(table_of(*this, genes, bands));
+  if (scoring_.lobe_set_multiplies) fitness.multiplies = multiplies(genes, bands);
   fitness.feasible = fitness.worst_condition <= max_condition_;
   return fitness;
 }
