@@ -19,6 +19,12 @@ constexpr int kLanesFrom = 4;
 constexpr int kLanesUpToAvx2 = 4;
 constexpr int kLanesUpToBaseline = 4;
 constexpr const char* kMeasuredOn = "x86-64: lanes at order 4, with AVX2 and on baseline SSE2";
+// Where the band-rows kernel (runtime/band_rows.h: float, built only for AVX2 and FMA) is the
+// faster path for one float vector per rotation, against the scalar kernels and lanes, in one
+// process (1024 random rotations, min ns of 31 alternating runs, AMD EPYC, g++ 12 -O3
+// -march=x86-64-v3), band rows / scalar: N=4 31.4/40.6 (lanes 35.5), 5 44.3/54.1, 6 55.0/77.3,
+// 7 67.2/127.8, 8 83.2/175.4; the peer harness's run is in docs/performance.md.
+constexpr int kBandRowsFrom = 4;
 
 std::string list(const std::vector<int>& values) {
   std::string out;
@@ -35,7 +41,7 @@ EmittedFile emit_dispatch_header(const std::vector<int>& orders, const std::vect
   out << "// Every generated order (" << list(orders) << ") reachable at run time, and the fastest verified\n"
       << "// rotation path of each for the instruction set this header is compiled for.\n";
   out << "#pragma once\n\n#include <stdexcept>\n#include <string>\n#include <type_traits>\n\n";
-  out << "#include \"zhf/runtime/lanes.h\"\n#include \"zhf/runtime/rotator.h\"\n";
+  out << "#include \"zhf/runtime/band_rows.h\"\n#include \"zhf/runtime/lanes.h\"\n#include \"zhf/runtime/rotator.h\"\n";
   for (int n : orders) out << "#include \"zhf_order" << n << ".h\"\n";
   for (int n : lanes_orders) out << "#include \"zhf_lanes_order" << n << ".h\"\n";
   out << "\nnamespace zhf::gen {\n\n";
@@ -54,10 +60,16 @@ EmittedFile emit_dispatch_header(const std::vector<int>& orders, const std::vect
       << "#if defined(__x86_64__) || defined(_M_X64)\n#if defined(__AVX2__)\ninline constexpr int kLanesUpTo = " << kLanesUpToAvx2
       << ";\n#else\ninline constexpr int kLanesUpTo = " << kLanesUpToBaseline << ";\n#endif\n#else\n"
       << "inline constexpr int kLanesUpTo = 0;\n#endif\ninline constexpr int kLanesFrom = " << kLanesFrom << ";\n\n";
+  out << "// Where runtime/band_rows.h is the faster verified path for float, by measurement: from this order\n"
+      << "// to its last (runtime::kBandRowsMaxOrder), in builds that have it (runtime::kBandRowsBuilt).\n"
+      << "inline constexpr int kBandRowsFrom = " << kBandRowsFrom << ";\n\n";
   out << "// The fastest verified rotation path of a generated order (throws for any other order).\n"
       << "template <class T>\nruntime::KernelSet<T> fastest_kernels(int order) {\n"
       << "  return with_order(order, [](auto n) {\n"
       << "    constexpr int N = decltype(n)::value;\n"
+      << "    if constexpr (std::is_same_v<T, float> && runtime::kBandRowsBuilt) {\n"
+      << "      if constexpr (N >= kBandRowsFrom && N <= runtime::kBandRowsMaxOrder) return runtime::band_rows_kernels<N>();\n"
+      << "    }\n"
       << "    if constexpr (kHasLanes<N>) {\n"
       << "      if constexpr (N >= kLanesFrom && N <= kLanesUpTo) return runtime::lanes_kernels<N, T>();\n"
       << "    }\n"

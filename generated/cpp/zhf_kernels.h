@@ -10,6 +10,7 @@
 #include <string>
 #include <type_traits>
 
+#include "zhf/runtime/band_rows.h"
 #include "zhf/runtime/lanes.h"
 #include "zhf/runtime/rotator.h"
 #include "zhf_order2.h"
@@ -74,11 +75,18 @@ inline constexpr int kLanesUpTo = 0;
 #endif
 inline constexpr int kLanesFrom = 4;
 
+// Where runtime/band_rows.h is the faster verified path for float, by measurement: from this order
+// to its last (runtime::kBandRowsMaxOrder), in builds that have it (runtime::kBandRowsBuilt).
+inline constexpr int kBandRowsFrom = 4;
+
 // The fastest verified rotation path of a generated order (throws for any other order).
 template <class T>
 runtime::KernelSet<T> fastest_kernels(int order) {
   return with_order(order, [](auto n) {
     constexpr int N = decltype(n)::value;
+    if constexpr (std::is_same_v<T, float> && runtime::kBandRowsBuilt) {
+      if constexpr (N >= kBandRowsFrom && N <= runtime::kBandRowsMaxOrder) return runtime::band_rows_kernels<N>();
+    }
     if constexpr (kHasLanes<N>) {
       if constexpr (N >= kLanesFrom && N <= kLanesUpTo) return runtime::lanes_kernels<N, T>();
     }

@@ -7,7 +7,7 @@ set -euo pipefail
 cxx=$1
 include=$2
 status=0
-for header in rotator.h dense_rotation.h lobe_table.h table_rotation.h zxzxz_rotation.h soa_batch.h lanes.h product.h; do
+for header in rotator.h dense_rotation.h lobe_table.h table_rotation.h zxzxz_rotation.h band_rows.h soa_batch.h lanes.h product.h; do
   opened=$(echo "#include \"zhf/runtime/$header\"" | "$cxx" -std=c++17 -fsyntax-only -H -I "$include" -x c++ - 2>&1 >/dev/null |
     sed -n 's/^\.\+ //p' | sort -u)
   own=$(echo "$opened" | grep "$include/" || true)

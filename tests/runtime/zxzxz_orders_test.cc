@@ -1,7 +1,8 @@
 // The table-free zxzxz path (Rotator::zxzxz) at orders to kMaxZxzxzOrder, float and double, against
 // the recurrence in long double on random and extreme rotations (the recurrence itself is checked
 // against the independent quadrature projection to order 16 in every_method_test.cc), and the
-// order limit refused.
+// order limit refused. Also the band-rows kernels (runtime/band_rows.h, zxzxz with every band in
+// AVX2 lanes), in the build of this test for x86-64-v3.
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -11,10 +12,13 @@
 
 #include "test_support.h"
 #include "zhf/runtime/band_recurrence.h"
+#include "zhf/runtime/band_rows.h"
 #include "zhf/runtime/rotator.h"
 #include "zhf/runtime/tolerances.h"
 #include "zhf/sh/random.h"
+#include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
+#include "zhf_kernels.h"
 
 namespace zhf {
 namespace {
@@ -62,6 +66,63 @@ TEST(ZxzxzOrders, EveryOrderToTheLimitMatchesTheReference) {
       if (order == runtime::kMaxZxzxzOrder && name == "random 0")
         ::testing::Test::RecordProperty("float_error_order128", std::to_string(float_error));
     }
+  }
+}
+
+template <int N>
+void check_band_rows() {
+  const auto rotator = runtime::Rotator<float>::with(runtime::band_rows_kernels<N>());
+  std::mt19937_64 rng(700 + N);
+  std::vector<std::pair<std::string, sh::RotationMatrix>> rotations = sh::extreme_rotations({});
+  for (int k = 0; k < 200; ++k) rotations.push_back({"random " + std::to_string(k), sh::random_rotation(rng)});
+  for (const auto& [name, r] : rotations) {
+    int at = 0;
+    EXPECT_LE(worst_error(rotator, r, rng, at), runtime::tolerance::kFloatRotation)
+        << "band rows, order " << N << ", rotation '" << name << "', band " << runtime::band_of(at) << ", index " << at;
+  }
+  // The worst unit input, at a few rotations of each kind, against the random-input target times
+  // the factor a random unit f is spared (the scalar kernels reach 1.3e-6 at order 8 there).
+  for (int k : {0, 5, 20, 40}) {
+    const sh::RotationMatrix& r = rotations[k].second;
+    std::vector<float> rf(9);
+    for (int i = 0; i < 9; ++i) rf[i] = float(r(i / 3, i % 3));
+    int row = 0;
+    const double e = sh::worst_unit_input_error<float>(
+        sh::ivanic_ruedenberg(r, N), [&](const float* in, float* out) { rotator.rotate(rf.data(), in, out); }, &row);
+    EXPECT_LE(e, runtime::tolerance::kWorstUnitInputFactor * runtime::tolerance::kFloatRotation) << "band rows, order " << N << ", rotation '" << rotations[k].first
+                                                     << "', band " << runtime::band_of(row) << ", index " << row << ": worst unit input";
+  }
+  // Three channels are three single rotations, to the bit.
+  const std::vector<float> r = {0.36f, 0.48f, -0.8f, -0.8f, 0.6f, 0.0f, 0.48f, 0.64f, 0.6f};
+  std::vector<float> in(3 * N * N), out(3 * N * N), one(N * N);
+  sh::Normal<> normal;
+  for (float& x : in) x = float(normal(rng));
+  rotator.rotate_rgb(r.data(), in.data(), out.data());
+  for (int c = 0; c < 3; ++c) {
+    rotator.rotate(r.data(), in.data() + c * N * N, one.data());
+    for (int i = 0; i < N * N; ++i) EXPECT_EQ(out[c * N * N + i], one[i]) << "band rows rgb, order " << N << ", channel " << c << ", index " << i;
+  }
+}
+
+TEST(ZxzxzOrders, BandRowsMatchTheReferenceAtEveryOrderTheyHold) {
+  if constexpr (runtime::kBandRowsBuilt) {
+    check_band_rows<4>();
+    check_band_rows<5>();
+    check_band_rows<6>();
+    check_band_rows<7>();
+    check_band_rows<8>();
+  } else {
+    GTEST_SKIP() << "built without AVX2 and FMA: no band rows";
+  }
+}
+
+// zhf_kernels.h's fastest float path is band rows from gen::kBandRowsFrom where they are built;
+// double never takes it.
+TEST(ZxzxzOrders, TheFastestFloatPathIsBandRowsWhereBuilt) {
+  for (int order = 2; order <= 8; ++order) {
+    const bool band_rows = runtime::kBandRowsBuilt && order >= gen::kBandRowsFrom && order <= runtime::kBandRowsMaxOrder;
+    EXPECT_EQ(runtime::Rotator<float>::with(gen::fastest_kernels<float>(order)).path() == "band_rows", band_rows) << "order " << order;
+    EXPECT_NE(runtime::Rotator<double>::with(gen::fastest_kernels<double>(order)).path(), "band_rows") << "order " << order;
   }
 }
 

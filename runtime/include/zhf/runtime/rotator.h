@@ -60,7 +60,7 @@ template <class T>
 struct KernelSet {
   using Kernel = void (*)(const T*, const T*, T*);
   int order = 0;
-  const char* path = "";         // which implementation: "scalar" (generated kernels) or "lanes" (lanes.h)
+  const char* path = "";         // which implementation: "scalar" (generated kernels), "lanes" (lanes.h) or "band_rows" (band_rows.h)
   Kernel rotate = nullptr;       // (R, in[N^2], out[N^2])
   Kernel rotate_rgb = nullptr;   // (R, in[3][N^2], out[3][N^2]) as flat planar arrays
 };
@@ -125,7 +125,7 @@ class Rotator {
 
   int order() const { return order_; }
   int coefficients() const { return order_ * order_; }
-  // "scalar", "lanes", "table" or "zxzxz": which implementation rotate() runs.
+  // "scalar", "lanes", "band_rows", "table" or "zxzxz": which implementation rotate() runs.
   std::string path() const { return kernels_.rotate ? kernels_.path : zxzxz_.order() ? "zxzxz" : "table"; }
 
   // R must be a proper rotation (checked with assert in debug builds; see validate()).
