@@ -155,12 +155,14 @@ class BandRows {
     transpose_to_rows(s, turns.s);
   }
 
-  // x[m] holds lanes (a, b, g, -); rows[k] gets lane m = x[m][k], k < 3.
+  // x[m] holds lanes (a, b, g, -); rows[k] gets lane m = x[m][k], k < 3. At order 4 only the
+  // pair reads them: lanes 0..3, repeated in both halves.
   static void transpose_to_rows(const __m128 x[8], __m256 rows[3]) {
-    const __m256 r0 = _mm256_insertf128_ps(_mm256_castps128_ps256(x[0]), x[4], 1);
-    const __m256 r1 = _mm256_insertf128_ps(_mm256_castps128_ps256(x[1]), x[5], 1);
-    const __m256 r2 = _mm256_insertf128_ps(_mm256_castps128_ps256(x[2]), x[6], 1);
-    const __m256 r3 = _mm256_insertf128_ps(_mm256_castps128_ps256(x[3]), x[7], 1);
+    constexpr int high = N > 4 ? 4 : 0;
+    const __m256 r0 = _mm256_insertf128_ps(_mm256_castps128_ps256(x[0]), x[high], 1);
+    const __m256 r1 = _mm256_insertf128_ps(_mm256_castps128_ps256(x[1]), x[high + 1], 1);
+    const __m256 r2 = _mm256_insertf128_ps(_mm256_castps128_ps256(x[2]), x[high + 2], 1);
+    const __m256 r3 = _mm256_insertf128_ps(_mm256_castps128_ps256(x[3]), x[high + 3], 1);
     const __m256 ab01 = _mm256_unpacklo_ps(r0, r1), g01 = _mm256_unpackhi_ps(r0, r1);
     const __m256 ab23 = _mm256_unpacklo_ps(r2, r3), g23 = _mm256_unpackhi_ps(r2, r3);
     rows[0] = _mm256_shuffle_ps(ab01, ab23, _MM_SHUFFLE(1, 0, 1, 0));
@@ -213,8 +215,11 @@ class BandRows {
 
   // Pairs reach lanes 0..3 of the factor rows only, repeated in both halves.
   static void turns_of_angle(__m256 (&v)[kUnits][2], const Turns& turns, int angle) {
-    turn(v[0], _mm256_permute2f128_ps(turns.c[angle], turns.c[angle], 0x00),
-         _mm256_permute2f128_ps(turns.s[angle], turns.s[angle], 0x00));
+    if constexpr (N == 4)
+      turn(v[0], turns.c[angle], turns.s[angle]);
+    else
+      turn(v[0], _mm256_permute2f128_ps(turns.c[angle], turns.c[angle], 0x00),
+           _mm256_permute2f128_ps(turns.s[angle], turns.s[angle], 0x00));
     for (int u = 1; u < kUnits; ++u) turn(v[u], turns.c[angle], turns.s[angle]);
   }
 
