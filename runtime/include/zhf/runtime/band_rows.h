@@ -23,7 +23,7 @@
 // N^2 floats each, not overlapping. Accuracy: X rounded to float once; the rounding of two block
 // products and three turns, within tolerance::kFloatRotation on random unit inputs (tested at
 // every order with extreme rotations). Cost per call, order 6: 3 x 3 turns of a register pair,
-// 2 x 36 broadcasts and fused multiply-adds for X, ~60 instructions for the angles' multiples,
+// 2 x 28 broadcasts and fused multiply-adds for X, ~60 instructions for the angles' multiples,
 // one square root and one division; no allocation (the tables are built once, on first use).
 #pragma once
 
