@@ -2,7 +2,8 @@
 // the recurrence in long double on random and extreme rotations (the recurrence itself is checked
 // against the independent quadrature projection to order 16 in every_method_test.cc), and the
 // order limit refused. Also the band-rows kernels (runtime/band_rows.h, zxzxz with every band in
-// AVX2 lanes), in the build of this test for x86-64-v3.
+// AVX2 lanes), in the build of this test for x86-64-v3, where Rotator::zxzxz takes them at
+// orders 4..8 in float.
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -14,6 +15,7 @@
 #include "zhf/runtime/band_recurrence.h"
 #include "zhf/runtime/band_rows.h"
 #include "zhf/runtime/rotator.h"
+#include "zhf/runtime/table_io.h"
 #include "zhf/runtime/tolerances.h"
 #include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
@@ -49,7 +51,7 @@ double worst_error(const runtime::Rotator<T>& rotator, const sh::RotationMatrix&
 
 TEST(ZxzxzOrders, EveryOrderToTheLimitMatchesTheReference) {
   std::mt19937_64 rng(128);
-  for (int order : {1, 2, 3, 9, 16, 33, 64, runtime::kMaxZxzxzOrder}) {
+  for (int order : {1, 2, 3, 4, 5, 6, 7, 8, 9, 16, 33, 64, runtime::kMaxZxzxzOrder}) {
     const auto rf = runtime::Rotator<float>::zxzxz(order);
     const auto rd = runtime::Rotator<double>::zxzxz(order);
     std::vector<std::pair<std::string, sh::RotationMatrix>> rotations = sh::extreme_rotations({});
@@ -89,8 +91,9 @@ void check_band_rows() {
     int row = 0;
     const double e = sh::worst_unit_input_error<float>(
         sh::ivanic_ruedenberg(r, N), [&](const float* in, float* out) { rotator.rotate(rf.data(), in, out); }, &row);
-    EXPECT_LE(e, runtime::tolerance::kWorstUnitInputFactor * runtime::tolerance::kFloatRotation) << "band rows, order " << N << ", rotation '" << rotations[k].first
-                                                     << "', band " << runtime::band_of(row) << ", index " << row << ": worst unit input";
+    EXPECT_LE(e, runtime::tolerance::kWorstUnitInputFactor * runtime::tolerance::kFloatRotation)
+        << "band rows, order " << N << ", rotation '" << rotations[k].first << "', band " << runtime::band_of(row) << ", index "
+        << row << ": worst unit input";
   }
   // Three channels are three single rotations, to the bit.
   const std::vector<float> r = {0.36f, 0.48f, -0.8f, -0.8f, 0.6f, 0.0f, 0.48f, 0.64f, 0.6f};
@@ -100,7 +103,8 @@ void check_band_rows() {
   rotator.rotate_rgb(r.data(), in.data(), out.data());
   for (int c = 0; c < 3; ++c) {
     rotator.rotate(r.data(), in.data() + c * N * N, one.data());
-    for (int i = 0; i < N * N; ++i) EXPECT_EQ(out[c * N * N + i], one[i]) << "band rows rgb, order " << N << ", channel " << c << ", index " << i;
+    for (int i = 0; i < N * N; ++i)
+      EXPECT_EQ(out[c * N * N + i], one[i]) << "band rows rgb, order " << N << ", channel " << c << ", index " << i;
   }
 }
 
@@ -116,13 +120,23 @@ TEST(ZxzxzOrders, BandRowsMatchTheReferenceAtEveryOrderTheyHold) {
   }
 }
 
-// zhf_kernels.h's fastest float path is band rows from gen::kBandRowsFrom where they are built;
-// double never takes it.
-TEST(ZxzxzOrders, TheFastestFloatPathIsBandRowsWhereBuilt) {
-  for (int order = 2; order <= 8; ++order) {
-    const bool band_rows = runtime::kBandRowsBuilt && order >= gen::kBandRowsFrom && order <= runtime::kBandRowsMaxOrder;
-    EXPECT_EQ(runtime::Rotator<float>::with(gen::fastest_kernels<float>(order)).path() == "band_rows", band_rows) << "order " << order;
-    EXPECT_NE(runtime::Rotator<double>::with(gen::fastest_kernels<double>(order)).path(), "band_rows") << "order " << order;
+// Where band rows are built, zhf_kernels.h's fastest float path takes them from gen::kBandRowsFrom,
+// and the run-time paths (from_table, zxzxz) at every order they hold; double never.
+TEST(ZxzxzOrders, FloatPathsTakeBandRowsWhereBuilt) {
+  for (int order = 2; order <= 9; ++order) {
+    const bool held = runtime::kBandRowsBuilt && order >= runtime::kBandRowsMinOrder && order <= runtime::kBandRowsMaxOrder;
+    if (order <= 8) {
+      EXPECT_EQ(runtime::Rotator<float>::with(gen::fastest_kernels<float>(order)).path() == "band_rows", held && order >= gen::kBandRowsFrom)
+          << "fastest, order " << order;
+      EXPECT_NE(runtime::Rotator<double>::with(gen::fastest_kernels<double>(order)).path(), "band_rows")
+          << "fastest double, order " << order;
+    }
+    if (order >= runtime::kMinTableOrder) {
+      const runtime::LobeTable table = runtime::read_lobe_table(test::checked_in_table(order));
+      EXPECT_EQ(runtime::Rotator<float>::from_table(table).path() == "band_rows", held) << "from_table, order " << order;
+      EXPECT_NE(runtime::Rotator<double>::from_table(table).path(), "band_rows") << "from_table double, order " << order;
+    }
+    EXPECT_EQ(runtime::Rotator<float>::zxzxz(order).path(), held ? "band_rows" : "zxzxz") << "zxzxz, order " << order;
   }
 }
 

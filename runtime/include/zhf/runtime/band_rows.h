@@ -1,7 +1,8 @@
 // Band rows: the zxzxz rotation of one float vector of order 4..8 with every band across the
 // lanes of AVX2 registers, for builds that target AVX2 and FMA (kBandRowsBuilt). zhf_kernels.h
 // picks it for float where it was measured faster than the generated scalar kernels
-// (docs/performance.md, "Which path a Rotator takes").
+// (docs/performance.md, "Which path a Rotator takes"), and Rotator::from_table and
+// Rotator::zxzxz take it for float at its orders.
 //
 // The factorisation is ZxzxzRotation's (zxzxz_rotation.h): D(R) = Z(a + pi) X Z(b + pi) X Z(g),
 // X = D(Rx(90 deg)) per band, the angles' multiples from R's entries as zyz_multiples takes them
@@ -28,12 +29,14 @@
 #pragma once
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include "zhf/runtime/band_recurrence.h"
+#include "zhf/runtime/kernel_set.h"
 #include "zhf/runtime/rotation.h"
-#include "zhf/runtime/rotator.h"
 #include "zhf/runtime/tolerances.h"
 
 #if defined(__GNUC__) && defined(__AVX2__) && defined(__FMA__)
@@ -49,10 +52,12 @@ namespace zhf::runtime {
 inline constexpr bool kBandRowsBuilt = ZHF_BAND_ROWS_BUILT;
 inline constexpr int kBandRowsMinOrder = 4, kBandRowsMaxOrder = 8;
 
-// The band-rows kernels of order N (kBandRowsMinOrder..kBandRowsMaxOrder) for a Rotator; defined
-// where kBandRowsBuilt. Builds the order's tables on the first call.
+// The band-rows kernels of order N (kBandRowsMinOrder..kBandRowsMaxOrder) for a Rotator, and of
+// an order known at run time; defined where kBandRowsBuilt. Build the order's tables on the first
+// call.
 template <int N>
 KernelSet<float> band_rows_kernels();
+KernelSet<float> band_rows_kernels(int order);
 
 #if ZHF_BAND_ROWS_BUILT
 
@@ -313,6 +318,20 @@ KernelSet<float> band_rows_kernels() {
   k.rotate = [](const float* r, const float* in, float* out) { BandRows<N>::instance().rotate(r, in, out, 1); };
   k.rotate_rgb = [](const float* r, const float* in, float* out) { BandRows<N>::instance().rotate(r, in, out, 3); };
   return k;
+}
+
+// Throws std::invalid_argument outside kBandRowsMinOrder..kBandRowsMaxOrder.
+inline KernelSet<float> band_rows_kernels(int order) {
+  switch (order) {
+    case 4: return band_rows_kernels<4>();
+    case 5: return band_rows_kernels<5>();
+    case 6: return band_rows_kernels<6>();
+    case 7: return band_rows_kernels<7>();
+    case 8: return band_rows_kernels<8>();
+    default: break;
+  }
+  throw std::invalid_argument("band_rows_kernels: order " + std::to_string(order) + " is outside " +
+                              std::to_string(kBandRowsMinOrder) + ".." + std::to_string(kBandRowsMaxOrder));
 }
 
 #endif

@@ -18,14 +18,19 @@
 //                                         kZxzxzFromOrder the lobes (table_rotation.h), from it zxzxz
 //                                         (zxzxz_rotation.h), the faster by measurement;
 //   Rotator<T>::zxzxz(order)              any order up to 128, no table (zxzxz_rotation.h).
+// Both run float orders kBandRowsMinOrder..kBandRowsMaxOrder through the band rows (band_rows.h:
+// zxzxz across AVX2 lanes) in builds that have them.
 #pragma once
 
 #include <cassert>
 #include <cstddef>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
+#include "zhf/runtime/band_rows.h"
 #include "zhf/runtime/dense_rotation.h"
+#include "zhf/runtime/kernel_set.h"
 #include "zhf/runtime/lobe_table.h"
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/sh_eval.h"
@@ -54,16 +59,6 @@ inline constexpr int kZxzxzFromOrder = kMinTableOrder;
 // Whether count vectors under one rotation are cheaper through the band matrices, which cost
 // about N^2 single rotations to build, than one by one.
 inline bool band_matrices_pay(std::size_t count, int order) { return count >= std::size_t(order) * order; }
-
-// One implementation of an order's single-rotation entry points.
-template <class T>
-struct KernelSet {
-  using Kernel = void (*)(const T*, const T*, T*);
-  int order = 0;
-  const char* path = "";         // which implementation: "scalar" (generated kernels), "lanes" (lanes.h) or "band_rows" (band_rows.h)
-  Kernel rotate = nullptr;       // (R, in[N^2], out[N^2])
-  Kernel rotate_rgb = nullptr;   // (R, in[3][N^2], out[3][N^2]) as flat planar arrays
-};
 
 // The generated scalar kernels of order N (its header must be included).
 template <int N, class T>
@@ -104,6 +99,9 @@ class Rotator {
   // InputError naming what is wrong.
   static Rotator from_table(const LobeTable& table) {
     validate_lobe_table(table, "Rotator::from_table", TableCheck::kShape);
+    if constexpr (kHasBandRows) {
+      if (table.order >= kBandRowsMinOrder && table.order <= kBandRowsMaxOrder) return with(band_rows_kernels(table.order));
+    }
     Rotator r;
     r.order_ = table.order;
     if (table.order >= kZxzxzFromOrder) {
@@ -117,6 +115,9 @@ class Rotator {
   // Any order 1..kMaxZxzxzOrder through zxzxz, no table needed; throws std::invalid_argument for
   // any other order.
   static Rotator zxzxz(int order) {
+    if constexpr (kHasBandRows) {
+      if (order >= kBandRowsMinOrder && order <= kBandRowsMaxOrder) return with(band_rows_kernels(order));
+    }
     Rotator r;
     r.zxzxz_ = ZxzxzRotation<T>(order);
     r.order_ = order;
@@ -181,6 +182,9 @@ class Rotator {
 
  private:
   Rotator() = default;
+
+  // Float orders kBandRowsMinOrder..kBandRowsMaxOrder run through band_rows.h where it is built.
+  static constexpr bool kHasBandRows = std::is_same_v<T, float> && kBandRowsBuilt;
 
   void run_table(const T r[9], const T* in, T* out, int channels) const {
     if (zxzxz_.order()) {
