@@ -77,7 +77,7 @@ inline constexpr int kLanesFrom = 4;
 
 // Where runtime/band_rows.h is the faster verified path for float, by measurement: from this order
 // to its last (runtime::kBandRowsMaxOrder), in builds that have it (runtime::kBandRowsBuilt).
-inline constexpr int kBandRowsFrom = 4;
+inline constexpr int kBandRowsFrom = 5;
 
 // The fastest verified rotation path of a generated order (throws for any other order).
 template <class T>

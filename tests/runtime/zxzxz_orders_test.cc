@@ -1,9 +1,10 @@
 // The table-free zxzxz path (Rotator::zxzxz) at orders to kMaxZxzxzOrder, float and double, against
 // the recurrence in long double on random and extreme rotations (the recurrence itself is checked
 // against the independent quadrature projection to order 16 in every_method_test.cc), and the
-// order limit refused. Also the band-rows kernels (runtime/band_rows.h, zxzxz with every band in
-// AVX2 lanes), in the build of this test for x86-64-v3, where Rotator::zxzxz takes them at
-// orders 4..8 in float.
+// order limit refused. Also, in the build of this test for x86-64-v3, the float kernels written
+// in AVX2 intrinsics: the band rows (runtime/band_rows.h, zxzxz with every band in AVX2 lanes),
+// which Rotator::zxzxz takes at orders 4..8 in float, and lanes.h's one register of lobes
+// (orders 3 and 4).
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -14,6 +15,7 @@
 #include "test_support.h"
 #include "zhf/runtime/band_recurrence.h"
 #include "zhf/runtime/band_rows.h"
+#include "zhf/runtime/lanes.h"
 #include "zhf/runtime/rotator.h"
 #include "zhf/runtime/table_io.h"
 #include "zhf/runtime/tolerances.h"
@@ -71,16 +73,18 @@ TEST(ZxzxzOrders, EveryOrderToTheLimitMatchesTheReference) {
   }
 }
 
-template <int N>
-void check_band_rows() {
-  const auto rotator = runtime::Rotator<float>::with(runtime::band_rows_kernels<N>());
+// A float kernel set of order N on the extreme rotations and 200 random ones, its worst unit input
+// and its RGB entry point.
+void check_float_kernels(const runtime::KernelSet<float>& kernels, const std::string& path) {
+  const auto rotator = runtime::Rotator<float>::with(kernels);
+  const int N = kernels.order;
   std::mt19937_64 rng(700 + N);
   std::vector<std::pair<std::string, sh::RotationMatrix>> rotations = sh::extreme_rotations({});
   for (int k = 0; k < 200; ++k) rotations.push_back({"random " + std::to_string(k), sh::random_rotation(rng)});
   for (const auto& [name, r] : rotations) {
     int at = 0;
     EXPECT_LE(worst_error(rotator, r, rng, at), runtime::tolerance::kFloatRotation)
-        << "band rows, order " << N << ", rotation '" << name << "', band " << runtime::band_of(at) << ", index " << at;
+        << path << ", order " << N << ", rotation '" << name << "', band " << runtime::band_of(at) << ", index " << at;
   }
   // The worst unit input, at a few rotations of each kind, against the random-input target times
   // the factor a random unit f is spared (the scalar kernels reach 1.3e-6 at order 8 there).
@@ -92,7 +96,7 @@ void check_band_rows() {
     const double e = sh::worst_unit_input_error<float>(
         sh::ivanic_ruedenberg(r, N), [&](const float* in, float* out) { rotator.rotate(rf.data(), in, out); }, &row);
     EXPECT_LE(e, runtime::tolerance::kWorstUnitInputFactor * runtime::tolerance::kFloatRotation)
-        << "band rows, order " << N << ", rotation '" << rotations[k].first << "', band " << runtime::band_of(row) << ", index "
+        << path << ", order " << N << ", rotation '" << rotations[k].first << "', band " << runtime::band_of(row) << ", index "
         << row << ": worst unit input";
   }
   // Three channels are three single rotations, to the bit.
@@ -104,19 +108,35 @@ void check_band_rows() {
   for (int c = 0; c < 3; ++c) {
     rotator.rotate(r.data(), in.data() + c * N * N, one.data());
     for (int i = 0; i < N * N; ++i)
-      EXPECT_EQ(out[c * N * N + i], one[i]) << "band rows rgb, order " << N << ", channel " << c << ", index " << i;
+      EXPECT_EQ(out[c * N * N + i], one[i]) << path << " rgb, order " << N << ", channel " << c << ", index " << i;
   }
 }
 
 TEST(ZxzxzOrders, BandRowsMatchTheReferenceAtEveryOrderTheyHold) {
   if constexpr (runtime::kBandRowsBuilt) {
-    check_band_rows<4>();
-    check_band_rows<5>();
-    check_band_rows<6>();
-    check_band_rows<7>();
-    check_band_rows<8>();
+    check_float_kernels(runtime::band_rows_kernels<4>(), "band rows");
+    check_float_kernels(runtime::band_rows_kernels<5>(), "band rows");
+    check_float_kernels(runtime::band_rows_kernels<6>(), "band rows");
+    check_float_kernels(runtime::band_rows_kernels<7>(), "band rows");
+    check_float_kernels(runtime::band_rows_kernels<8>(), "band rows");
   } else {
     GTEST_SKIP() << "built without AVX2 and FMA: no band rows";
+  }
+}
+
+// Where AVX2 and FMA are built, lanes.h runs float orders 3 and 4 (lobe stage float) in one
+// register of lobes: the same checks as the band rows'.
+TEST(ZxzxzOrders, LanesInOneRegisterMatchTheReference) {
+  constexpr bool kBuilt = ZHF_RUNTIME_AVX2_FMA;
+  static_assert(runtime::lanes_detail::kOneRegister<3, float, gen::LanesTables<3>::kLobeStage> == kBuilt);
+  static_assert(runtime::lanes_detail::kOneRegister<4, float, gen::LanesTables<4>::kLobeStage> == kBuilt);
+  static_assert(!runtime::lanes_detail::kOneRegister<5, float, int(runtime::LobeStage::kFloat)>);
+  static_assert(!runtime::lanes_detail::kOneRegister<4, double, int(runtime::LobeStage::kFloat)>);
+  if constexpr (kBuilt) {
+    check_float_kernels(runtime::lanes_kernels<3, float>(), "lanes, one register");
+    check_float_kernels(runtime::lanes_kernels<4, float>(), "lanes, one register");
+  } else {
+    GTEST_SKIP() << "built without AVX2 and FMA: the portable lanes kernel (generated_kernels_test)";
   }
 }
 

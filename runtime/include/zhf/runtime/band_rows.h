@@ -34,22 +34,16 @@
 #include <utility>
 #include <vector>
 
+#include "zhf/runtime/avx2_fma.h"
 #include "zhf/runtime/band_recurrence.h"
 #include "zhf/runtime/kernel_set.h"
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/tolerances.h"
 
-#if defined(__GNUC__) && defined(__AVX2__) && defined(__FMA__)
-#include <immintrin.h>
-#define ZHF_BAND_ROWS_BUILT 1
-#else
-#define ZHF_BAND_ROWS_BUILT 0
-#endif
-
 namespace zhf::runtime {
 
 // Whether this build has the band-rows kernels (AVX2 and FMA targeted, GCC or Clang).
-inline constexpr bool kBandRowsBuilt = ZHF_BAND_ROWS_BUILT;
+inline constexpr bool kBandRowsBuilt = ZHF_RUNTIME_AVX2_FMA;
 inline constexpr int kBandRowsMinOrder = 4, kBandRowsMaxOrder = 8;
 
 // The band-rows kernels of order N (kBandRowsMinOrder..kBandRowsMaxOrder) for a Rotator, and of
@@ -59,7 +53,7 @@ template <int N>
 KernelSet<float> band_rows_kernels();
 KernelSet<float> band_rows_kernels(int order);
 
-#if ZHF_BAND_ROWS_BUILT
+#if ZHF_RUNTIME_AVX2_FMA
 
 template <int N>
 class BandRows {
@@ -338,4 +332,3 @@ inline KernelSet<float> band_rows_kernels(int order) {
 
 }  // namespace zhf::runtime
 
-#undef ZHF_BAND_ROWS_BUILT
