@@ -135,6 +135,7 @@ TEST(ZxzxzOrders, LanesInOneRegisterMatchTheReference) {
   if constexpr (kBuilt) {
     check_float_kernels(runtime::lanes_kernels<3, float>(), "lanes, one register");
     check_float_kernels(runtime::lanes_kernels<4, float>(), "lanes, one register");
+    EXPECT_EQ(runtime::Rotator<float>::with(gen::fastest_kernels<float>(4)).path(), "lanes") << "fastest float, order 4";
   } else {
     GTEST_SKIP() << "built without AVX2 and FMA: the portable lanes kernel (generated_kernels_test)";
   }
