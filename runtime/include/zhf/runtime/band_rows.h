@@ -222,28 +222,6 @@ class BandRows {
     for (int u = 1; u < kUnits; ++u) turn(v[u], turns.c[angle], turns.s[angle]);
   }
 
-  // The first count lanes of v to p.
-  template <int Count>
-  static void store_first(float* p, __m256 v) {
-    if constexpr (Count == 8) {
-      _mm256_storeu_ps(p, v);
-    } else {
-      __m128 x = _mm256_castps256_ps128(v);
-      int left = Count;
-      if (left >= 4) {
-        _mm_storeu_ps(p, x);
-        p += 4, left -= 4;
-        x = _mm256_extractf128_ps(v, 1);
-      }
-      if (left >= 2) {
-        _mm_storel_pi(reinterpret_cast<__m64*>(p), x);
-        p += 2, left -= 2;
-        x = _mm_movehl_ps(x, x);
-      }
-      if (left == 1) _mm_store_ss(p, x);
-    }
-  }
-
   // Band l >= 4 from in (cosine row: m = 0..l at l^2 + l + m; sine row: m = 1..l at l^2 + l - m).
   void load_band(int l, const float* in, __m256 v[2]) const {
     const float* band = in + l * l;
@@ -257,8 +235,8 @@ class BandRows {
   template <int L>
   void store_band(const __m256 v[2], float* out) const {
     const __m256 sines = _mm256_permutevar8x32_ps(v[1], _mm256_load_si256(reinterpret_cast<const __m256i*>(sine_out_[L])));
-    store_first<L * L + 8 <= N * N ? 8 : L>(out + L * L, sines);
-    store_first<L * L + L + 8 <= N * N ? 8 : L + 1>(out + L * L + L, v[0]);
+    avx2::store_first<L * L + 8 <= N * N ? 8 : L>(out + L * L, sines);
+    avx2::store_first<L * L + L + 8 <= N * N ? 8 : L + 1>(out + L * L + L, v[0]);
   }
   template <int... U>
   void store_bands(const __m256 (&v)[kUnits][2], [[maybe_unused]] float* out, std::integer_sequence<int, U...>) const {

@@ -222,6 +222,13 @@ inline void add_bands(const OneRegisterTables<N>& t, const float* f, const Pack<
    ...);
 }
 
+// out[4 .. N^2) from the output registers' two sums, nothing past N^2.
+template <int N, int... K>
+inline void store_outputs(const __m256 (*acc)[2], float* out, std::integer_sequence<int, K...>) {
+  constexpr int kOutputs = OneRegisterTables<N>::kOutputs;
+  (avx2::store_first<(kOutputs - 8 * K < 8 ? kOutputs - 8 * K : 8)>(out + 4 + 8 * K, _mm256_add_ps(acc[K][0], acc[K][1])), ...);
+}
+
 // channels vectors of N^2 floats, one after another (1, or 3 for RGB: the lobes and their SH once).
 template <int N>
 inline void rotate_one_register(const float R[9], const float* coeffs, float* rotated, int channels) {
@@ -242,26 +249,7 @@ inline void rotate_one_register(const float R[9], const float* coeffs, float* ro
     float* out = rotated + c * N * N;
     __m256 acc[T::kRegisters][2];
     add_bands<N>(kTables, f, y, acc, std::make_integer_sequence<int, N - 2>());
-    for (int k = 0; k < T::kRegisters; ++k) {
-      const __m256 sum = _mm256_add_ps(acc[k][0], acc[k][1]);
-      const int lanes = T::kOutputs - 8 * k < 8 ? T::kOutputs - 8 * k : 8;
-      float* to = out + 4 + 8 * k;
-      if (lanes == 8) {
-        _mm256_storeu_ps(to, sum);
-        continue;
-      }
-      // The last register's lanes only: whole halves stored, the rest through a copy.
-      __m128 half = _mm256_castps256_ps128(sum);
-      int stored = 0;
-      if (lanes >= 4) {
-        _mm_storeu_ps(to, half);
-        half = _mm256_extractf128_ps(sum, 1);
-        stored = 4;
-      }
-      alignas(16) float rest[4];
-      _mm_store_ps(rest, half);
-      std::memcpy(to + stored, rest, sizeof(float) * (lanes - stored));
-    }
+    store_outputs<N>(acc, out, std::make_integer_sequence<int, T::kRegisters>());
     out[0] = f[0];
     rotate_band1(R, f + 1, out + 1);
   }
