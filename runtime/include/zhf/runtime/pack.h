@@ -149,6 +149,27 @@ struct Pack {
     for (int i = 0; i < kLanes; ++i) r.v[i] = v[i ^ kFlip];
     return r;
   }
+  // Lanes 4g .. 4g + 3 from quads[g], each rounded as T(x): groups of four made in double.
+  static Pack from_quads(const Pack<double>* quads) {
+    static_assert(Pack<double>::kLanes == 4 && kLanes % 4 == 0, "whole groups of four");
+    Pack r;
+#if defined(__GNUC__)
+    typedef T Quad __attribute__((vector_size(4 * sizeof(T))));
+    if constexpr (kLanes == 4) {
+      r.v = __builtin_convertvector(quads[0].v, Quad);
+      return r;
+    }
+#if defined(__AVX__) && (defined(__clang__) || __GNUC__ >= 12)
+    if constexpr (kLanes == 8) {
+      r.v = __builtin_shufflevector(__builtin_convertvector(quads[0].v, Quad), __builtin_convertvector(quads[1].v, Quad), 0,
+                                    1, 2, 3, 4, 5, 6, 7);
+      return r;
+    }
+#endif
+#endif
+    for (int i = 0; i < kLanes; ++i) r.v[i] = T(quads[i / 4].lane(i % 4));
+    return r;
+  }
   Pack& operator+=(const Pack& b) { return *this = *this + b; }
   Pack& operator-=(const Pack& b) { return *this = *this - b; }
   Pack& operator*=(const Pack& b) { return *this = *this * b; }

@@ -17,7 +17,8 @@
 //
 // The angles are never formed: (cos a, sin a) is R's last column in xy normalised (a = 0 at
 // gimbal lock, where any a works), Rz(-a) R = Ry(b) Rz(g) gives g's from its middle row and b's
-// are (R_22, |column in xy|); their multiples by doubling and angle addition, in double.
+// are (R_22, |column in xy|); their multiples in double, made as the lanes' factors a quad at a
+// time (packs, not one store per lane: those stores cost a tenth of an order-16 call).
 //
 // A call gathers a group of bands into quads in a local stage (one pass over the input), rotates
 // band by band there, with the block products unrolled over a band's 1..8 packs (float to order
@@ -26,10 +27,10 @@
 // Convention as Rotator. Accuracy: X to ~1e-15 (the recurrence), T's rounding over two band
 // products and three turns: float below 1e-6 on unit inputs at order 32 (tested). Cost per call:
 // 2 sum_l h ceil(4h/lanes) pack multiply-adds (h = l/2 + 1 quads), 6 sum_l ceil(4h/lanes) pack
-// operations for the turns, one square root; no allocation.
+// operations for the turns, three quad angle additions per quad of the largest band for their
+// factors, one square root; no allocation.
 #pragma once
 
-#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstring>
@@ -118,24 +119,40 @@ class ZxzxzRotation {
   void rotate(const T r[9], const T* in, T* out, int channels) const {
     double rd[9];
     for (int i = 0; i < 9; ++i) rd[i] = double(r[i]);
-    // The angles' multiples, zero past the order to the last quad's m + 1.
-    const int quads_used = packs(order_ - 1) * kLanes / 4;
-    double c[3][2 * kQuadCapacity], s[3][2 * kQuadCapacity];
-    zyz_multiples(rd, order_, c[0], s[0], c[1], s[1], c[2], s[2]);
-    for (int k = 0; k < 3; ++k)
-      for (int m = order_; m < 2 * quads_used; ++m) c[k][m] = s[k][m] = 0;
-    // Each lane's factors, by the class at its place (layout L for g and a, L' for b) and its m;
-    // b + pi and a + pi carry the sign (-1)^m. Cosines' lanes take -sin, sines' +sin.
+    // Each lane's factors: a turn by t holds cos(m t) at the lane and sin(m t), signed by the
+    // lane's place, at the same lane of its second array; m = 2 (e / 4) + the place's parity
+    // (layout L for g and a, L' for b), and b + pi, a + pi carry (-1)^m. Built in double a quad at
+    // a time: the first from the first multiples, each next turned by a further 2 t (one angle
+    // addition, so m's error stays ~m eps as zyz_multiples'). Odd l's b turn is even l's with the
+    // halves of each quad swapped.
     alignas(64) Turns turns;
-    for (int j = 0; j < quads_used; ++j) {
-      const int m = 2 * j;
-      const T g0 = T(c[2][m]), g1 = T(c[2][m + 1]), gs0 = T(s[2][m]), gs1 = T(s[2][m + 1]);
-      const T a0 = T(c[0][m]), a1 = T(-c[0][m + 1]), as0 = T(s[0][m]), as1 = T(-s[0][m + 1]);
-      const T b0 = T(c[1][m]), b1 = T(-c[1][m + 1]), bs0 = T(s[1][m]), bs1 = T(-s[1][m + 1]);
-      quad(turns, kTurnG, j, {g0, g1, g1, g0}, {-gs0, -gs1, gs1, gs0});        // L: classes 0 2 3 1
-      quad(turns, kTurnBEven, j, {b0, b0, b1, b1}, {-bs0, bs0, bs1, -bs1});    // L', even l: 0 1 3 2
-      quad(turns, kTurnBOdd, j, {b1, b1, b0, b0}, {bs1, -bs1, -bs0, bs0});     // L', odd l: 3 2 0 1
-      quad(turns, kTurnA, j, {a0, a1, a1, a0}, {-as0, -as1, as1, as0});
+    double c[3][3], s[3][3];
+    zyz_multiples(rd, 3, c[0], s[0], c[1], s[1], c[2], s[2]);
+    const int packs_used = packs(order_ - 1);
+    for (const int which : {kTurnG, kTurnBEven, kTurnA}) {
+      const int angle = which == kTurnA ? 0 : which == kTurnG ? 2 : 1, layout = which == kTurnBEven;
+      const double odd_sign = angle == 2 ? 1 : -1;
+      const Quad odd = Quad::load(kPlaceOdd[layout]), signs = Quad::load(kPlaceSinSign[layout]);
+      const Quad cos_step(c[angle][2]), sin_step(s[angle][2]);
+      Quad cos_m = (Quad(1.0) - odd) + odd * Quad(odd_sign * c[angle][1]), sin_m = odd * Quad(odd_sign * s[angle][1]);
+      for (int p = 0; p < packs_used; ++p) {
+        Quad cos_quads[kLanes / 4], sin_quads[kLanes / 4];
+        for (int g = 0; g < kLanes / 4; ++g) {
+          if (p + g > 0) {
+            const Quad next = cos_m * cos_step - sin_m * sin_step;
+            sin_m = sin_m * cos_step + cos_m * sin_step;
+            cos_m = next;
+          }
+          cos_quads[g] = cos_m, sin_quads[g] = sin_m * signs;
+        }
+        const P cos_lanes = P::from_quads(cos_quads), sin_lanes = P::from_quads(sin_quads);
+        cos_lanes.store(turns.cos[which] + p * kLanes);
+        sin_lanes.store(turns.sin[which] + p * kLanes);
+        if (which == kTurnBEven) {
+          cos_lanes.template flip4<2>().store(turns.cos[kTurnBOdd] + p * kLanes);
+          sin_lanes.template flip4<2>().store(turns.sin[kTurnBOdd] + p * kLanes);
+        }
+      }
     }
     const int n = order_ * order_;
     T stage[kStageValues];
@@ -223,9 +240,11 @@ class ZxzxzRotation {
   struct Turns {
     T cos[kTurns][kPackCapacity * kLanes], sin[kTurns][kPackCapacity * kLanes];
   };
-  static void quad(Turns& turns, int which, int j, const std::array<T, 4>& cos, const std::array<T, 4>& sin) {
-    for (int q = 0; q < 4; ++q) turns.cos[which][4 * j + q] = cos[q], turns.sin[which][4 * j + q] = sin[q];
-  }
+  // Per layout (L, L'): 1 where the place holds an odd m, and the sign of the sines' lanes.
+  using Quad = Pack<double>;
+  static_assert(Quad::kLanes == 4, "a quad in double");
+  static constexpr double kPlaceOdd[2][4] = {{0, 1, 1, 0}, {0, 0, 1, 1}};
+  static constexpr double kPlaceSinSign[2][4] = {{-1, -1, 1, 1}, {-1, 1, 1, -1}};
   // Stage for rotate's band groups, in values: the largest band (64 quads, 256 values, at order
   // 128) and more; 16 KiB of floats.
   static constexpr int kStageValues = 4096;
