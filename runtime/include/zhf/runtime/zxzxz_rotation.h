@@ -240,7 +240,9 @@ class ZxzxzRotation {
   struct Turns {
     T cos[kTurns][kPackCapacity * kLanes], sin[kTurns][kPackCapacity * kLanes];
   };
-  // Per layout (L, L'): 1 where the place holds an odd m, and the sign of the sines' lanes.
+  // By place, in L (classes 0 2 3 1: cos 2j, cos(2j + 1), sin(2j + 1), sin 2j) and in L' for even
+  // l (0 1 3 2: cos 2j, sin 2j, sin(2j + 1), cos(2j + 1)): 1 where m is odd, and the sign of the
+  // sine factor (a cosine's lane takes -sin t times its partner, a sine's +sin t).
   using Quad = Pack<double>;
   static_assert(Quad::kLanes == 4, "a quad in double");
   static constexpr double kPlaceOdd[2][4] = {{0, 1, 1, 0}, {0, 0, 1, 1}};
