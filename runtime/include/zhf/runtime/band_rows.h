@@ -5,8 +5,9 @@
 // Rotator::zxzxz take it for float at its orders.
 //
 // The factorisation is ZxzxzRotation's (zxzxz_rotation.h): D(R) = Z(a + pi) X Z(b + pi) X Z(g),
-// X = D(Rx(90 deg)) per band, the angles' multiples from R's entries as zyz_multiples takes them
-// (the same steps, in float, the three angles side by side in one register).
+// X = D(Rx(90 deg)) per band, the angles' multiples from R's entries by zyz_multiples' steps, in
+// float, the three angles side by side in one register, except that the first multiples of a and
+// g are divided by sin b rather than multiplied by its reciprocal (a shorter chain: 1.1x at order 5).
 //
 // Layout: band l is two rows of 8 lanes, lane m of the cosine row holding the coefficient of
 // cos(m phi) and lane m of the sine row that of sin(m phi) (lane 0 zero). A turn Z(t) is then
@@ -128,14 +129,19 @@ class BandRows {
   }
 
   // The three angles' multiples m = 0..7 (zero past the order): the zyz_multiples steps with the
-  // angles in lanes a, b, g of one register, then transposed to one row per angle.
+  // angles in lanes a, b, g of one register, then transposed to one row per angle. The first
+  // multiples of a and g are their numerators (cos a, sin a, cos g, sin g) sin b, formed while the
+  // square root runs, over sin b: one division after the root instead of a division, then
+  // multiplies, then g's from a's.
   static void angle_rows(const float r[9], Turns& turns) {
     const float column2 = r[2] * r[2] + r[5] * r[5];
     const bool locked = !(column2 > float(tolerance::kGimbalLockSine2));
-    const float inverse = locked ? 1.0f : 1 / std::sqrt(column2);
-    const float ca = locked ? 1.0f : r[2] * inverse, sa = locked ? 0.0f : r[5] * inverse;
-    const __m128 c1 = _mm_setr_ps(ca, r[8], ca * r[4] - sa * r[1], 0);
-    const __m128 s1 = _mm_setr_ps(sa, column2 * inverse, ca * r[3] - sa * r[0], 0);
+    const float sine = std::sqrt(column2);
+    const __m128 numerators = locked ? _mm_setr_ps(1.0f, 0.0f, r[4], r[3])
+                                     : _mm_setr_ps(r[2], r[5], r[2] * r[4] - r[5] * r[1], r[2] * r[3] - r[5] * r[0]);
+    const __m128 first = _mm_div_ps(numerators, _mm_set1_ps(locked ? 1.0f : sine));  // ca, sa, cg, sg
+    const __m128 c1 = _mm_blend_ps(first, _mm_setr_ps(0, r[8], 0, 0), 0xa);
+    const __m128 s1 = _mm_blend_ps(_mm_permute_ps(first, _MM_SHUFFLE(2, 3, 0, 1)), _mm_setr_ps(0, sine, 0, 0), 0xa);
     __m128 c[8], s[8];
     c[0] = _mm_set1_ps(1.0f), s[0] = _mm_setzero_ps(), c[1] = c1, s[1] = s1;
     for (int m = 2; m < 8; ++m) {
