@@ -27,7 +27,8 @@ constexpr const char* kMeasuredOn = "x86-64: lanes at order 4, with AVX2 and on 
 // process (1024 random rotations, min ns of 31 alternating runs, AMD EPYC, g++ 12 -O3
 // -march=x86-64-v3), band rows / scalar: N=4 31.4/40.6 (lanes 35.5), 5 44.3/54.1, 6 55.0/77.3,
 // 7 67.2/127.8, 8 83.2/175.4; the peer harness's run is in docs/performance.md. Order 4 goes to
-// lanes (above).
+// lanes (above). Order 2 (bands 0 and 1 in one register, band_rows.h's bands01_kernels) against
+// the scalar kernel, same build, K = 1024: 0.97 against 1.90 ns.
 constexpr int kBandRowsFrom = 5;
 
 std::string list(const std::vector<int>& values) {
@@ -64,14 +65,16 @@ EmittedFile emit_dispatch_header(const std::vector<int>& orders, const std::vect
       << "#if defined(__x86_64__) || defined(_M_X64)\n#if defined(__AVX2__)\ninline constexpr int kLanesUpTo = " << kLanesUpToAvx2
       << ";\n#else\ninline constexpr int kLanesUpTo = " << kLanesUpToBaseline << ";\n#endif\n#else\n"
       << "inline constexpr int kLanesUpTo = 0;\n#endif\ninline constexpr int kLanesFrom = " << kLanesFrom << ";\n\n";
-  out << "// Where runtime/band_rows.h is the faster verified path for float, by measurement: from this order\n"
-      << "// to its last (runtime::kBandRowsMaxOrder), in builds that have it (runtime::kBandRowsBuilt).\n"
+  out << "// Where runtime/band_rows.h is the faster verified path for float, by measurement: order 2 (bands 0\n"
+      << "// and 1 in one register) and from this order to its last (runtime::kBandRowsMaxOrder), in builds\n"
+      << "// that have it (runtime::kBandRowsBuilt).\n"
       << "inline constexpr int kBandRowsFrom = " << kBandRowsFrom << ";\n\n";
   out << "// The fastest verified rotation path of a generated order (throws for any other order).\n"
       << "template <class T>\nruntime::KernelSet<T> fastest_kernels(int order) {\n"
       << "  return with_order(order, [](auto n) {\n"
       << "    constexpr int N = decltype(n)::value;\n"
       << "    if constexpr (std::is_same_v<T, float> && runtime::kBandRowsBuilt) {\n"
+      << "      if constexpr (N == 2) return runtime::bands01_kernels();\n"
       << "      if constexpr (N >= kBandRowsFrom && N <= runtime::kBandRowsMaxOrder) return runtime::band_rows_kernels<N>();\n"
       << "    }\n"
       << "    if constexpr (kHasLanes<N>) {\n"

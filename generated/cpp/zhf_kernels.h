@@ -75,8 +75,9 @@ inline constexpr int kLanesUpTo = 0;
 #endif
 inline constexpr int kLanesFrom = 4;
 
-// Where runtime/band_rows.h is the faster verified path for float, by measurement: from this order
-// to its last (runtime::kBandRowsMaxOrder), in builds that have it (runtime::kBandRowsBuilt).
+// Where runtime/band_rows.h is the faster verified path for float, by measurement: order 2 (bands 0
+// and 1 in one register) and from this order to its last (runtime::kBandRowsMaxOrder), in builds
+// that have it (runtime::kBandRowsBuilt).
 inline constexpr int kBandRowsFrom = 5;
 
 // The fastest verified rotation path of a generated order (throws for any other order).
@@ -85,6 +86,7 @@ runtime::KernelSet<T> fastest_kernels(int order) {
   return with_order(order, [](auto n) {
     constexpr int N = decltype(n)::value;
     if constexpr (std::is_same_v<T, float> && runtime::kBandRowsBuilt) {
+      if constexpr (N == 2) return runtime::bands01_kernels();
       if constexpr (N >= kBandRowsFrom && N <= runtime::kBandRowsMaxOrder) return runtime::band_rows_kernels<N>();
     }
     if constexpr (kHasLanes<N>) {

@@ -245,15 +245,20 @@ void check_worst_unit_vectors() {
   }
 }
 
-// The Rotator on the fastest path zhf_kernels.h picks: band_rows.h where built (AVX2 and FMA; from
-// gen::kBandRowsFrom), else lanes.h where measured faster (x86-64, orders gen::kLanesFrom..
+// The Rotator on the fastest path zhf_kernels.h picks: band_rows.h where built (AVX2 and FMA; order 2
+// and from gen::kBandRowsFrom), else lanes.h where measured faster (x86-64, orders gen::kLanesFrom..
 // gen::kLanesUpTo), the scalar kernels elsewhere, held to the same targets.
 template <int N>
 void check_fastest_path() {
   const auto rotator = runtime::Rotator<float>::with(gen::fastest_kernels<float>(N));
 #if defined(__x86_64__)
   const bool band_rows = runtime::kBandRowsBuilt && N >= gen::kBandRowsFrom && N <= runtime::kBandRowsMaxOrder;
-  EXPECT_EQ(rotator.path(), band_rows ? "band_rows" : N >= gen::kLanesFrom && N <= gen::kLanesUpTo ? "lanes" : "scalar") << "order " << N;
+  const bool bands01 = runtime::kBandRowsBuilt && N == 2;
+  EXPECT_EQ(rotator.path(), bands01     ? "bands01"
+                            : band_rows ? "band_rows"
+                            : N >= gen::kLanesFrom && N <= gen::kLanesUpTo ? "lanes"
+                                                                           : "scalar")
+      << "order " << N;
 #endif
   double worst = 0;
   for (const Case& c : cases(N, 200, 600 + N)) {

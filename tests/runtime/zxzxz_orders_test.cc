@@ -114,6 +114,7 @@ void check_float_kernels(const runtime::KernelSet<float>& kernels, const std::st
 
 TEST(ZxzxzOrders, BandRowsMatchTheReferenceAtEveryOrderTheyHold) {
   if constexpr (runtime::kBandRowsBuilt) {
+    check_float_kernels(runtime::bands01_kernels(), "bands01");
     check_float_kernels(runtime::band_rows_kernels<4>(), "band rows");
     check_float_kernels(runtime::band_rows_kernels<5>(), "band rows");
     check_float_kernels(runtime::band_rows_kernels<6>(), "band rows");

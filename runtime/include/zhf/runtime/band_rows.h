@@ -18,8 +18,8 @@
 // across the lanes of its target row's column. Bands 2 and 3 share one register pair (band 3 in
 // lanes 0..3, band 2 in lanes 4..7, so one in-lane broadcast serves both); band 2 is held with its
 // rows exchanged and its sines negated there, which gives its inputs the targets of band 3's at
-// the same lanes and leaves the turns unchanged. Band 0 is copied, band 1 turned by R itself
-// (rotation.h). Z(pi)'s signs (-1)^m are folded into X's columns, so one table serves both X.
+// the same lanes and leaves the turns unchanged. Bands 0 and 1 take one register of their own
+// (avx2_fma.h's rotate_bands01), which is the whole rotation at order 2 (bands01_kernels). Z(pi)'s signs (-1)^m are folded into X's columns, so one table serves both X.
 //
 // Convention as Rotator (rotator.h): out = coefficients of f(R^T w), R row-major, in and out
 // N^2 floats each, not overlapping. Accuracy: X rounded to float once; the rounding of two block
@@ -38,7 +38,6 @@
 #include "zhf/runtime/avx2_fma.h"
 #include "zhf/runtime/band_recurrence.h"
 #include "zhf/runtime/kernel_set.h"
-#include "zhf/runtime/rotation.h"
 #include "zhf/runtime/tolerances.h"
 
 namespace zhf::runtime {
@@ -53,6 +52,9 @@ inline constexpr int kBandRowsMinOrder = 4, kBandRowsMaxOrder = 8;
 template <int N>
 KernelSet<float> band_rows_kernels();
 KernelSet<float> band_rows_kernels(int order);
+// Order 2 on the same terms (path "bands01"): bands 0 and 1 in one register; defined where
+// kBandRowsBuilt.
+KernelSet<float> bands01_kernels();
 
 #if ZHF_RUNTIME_AVX2_FMA
 
@@ -267,8 +269,7 @@ class BandRows {
     turns_of_angle(v, turns, 1);
     quarter_turns(v, std::make_integer_sequence<int, kUnits>());
     turns_of_angle(v, turns, 0);
-    out[0] = in[0];
-    rotate_band1(r, in + 1, out + 1);
+    avx2::rotate_bands01(r, in, out);
     {
       const __m128 cos3 = _mm256_castps256_ps128(v[0][0]), neg_sin2 = _mm256_extractf128_ps(v[0][0], 1);
       const __m128 sin3 = _mm256_castps256_ps128(v[0][1]), cos2 = _mm256_extractf128_ps(v[0][1], 1);
@@ -295,6 +296,17 @@ KernelSet<float> band_rows_kernels() {
   k.path = "band_rows";
   k.rotate = [](const float* r, const float* in, float* out) { BandRows<N>::instance().rotate(r, in, out, 1); };
   k.rotate_rgb = [](const float* r, const float* in, float* out) { BandRows<N>::instance().rotate(r, in, out, 3); };
+  return k;
+}
+
+inline KernelSet<float> bands01_kernels() {
+  KernelSet<float> k;
+  k.order = 2;
+  k.path = "bands01";
+  k.rotate = [](const float* r, const float* in, float* out) { avx2::rotate_bands01(r, in, out); };
+  k.rotate_rgb = [](const float* r, const float* in, float* out) {
+    for (int c = 0; c < 3; ++c) avx2::rotate_bands01(r, in + 4 * c, out + 4 * c);
+  };
   return k;
 }
 

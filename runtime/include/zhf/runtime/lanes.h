@@ -250,8 +250,7 @@ inline void rotate_one_register(const float R[9], const float* coeffs, float* ro
     __m256 acc[T::kRegisters][2];
     add_bands<N>(kTables, f, y, acc, std::make_integer_sequence<int, N - 2>());
     store_outputs<N>(acc, out, std::make_integer_sequence<int, T::kRegisters>());
-    out[0] = f[0];
-    rotate_band1(R, f + 1, out + 1);
+    avx2::rotate_bands01(R, f, out);
   }
 }
 #endif

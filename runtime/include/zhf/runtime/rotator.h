@@ -126,7 +126,7 @@ class Rotator {
 
   int order() const { return order_; }
   int coefficients() const { return order_ * order_; }
-  // "scalar", "lanes", "band_rows", "table" or "zxzxz": which implementation rotate() runs.
+  // "scalar", "lanes", "band_rows", "bands01", "table" or "zxzxz": which implementation rotate() runs.
   std::string path() const { return kernels_.rotate ? kernels_.path : zxzxz_.order() ? "zxzxz" : "table"; }
 
   // R must be a proper rotation (checked with assert in debug builds; see validate()).
