@@ -143,12 +143,16 @@ TEST(ZxzxzOrders, LanesInOneRegisterMatchTheReference) {
 }
 
 // Where band rows are built, zhf_kernels.h's fastest float path takes them from gen::kBandRowsFrom,
-// and the run-time paths (from_table, zxzxz) at every order they hold; double never.
+// and the run-time paths (from_table, zxzxz) at every order they hold; all three take bands 0 and 1
+// in one register at order 2; double never.
 TEST(ZxzxzOrders, FloatPathsTakeBandRowsWhereBuilt) {
   for (int order = 2; order <= 9; ++order) {
     const bool held = runtime::kBandRowsBuilt && order >= runtime::kBandRowsMinOrder && order <= runtime::kBandRowsMaxOrder;
+    const bool bands01 = runtime::kBandRowsBuilt && order == 2;
     if (order <= 8) {
       EXPECT_EQ(runtime::Rotator<float>::with(gen::fastest_kernels<float>(order)).path() == "band_rows", held && order >= gen::kBandRowsFrom)
+          << "fastest, order " << order;
+      EXPECT_EQ(runtime::Rotator<float>::with(gen::fastest_kernels<float>(order)).path() == "bands01", bands01)
           << "fastest, order " << order;
       EXPECT_NE(runtime::Rotator<double>::with(gen::fastest_kernels<double>(order)).path(), "band_rows")
           << "fastest double, order " << order;
@@ -156,9 +160,10 @@ TEST(ZxzxzOrders, FloatPathsTakeBandRowsWhereBuilt) {
     if (order >= runtime::kMinTableOrder) {
       const runtime::LobeTable table = runtime::read_lobe_table(test::checked_in_table(order));
       EXPECT_EQ(runtime::Rotator<float>::from_table(table).path() == "band_rows", held) << "from_table, order " << order;
+      EXPECT_EQ(runtime::Rotator<float>::from_table(table).path() == "bands01", bands01) << "from_table, order " << order;
       EXPECT_NE(runtime::Rotator<double>::from_table(table).path(), "band_rows") << "from_table double, order " << order;
     }
-    EXPECT_EQ(runtime::Rotator<float>::zxzxz(order).path(), held ? "band_rows" : "zxzxz") << "zxzxz, order " << order;
+    EXPECT_EQ(runtime::Rotator<float>::zxzxz(order).path(), held ? "band_rows" : bands01 ? "bands01" : "zxzxz") << "zxzxz, order " << order;
   }
 }
 

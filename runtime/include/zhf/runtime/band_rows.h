@@ -19,7 +19,9 @@
 // lanes 0..3, band 2 in lanes 4..7, so one in-lane broadcast serves both); band 2 is held with its
 // rows exchanged and its sines negated there, which gives its inputs the targets of band 3's at
 // the same lanes and leaves the turns unchanged. Bands 0 and 1 take one register of their own
-// (avx2_fma.h's rotate_bands01), which is the whole rotation at order 2 (bands01_kernels). Z(pi)'s signs (-1)^m are folded into X's columns, so one table serves both X.
+// (avx2_fma.h's rotate_bands01), which is the whole rotation at order 2 (bands01_kernels: the
+// fastest float path, from_table's and zxzxz's there). Z(pi)'s signs (-1)^m are folded into X's
+// columns, so one table serves both X.
 //
 // Convention as Rotator (rotator.h): out = coefficients of f(R^T w), R row-major, in and out
 // N^2 floats each, not overlapping. Accuracy: X rounded to float once; the rounding of two block

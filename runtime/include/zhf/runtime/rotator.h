@@ -100,6 +100,7 @@ class Rotator {
   static Rotator from_table(const LobeTable& table) {
     validate_lobe_table(table, "Rotator::from_table", TableCheck::kShape);
     if constexpr (kHasBandRows) {
+      if (table.order == 2) return with(bands01_kernels());
       if (table.order >= kBandRowsMinOrder && table.order <= kBandRowsMaxOrder) return with(band_rows_kernels(table.order));
     }
     Rotator r;
@@ -116,6 +117,7 @@ class Rotator {
   // any other order.
   static Rotator zxzxz(int order) {
     if constexpr (kHasBandRows) {
+      if (order == 2) return with(bands01_kernels());
       if (order >= kBandRowsMinOrder && order <= kBandRowsMaxOrder) return with(band_rows_kernels(order));
     }
     Rotator r;
