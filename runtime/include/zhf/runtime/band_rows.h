@@ -48,15 +48,19 @@ namespace zhf::runtime {
 inline constexpr bool kBandRowsBuilt = ZHF_RUNTIME_AVX2_FMA;
 inline constexpr int kBandRowsMinOrder = 4, kBandRowsMaxOrder = 8;
 
-// The band-rows kernels of order N (kBandRowsMinOrder..kBandRowsMaxOrder) for a Rotator, and of
-// an order known at run time; defined where kBandRowsBuilt. Build the order's tables on the first
-// call.
+// The band-rows kernels of order N (kBandRowsMinOrder..kBandRowsMaxOrder) for a Rotator; defined
+// where kBandRowsBuilt. Build the order's tables on the first call.
 template <int N>
 KernelSet<float> band_rows_kernels();
-KernelSet<float> band_rows_kernels(int order);
 // Order 2 on the same terms (path "bands01"): bands 0 and 1 in one register; defined where
 // kBandRowsBuilt.
 KernelSet<float> bands01_kernels();
+// Whether this header has kernels for an order known at run time (order 2 and the band rows'), and
+// those kernels; defined where kBandRowsBuilt.
+inline constexpr bool band_rows_hold(int order) {
+  return order == 2 || (order >= kBandRowsMinOrder && order <= kBandRowsMaxOrder);
+}
+KernelSet<float> band_rows_kernels(int order);
 
 #if ZHF_RUNTIME_AVX2_FMA
 
@@ -312,9 +316,10 @@ inline KernelSet<float> bands01_kernels() {
   return k;
 }
 
-// Throws std::invalid_argument outside kBandRowsMinOrder..kBandRowsMaxOrder.
+// Throws std::invalid_argument where !band_rows_hold(order).
 inline KernelSet<float> band_rows_kernels(int order) {
   switch (order) {
+    case 2: return bands01_kernels();
     case 4: return band_rows_kernels<4>();
     case 5: return band_rows_kernels<5>();
     case 6: return band_rows_kernels<6>();
@@ -322,7 +327,7 @@ inline KernelSet<float> band_rows_kernels(int order) {
     case 8: return band_rows_kernels<8>();
     default: break;
   }
-  throw std::invalid_argument("band_rows_kernels: order " + std::to_string(order) + " is outside " +
+  throw std::invalid_argument("band_rows_kernels: order " + std::to_string(order) + " is outside 2 and " +
                               std::to_string(kBandRowsMinOrder) + ".." + std::to_string(kBandRowsMaxOrder));
 }
 

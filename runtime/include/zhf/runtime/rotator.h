@@ -19,7 +19,8 @@
 //                                         (zxzxz_rotation.h), the faster by measurement;
 //   Rotator<T>::zxzxz(order)              any order up to 128, no table (zxzxz_rotation.h).
 // Both run float orders kBandRowsMinOrder..kBandRowsMaxOrder through the band rows (band_rows.h:
-// zxzxz across AVX2 lanes) in builds that have them.
+// zxzxz across AVX2 lanes), and order 2 through its bands 0 and 1 in one register, in builds that
+// have them.
 #pragma once
 
 #include <cassert>
@@ -100,8 +101,7 @@ class Rotator {
   static Rotator from_table(const LobeTable& table) {
     validate_lobe_table(table, "Rotator::from_table", TableCheck::kShape);
     if constexpr (kHasBandRows) {
-      if (table.order == 2) return with(bands01_kernels());
-      if (table.order >= kBandRowsMinOrder && table.order <= kBandRowsMaxOrder) return with(band_rows_kernels(table.order));
+      if (band_rows_hold(table.order)) return with(band_rows_kernels(table.order));
     }
     Rotator r;
     r.order_ = table.order;
@@ -117,8 +117,7 @@ class Rotator {
   // any other order.
   static Rotator zxzxz(int order) {
     if constexpr (kHasBandRows) {
-      if (order == 2) return with(bands01_kernels());
-      if (order >= kBandRowsMinOrder && order <= kBandRowsMaxOrder) return with(band_rows_kernels(order));
+      if (band_rows_hold(order)) return with(band_rows_kernels(order));
     }
     Rotator r;
     r.zxzxz_ = ZxzxzRotation<T>(order);
@@ -185,7 +184,7 @@ class Rotator {
  private:
   Rotator() = default;
 
-  // Float orders kBandRowsMinOrder..kBandRowsMaxOrder run through band_rows.h where it is built.
+  // Float orders band_rows_hold run through band_rows.h where it is built.
   static constexpr bool kHasBandRows = std::is_same_v<T, float> && kBandRowsBuilt;
 
   void run_table(const T r[9], const T* in, T* out, int channels) const {
