@@ -128,11 +128,14 @@ int main(int argc, char** argv) {
     run_order<4>(items, int(runs), threads);
     run_order<8>(items / 4, int(runs), threads);
   }
-  run_soa<3>(4096, int(runs));
-  run_soa<4>(4096, int(runs));
-  run_soa<5>(4096, int(runs));
-  run_soa<6>(4096, int(runs));
-  run_soa<7>(4096, int(runs));
-  run_soa<8>(4096, int(runs));
+  // Planes 16 KiB apart (a power of two: rotate_soa copies the inputs through its block), then not.
+  for (std::size_t count : {4096, 4000}) {
+    run_soa<3>(count, int(runs));
+    run_soa<4>(count, int(runs));
+    run_soa<5>(count, int(runs));
+    run_soa<6>(count, int(runs));
+    run_soa<7>(count, int(runs));
+    run_soa<8>(count, int(runs));
+  }
   return 0;
 }

@@ -135,18 +135,17 @@ TEST(Batch, BulkLayoutsMatchTheReferenceAtEveryGeneratedOrder) {
 }
 
 // rotate_soa against the reference and lane for lane against the scalar kernel, on random
-// rotations and the adversarial ones (axes, half turns, near-identity), a count with a tail. Float
+// rotations and the adversarial ones (axes, half turns, near-identity), count of them. Float
 // against the reference: the bound for any unit input of a float lobe stage.
 template <int N, class T>
-void check_soa(double tolerance) {
+void check_soa(std::size_t count, double tolerance) {
   std::mt19937_64 rng(200 + N);
   std::vector<sh::RotationMatrix> rotations = {sh::RotationMatrix::Identity(), sh::RotationMatrix(Eigen::AngleAxisd(runtime::kPi, Eigen::Vector3d::UnitX())),
                                         sh::RotationMatrix(Eigen::AngleAxisd(runtime::kPi, Eigen::Vector3d(1, 1, 1).normalized())),
                                         sh::RotationMatrix(Eigen::AngleAxisd(1e-7, Eigen::Vector3d::UnitZ())),
                                         sh::RotationMatrix(Eigen::AngleAxisd(runtime::kPi / 2, Eigen::Vector3d::UnitY()))};
-  // Past the threshold, so the two-thread run splits the batch; 5 past a multiple of 8 lanes.
-  while (rotations.size() < runtime::kParallelBatchThreshold + 5) rotations.push_back(sh::random_rotation(rng));
-  const std::size_t count = rotations.size(), n = N * N;
+  while (rotations.size() < count) rotations.push_back(sh::random_rotation(rng));
+  const std::size_t n = N * N;
   const std::vector<T> vectors = unit_vectors<T>(count, N, rng);
   std::vector<T> r(9 * count), in(n * count), out(n * count, T(7)), two(n * count);
   for (std::size_t v = 0; v < count; ++v) {
@@ -197,13 +196,42 @@ TEST(Batch, PackReciprocalSquareRootIsTheScalarOne) {
   check_reciprocal_sqrt<double>();
 }
 
+// Both ways rotate_soa reads its inputs, on counts past the threshold (so the two-thread run
+// splits the batch): 5 past a multiple of 8 lanes, planes spread over the cache sets (read
+// straight from the planes up to kSoaDirectMaxOrder), and planes a whole set span apart (copied
+// through the block).
+template <int N, class T>
+void check_soa_counts(double tolerance) {
+  const std::size_t spread = runtime::kParallelBatchThreshold + 5,
+                    crowded = runtime::kParallelBatchThreshold + runtime::kCacheSetSpanBytes / sizeof(T);
+  const bool reads_spread_directly = runtime::soa_detail::reads_planes_directly<N, T>(spread),
+             reads_crowded_directly = runtime::soa_detail::reads_planes_directly<N, T>(crowded);
+  EXPECT_EQ(reads_spread_directly, N <= runtime::soa_detail::kSoaDirectMaxOrder) << "order " << N;
+  EXPECT_FALSE(reads_crowded_directly) << "order " << N;
+  check_soa<N, T>(spread, tolerance);
+  check_soa<N, T>(crowded, tolerance);
+}
+
 TEST(Batch, AcrossRotationsMatchesTheReferenceAndTheScalarKernel) {
-  check_soa<2, float>(kFloatLobeStageWorstUnitInput);
-  check_soa<3, float>(kFloatLobeStageWorstUnitInput);
-  check_soa<4, float>(kFloatLobeStageWorstUnitInput);
-  check_soa<2, double>(kDouble);
-  check_soa<3, double>(kDouble);
-  check_soa<4, double>(kDouble);
+  check_soa_counts<2, float>(kFloatLobeStageWorstUnitInput);
+  check_soa_counts<3, float>(kFloatLobeStageWorstUnitInput);
+  check_soa_counts<4, float>(kFloatLobeStageWorstUnitInput);
+  check_soa_counts<5, float>(kFloatLobeStageWorstUnitInput);
+  check_soa_counts<2, double>(kDouble);
+  check_soa_counts<3, double>(kDouble);
+  check_soa_counts<4, double>(kDouble);
+}
+
+// planes_per_set against counts worked by hand: 4000 floats apart is 3712 bytes past a set
+// span, so 18 planes sit 384 bytes apart (mod 4096) and never two in one line-wide window.
+TEST(Batch, PlanesPerSetCountsCrowdedPlanes) {
+  EXPECT_EQ(runtime::soa_detail::planes_per_set(4000, 18, sizeof(float)), 1);
+  EXPECT_EQ(runtime::soa_detail::planes_per_set(4096, 18, sizeof(float)), 18);
+  EXPECT_EQ(runtime::soa_detail::planes_per_set(2048, 18, sizeof(double)), 18);
+  EXPECT_EQ(runtime::soa_detail::planes_per_set(4608, 18, sizeof(float)), 9);   // 2048 bytes: two places
+  EXPECT_EQ(runtime::soa_detail::planes_per_set(4100, 18, sizeof(float)), 4);   // 16 bytes apart
+  EXPECT_EQ(runtime::soa_detail::planes_per_set(1, 18, sizeof(float)), 16);     // 4 bytes apart: 16 in a line
+  EXPECT_EQ(runtime::soa_detail::planes_per_set(1023, 18, sizeof(float)), 16);  // 4 bytes apart, downwards
 }
 
 TEST(Batch, PerVectorRotationsDoNotDependOnTheThreadCount) {

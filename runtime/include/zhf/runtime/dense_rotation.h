@@ -115,7 +115,7 @@ class DenseRotation {
             // step was evicted before the next: order 8 ran at 35 % of the copy, one thread),
             // then packs and single items for the rest.
             std::size_t v = block;
-            for (; v < block_end && reinterpret_cast<std::uintptr_t>(f + first_row + v) % kLineBytes; ++v)
+            for (; v < block_end && reinterpret_cast<std::uintptr_t>(f + first_row + v) % kCacheLineBytes; ++v)
               apply_planar_band<T>(l, d, f + first_row + v, g + first_row + v, count);
             for (; v + Line::kLanes <= block_end; v += Line::kLanes)
               apply_planar_band<Line>(l, d, f + first_row + v, g + first_row + v, count);
@@ -132,8 +132,7 @@ class DenseRotation {
 
  private:
   using P = Pack<T>;
-  static constexpr int kLineBytes = 64;
-  using Line = Pack<T, kLineBytes>;  // a cache line of items: two AVX2 registers
+  using Line = Pack<T, kCacheLineBytes>;  // a cache line of items: two AVX2 registers
   // apply_planar's items per block: long runs per plane for the prefetchers (2048 and more
   // measured alike; 256 ran 1.6x slower at order 4), the band's planes within L2.
   static constexpr std::size_t kPlanarBlock = 4096;

@@ -18,6 +18,11 @@
 
 namespace zhf::runtime {
 
+// The cache geometry the bulk layouts are arranged for (x86-64 cores' L1 data caches): a line, and
+// the span after which addresses meet the same L1 set again (64 sets of a line each).
+inline constexpr int kCacheLineBytes = 64;
+inline constexpr int kCacheSetSpanBytes = 4096;
+
 template <class T, int kBytes = 32>
 struct Pack {
   static constexpr int kLanes = kBytes / int(sizeof(T));

@@ -1,10 +1,12 @@
 // rotate_soa<N>: many vectors, each with its own rotation, Pack<T>::kLanes rotations per step (8
 // floats on AVX2) through the generated order-N kernel itself: a Pack is a number to it, so the
-// rotation is the same expression graph, verified once, run across lanes. Blocks of steps are
-// copied plane by plane out of the strided arrays into a local block (about 70 KiB of stack at
-// order 8), so the kernel addresses contiguous packs; the generated rotate_batch_orderN reads its
-// 3 + 2 N^2 strided streams directly, which the compiler vectorises only when count is a
-// compile-time constant (4 to 6 times slower otherwise).
+// rotation is the same expression graph, verified once, run across lanes. The outputs of a block
+// of steps are gathered in a local block and copied plane by plane into the strided arrays; the
+// inputs are read straight from the planes up to order 4 when the planes spread over the L1
+// cache's sets, and otherwise copied plane by plane into the block too (about 70 KiB of stack at
+// order 8). The generated rotate_batch_orderN reads its 3 + 2 N^2 strided streams directly, which
+// the compiler vectorises only when count is a compile-time constant (4 to 6 times slower
+// otherwise).
 //
 // Layout (structure of arrays, as rotate_batch_orderN): R[k count + v] for the row-major entries
 // k < 9 of rotation v, coeffs[i count + v] and rotated[i count + v] for i < N^2. Convention as
@@ -13,6 +15,7 @@
 // Cost: the kernel's operation count (zhf_orderN.h's banner) per kLanes rotations; no allocation.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 
 #include "zhf/runtime/pack.h"
@@ -24,10 +27,41 @@ namespace zhf::runtime {
 namespace soa_detail {
 
 // Steps per block. Planes a power of two apart (count = 4096) share cache sets: a step reading its
-// 9 + N^2 planes directly evicted its own lines (2x to 5x slower); a block reads one plane at a
-// time, in runs of kSoaSteps packs. Measured at orders 3..8: 16 steps (block inputs 14 KiB at
+// 9 + N^2 planes directly evicted its own lines (2x to 5x slower); a block copy reads one plane at
+// a time, in runs of kSoaSteps packs. Measured at orders 3..8: 16 steps (block inputs 14 KiB at
 // order 3, 37 KiB at 8) up to 1.3x faster than 4, alike 8 and 32 within 10 %.
 inline constexpr int kSoaSteps = 16;
+
+// Reading each step's inputs straight from the planes saves the block copy's stores (the limit at
+// order 3, where the kernel is short) where the planes do not crowd into a few cache sets: up to
+// order 4, with at most kSoaMaxPlanesPerSet input planes in any line-wide window of a set span
+// (measured on AMD Zen 4, counts 3000 to 50000, float: order 2 0.7 to 0.9 ns per rotation against
+// the block's 1.0 to 1.2, order 3 1.5 to 1.9 against 2.2 to 2.7, order 4 5.2 to 5.7 against 6.4 to
+// 7.1; 9 planes per window still faster at order 3, 13 slower at order 4; all 18, a count that is
+// a multiple of 1024 floats, 2.4x slower). Above order 4 the kernel is long enough that the block's
+// copies cost little, and reading directly was alike or slower (order 8 up to 1.14x).
+inline constexpr int kSoaDirectMaxOrder = 4;
+inline constexpr int kSoaMaxPlanesPerSet = 8;
+
+// The most of `planes` planes, count values of `value_bytes` apart, whose offsets within a cache
+// set span fall into one line-wide window (all of them where the distance is a multiple of it).
+inline int planes_per_set(std::size_t count, int planes, std::size_t value_bytes) {
+  const std::size_t span = kCacheSetSpanBytes, distance = count % span * value_bytes % span;
+  int most = 0;
+  for (int k = 0; k < planes; ++k) {
+    int near = 0;
+    for (int j = 0; j < planes; ++j)
+      near += (span + j * distance % span - k * distance % span) % span < std::size_t(kCacheLineBytes);
+    most = std::max(most, near);
+  }
+  return most;
+}
+
+// Whether rotate_soa<N> reads the inputs of count rotations straight from their planes.
+template <int N, class T>
+bool reads_planes_directly(std::size_t count) {
+  return N <= kSoaDirectMaxOrder && planes_per_set(count, 9 + N * N, sizeof(T)) <= kSoaMaxPlanesPerSet;
+}
 
 // rotate_soa's items [begin, end). Its arguments are values here, not a closure's references:
 // the packs' stores (memcpy) could otherwise alias them and force a reload after every store.
@@ -36,18 +70,35 @@ void rotate_range(std::size_t count, const T* R, const T* coeffs, T* rotated, st
   using P = Pack<T>;
   constexpr int L = P::kLanes;
   P r[9], f[N * N], g[N * N];
-  // kSoaSteps steps at a time: the inputs copied plane by plane into a local block, the kernel
-  // run step by step on it, the outputs copied back plane by plane. Then single steps.
-  P in[kSoaSteps][9 + N * N], out[kSoaSteps][N * N];
+  // kSoaSteps steps at a time: the inputs read straight from the planes or copied plane by plane
+  // into a local block, the kernel run step by step, the outputs copied back plane by plane. Then
+  // single steps.
+  P out[kSoaSteps][N * N];
   std::size_t v = begin;
-  for (; v + kSoaSteps * L <= end; v += kSoaSteps * L) {
-    for (int k = 0; k < 9; ++k)
-      for (int s = 0; s < kSoaSteps; ++s) in[s][k] = P::load(R + k * count + v + s * L);
-    for (int i = 0; i < N * N; ++i)
-      for (int s = 0; s < kSoaSteps; ++s) in[s][9 + i] = P::load(coeffs + i * count + v + s * L);
-    for (int s = 0; s < kSoaSteps; ++s) gen::Kernels<N>::template rotate<P>(in[s], in[s] + 9, out[s]);
+  auto copy_out = [&] {
     for (int i = 0; i < N * N; ++i)
       for (int s = 0; s < kSoaSteps; ++s) out[s][i].store(rotated + i * count + v + s * L);
+  };
+  if (reads_planes_directly<N, T>(count)) {
+    for (; v + kSoaSteps * L <= end; v += kSoaSteps * L) {
+      for (int s = 0; s < kSoaSteps; ++s) {
+        P step_r[9], step_f[N * N];
+        for (int k = 0; k < 9; ++k) step_r[k] = P::load(R + k * count + v + s * L);
+        for (int i = 0; i < N * N; ++i) step_f[i] = P::load(coeffs + i * count + v + s * L);
+        gen::Kernels<N>::template rotate<P>(step_r, step_f, out[s]);
+      }
+      copy_out();
+    }
+  } else {
+    P in[kSoaSteps][9 + N * N];
+    for (; v + kSoaSteps * L <= end; v += kSoaSteps * L) {
+      for (int k = 0; k < 9; ++k)
+        for (int s = 0; s < kSoaSteps; ++s) in[s][k] = P::load(R + k * count + v + s * L);
+      for (int i = 0; i < N * N; ++i)
+        for (int s = 0; s < kSoaSteps; ++s) in[s][9 + i] = P::load(coeffs + i * count + v + s * L);
+      for (int s = 0; s < kSoaSteps; ++s) gen::Kernels<N>::template rotate<P>(in[s], in[s] + 9, out[s]);
+      copy_out();
+    }
   }
   for (; v + L <= end; v += L) {
     for (int k = 0; k < 9; ++k) r[k] = P::load(R + k * count + v);
