@@ -38,8 +38,8 @@ inline constexpr int kSoaSteps = 16;
 // (measured on AMD Zen 4, counts 3000 to 50000, float: order 2 0.7 to 0.9 ns per rotation against
 // the block's 1.0 to 1.2, order 3 1.5 to 1.9 against 2.2 to 2.7, order 4 5.2 to 5.7 against 6.4 to
 // 7.1; 9 planes per window still faster at order 3, 13 slower at order 4; all 18, a count that is
-// a multiple of 1024 floats, 1.8x to 2.2x slower). Above order 4 the kernel is long enough that the block's
-// copies cost little, and reading directly was alike or slower (order 8 up to 1.14x).
+// a multiple of 1024 floats, 1.8x to 2.2x slower). Above order 4 the kernel is long enough that
+// the block's copies cost little, and reading directly was alike or slower (order 8 up to 1.14x).
 inline constexpr int kSoaDirectMaxOrder = 4;
 inline constexpr int kSoaMaxPlanesPerSet = 8;
 
