@@ -1,6 +1,7 @@
 // The batch entry points (rotate_shared, rotate_batch, rotate_soa, the bulk layouts of
 // DenseRotation) against the Ivanic-Ruedenberg reference and against themselves across thread
 // counts; quaternions against Eigen's conversion.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -132,6 +133,57 @@ TEST(Batch, BulkLayoutsMatchTheReferenceAtEveryGeneratedOrder) {
       check_layouts<double>(order, m, kDouble);
       check_layouts<float>(order, m, kFloatRotation);
     }
+}
+
+// apply_planar on outputs large enough to be stored past the caches: the same bytes as in place
+// (stored through the caches), on two threads, and the reference on a sample of items; and the
+// cases that keep cached stores (in place, small, out not a whole number of lines from in, planes
+// not whole lines apart).
+template <class T>
+void check_streamed_planar(double tolerance) {
+  constexpr int kOrder = 4, kChannels = 3;
+  constexpr std::size_t n = kOrder * kOrder, planes = kChannels * n;
+  std::mt19937_64 rng(300);
+  const sh::RotationMatrix m = sh::random_rotation(rng);
+  T r[9];
+  for (int i = 0; i < 9; ++i) r[i] = T(m(i / 3, i % 3));
+  const runtime::DenseRotation<T> dense = runtime::Rotator<T>::with(gen::fastest_kernels<T>(kOrder)).dense(r);
+  // Just past the size, planes whole lines apart; in and out in one buffer, each from a line.
+  const std::size_t line = runtime::kCacheLineBytes / sizeof(T), count = ((std::size_t(64) << 20) / sizeof(T) / planes / line + 1) * line,
+                    size = planes * count;
+  std::vector<T> buffer(2 * size + 2 * line);
+  T* const in = buffer.data() + (line - reinterpret_cast<std::uintptr_t>(buffer.data()) / sizeof(T) % line) % line;
+  T* const out = in + size + line;
+  sh::Normal<> normal;
+  for (std::size_t i = 0; i < size; ++i) in[i] = T(normal(rng));
+  ASSERT_TRUE(dense.planar_streams(count, kChannels, in, out)) << sizeof(T) << "-byte values";
+  ASSERT_FALSE(dense.planar_streams(count, kChannels, in, in));
+  ASSERT_FALSE(dense.planar_streams(count / 2, kChannels, in, out));
+  ASSERT_FALSE(dense.planar_streams(count, kChannels, in, out - 1));
+  ASSERT_FALSE(dense.planar_streams(count + 1, kChannels, in, out));
+  const std::vector<T> input(in, in + size);
+  std::vector<T> in_place = input;
+  dense.apply_planar(count, kChannels, in, out, 2);
+  dense.apply_planar(count, kChannels, in_place.data(), in_place.data(), 1);
+  ASSERT_TRUE(std::equal(in_place.begin(), in_place.end(), out)) << "stored past the caches or not, other bytes";
+  dense.apply_planar(count, kChannels, in, out - 1, 1);  // cached stores, out a value short of a line
+  ASSERT_TRUE(std::equal(in_place.begin(), in_place.end(), out - 1)) << "out a value short of a line, other bytes";
+  ASSERT_TRUE(std::equal(input.begin(), input.end(), in)) << "the input changed";
+  const sh::BandMatrices exact = sh::ivanic_ruedenberg(m, kOrder);
+  for (std::size_t v = 0; v < count; v += count / 7)
+    for (int c = 0; c < kChannels; ++c) {
+      Eigen::VectorXd f(n);
+      for (std::size_t i = 0; i < n; ++i) f[i] = double(input[(c * n + i) * count + v]);
+      const Eigen::VectorXd g = sh::apply_band_matrices(exact, f);
+      for (std::size_t i = 0; i < n; ++i)
+        ASSERT_NEAR(double(in_place[(c * n + i) * count + v]), g[i], tolerance * f.norm())
+            << "order " << kOrder << ", band " << runtime::band_of(int(i)) << ", index " << i << ", item " << v << ", channel " << c;
+    }
+}
+
+TEST(Batch, LargePlanarOutputsStoredPastTheCachesKeepTheirBytes) {
+  check_streamed_planar<float>(kFloatRotation);
+  check_streamed_planar<double>(kDouble);
 }
 
 // rotate_soa against the reference and lane for lane against the scalar kernel, on random

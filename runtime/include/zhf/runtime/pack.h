@@ -16,6 +16,10 @@
 #include <cstring>
 #include <type_traits>
 
+#if defined(__GNUC__) && defined(__SSE2__)
+#include <immintrin.h>  // non-temporal stores
+#endif
+
 namespace zhf::runtime {
 
 // The cache geometry the bulk layouts are arranged for (x86-64 cores' L1 data caches): a line, and
@@ -186,6 +190,33 @@ struct Pack {
     return r;
   }
   void store(T* p) const { std::memcpy(p, &v, sizeof v); }
+  // store() past the caches (non-temporal stores on x86; a plain store elsewhere), for outputs
+  // too large to stay cached: the lines are written without first being read. p aligned to
+  // min(kBytes, 32); a run of them ends with stream_fence().
+  void stream(T* p) const {
+#if defined(__GNUC__) && defined(__SSE2__)
+#if defined(__AVX__)
+    if constexpr (kBytes % 32 == 0 && std::is_same_v<T, float>)
+      return stream_parts<__m256>(p, [](float* q, __m256 x) { _mm256_stream_ps(q, x); });
+    if constexpr (kBytes % 32 == 0 && std::is_same_v<T, double>)
+      return stream_parts<__m256d>(p, [](double* q, __m256d x) { _mm256_stream_pd(q, x); });
+#endif
+    if constexpr (kBytes % 16 == 0 && std::is_same_v<T, float>)
+      return stream_parts<__m128>(p, [](float* q, __m128 x) { _mm_stream_ps(q, x); });
+    if constexpr (kBytes % 16 == 0 && std::is_same_v<T, double>)
+      return stream_parts<__m128d>(p, [](double* q, __m128d x) { _mm_stream_pd(q, x); });
+#endif
+    store(p);
+  }
+  // The pack as native registers (copied whole, so the compiler keeps it in registers), each
+  // passed to store_part with its place in p.
+  template <class Native, class StorePart>
+  void stream_parts(T* p, StorePart store_part) const {
+    constexpr int kParts = int(sizeof v / sizeof(Native));
+    Native parts[kParts];
+    std::memcpy(parts, &v, sizeof parts);
+    for (int k = 0; k < kParts; ++k) store_part(p + k * int(sizeof(Native) / sizeof(T)), parts[k]);
+  }
   // out[i] = the sum of packs[i]'s lanes (pairwise), for i < count: one pass the compiler can
   // vectorise across i, where a sum per pack would be a chain of shuffles.
   static void sums(const Pack* packs, int count, T* out) {
@@ -200,5 +231,12 @@ struct Pack {
     }
   }
 };
+
+// Orders the stream() stores before what follows (they are weakly ordered on x86).
+inline void stream_fence() {
+#if defined(__GNUC__) && defined(__SSE2__)
+  _mm_sfence();
+#endif
+}
 
 }  // namespace zhf::runtime
