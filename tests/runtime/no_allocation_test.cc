@@ -99,14 +99,13 @@ TEST(NoAllocation, TheCounterSeesAllocations) {
   EXPECT_GT(allocations_of([] { std::vector<Wide> v(3); }), 0);
 }
 
-TEST(NoAllocation, BulkLayoutsStoredPastTheCachesDoNotAllocate) {
-  // Three channels of order 4 (as planes, or splats) just past the size stored past the caches.
+TEST(NoAllocation, PlanarStoredPastTheCachesDoesNotAllocate) {
+  // Three channels of order 4 just past the size apply_planar stores past the caches.
   const std::size_t line = runtime::kCacheLineBytes / sizeof(float), count = ((std::size_t(64) << 20) / sizeof(float) / 48 / line + 1) * line;
   Data<float> d(4, count);
   const runtime::DenseRotation<float> dense = runtime::Rotator<float>::of<4>().dense(d.r.data());
   EXPECT_EQ(allocations_of([&] { dense.apply_planar(count, 3, d.in.data(), d.out.data(), 1); }), 0)
       << (dense.planar_streams(count, 3, d.in.data(), d.out.data()) ? "stored past the caches" : "cached stores");
-  EXPECT_EQ(allocations_of([&] { dense.apply_splats(count, d.in.data(), d.out.data(), 1); }), 0);
 }
 
 TEST(NoAllocation, AcrossRotationsDoesNotAllocate) {

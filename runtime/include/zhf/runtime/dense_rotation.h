@@ -77,8 +77,7 @@ class DenseRotation {
   }
 
   // 3D Gaussian Splatting's layout, count items of 3 N^2 values: the three band-0 values (R, G,
-  // B), then bands 1.. of R, of G and of B (N^2 - 1 each). in == out is allowed; out of place,
-  // outputs of kStreamedOutputBytes and more are stored past the caches. Cost per item:
+  // B), then bands 1.. of R, of G and of B (N^2 - 1 each). in == out is allowed. Cost per item:
   // 3 sum_{l>0} (2l+1) x (packs of rows band l touches) pack multiply-adds (N = 4: 45 for 249
   // scalar multiply-adds; N = 8: 333 for 2040), straight-line code at orders 3..8;
   // docs/performance.md compares it with memory bandwidth.
@@ -155,9 +154,8 @@ class DenseRotation {
   // measured alike; 256 ran 1.6x slower at order 4), the band's planes within L2.
   static constexpr std::size_t kPlanarBlock = 4096;
   // Outputs at least this large (twice a 32 MiB L3) are not read back from the caches, so
-  // apply_planar and apply_splats write them out of place without the reads a cached store makes
-  // first (AMD Zen 4: planar 1.2x to 1.5x faster at 50 MiB and up, mixed at 12 to 25 MiB; splats
-  // at 200 MiB order 8 1.02x to 1.05x on one thread, 1.15x to 1.35x on two, order 4 1.1x / 1.3x).
+  // apply_planar writes them without the reads a cached store makes first (AMD Zen 4, planar
+  // out of place: 1.2x to 1.5x faster at 50 MiB and up; mixed at 12 to 25 MiB).
   static constexpr std::size_t kStreamedOutputBytes = std::size_t(64) << 20;
 
   // Bands 1.. are cut into packs of kLanes output rows. Pack p starts at row p kLanes, except
@@ -174,10 +172,6 @@ class DenseRotation {
   template <int N>
   void apply_splats_of(std::size_t count, const T* in, T* out, int threads) const {
     const std::size_t rest = static_cast<std::size_t>(coefficients() - 1), item = 3 + 3 * rest;
-    if constexpr (N > 0) {
-      if (in != out && count >= kStreamedOutputBytes / sizeof(T) / item)
-        return parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) { stream_splats<N>(in, out, begin, end); });
-    }
     parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
       for (std::size_t v = begin; v < end; ++v) {
         const T* f = in + item * v;
@@ -190,32 +184,6 @@ class DenseRotation {
         }
       }
     });
-  }
-
-  // apply_splats_of<N>'s splats [begin, end) stored past the caches: each splat is made in a
-  // local buffer behind the values left over from the one before, and every whole cache line of
-  // out the buffer then covers is streamed there, so that no line is read first or written in
-  // parts; the part line before the first whole one and the values after the last are stored
-  // through the caches.
-  template <int N>
-  void stream_splats(const T* in, T* out, std::size_t begin, std::size_t end) const {
-    constexpr std::size_t kItem = 3 * N * N, kLine = Line::kLanes;
-    T buffer[kItem + kLine];
-    T* to = out + kItem * begin;  // where buffer[0] goes
-    std::size_t held = 0;
-    for (std::size_t v = begin; v < end; ++v) {
-      const T* f = in + kItem * v;
-      for (int c = 0; c < 3; ++c) buffer[held + c] = f[c];
-      apply_splat_rest<N>(f + 3, buffer + held + 3);
-      held += kItem;
-      std::size_t k = 0;
-      for (; k < held && reinterpret_cast<std::uintptr_t>(to + k) % kCacheLineBytes; ++k) to[k] = buffer[k];
-      for (; k + kLine <= held; k += kLine) Line::load(buffer + k).stream(to + k);
-      std::copy(buffer + k, buffer + held, buffer);
-      to += k, held -= k;
-    }
-    std::copy(buffer, buffer + held, to);
-    stream_fence();
   }
 
   // y = D x over bands 1.. (N^2 - 1 values each); x may be y (every pack is formed before any
