@@ -155,7 +155,10 @@ class DenseRotation {
   static constexpr std::size_t kPlanarBlock = 4096;
   // Outputs at least this large (twice a 32 MiB L3) are not read back from the caches, so
   // apply_planar writes them without the reads a cached store makes first (AMD Zen 4, planar
-  // out of place: 1.2x to 1.5x faster at 50 MiB and up; mixed at 12 to 25 MiB).
+  // out of place: 1.2x to 1.5x faster at 50 MiB and up; mixed at 12 to 25 MiB). apply_splats
+  // keeps cached stores: streamed through a buffer of whole lines its order-8 outputs ran 1.02x
+  // to 1.35x faster in most runs and 2x slower in others (the one output stream right behind the
+  // one input stream, as if the two collided in memory).
   static constexpr std::size_t kStreamedOutputBytes = std::size_t(64) << 20;
 
   // Bands 1.. are cut into packs of kLanes output rows. Pack p starts at row p kLanes, except
