@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "test_support.h"
 #include "zhf/runtime/limits.h"
 #include "zhf/runtime/pack.h"
 #include "zhf/runtime/rotation.h"
@@ -148,17 +149,16 @@ void check_streamed_planar(double tolerance) {
   T r[9];
   for (int i = 0; i < 9; ++i) r[i] = T(m(i / 3, i % 3));
   const runtime::DenseRotation<T> dense = runtime::Rotator<T>::with(gen::fastest_kernels<T>(kOrder)).dense(r);
-  // Just past the size, planes whole lines apart; in and out in one buffer, each from a line.
+  // Just past the size, planes whole lines apart; in and out each from a line.
   const std::size_t line = runtime::kCacheLineBytes / sizeof(T), count = ((std::size_t(64) << 20) / sizeof(T) / planes / line + 1) * line,
                     size = planes * count;
-  std::vector<T> buffer(2 * size + 2 * line);
-  T* const in = buffer.data() + (line - reinterpret_cast<std::uintptr_t>(buffer.data()) / sizeof(T) % line) % line;
-  T* const out = in + size + line;
+  std::vector<T> buffer;
+  const auto [in, out] = test::aligned_pair(buffer, size + line, runtime::kCacheLineBytes);
   sh::Normal<> normal;
   for (std::size_t i = 0; i < size; ++i) in[i] = T(normal(rng));
   ASSERT_TRUE(dense.planar_streams(count, kChannels, in, out)) << sizeof(T) << "-byte values";
   ASSERT_FALSE(dense.planar_streams(count, kChannels, in, in));
-  ASSERT_FALSE(dense.planar_streams(count / 2, kChannels, in, out));
+  ASSERT_FALSE(dense.planar_streams(count - line, kChannels, in, out));  // below the size, whole lines
   ASSERT_FALSE(dense.planar_streams(count, kChannels, in, out - 1));
   ASSERT_FALSE(dense.planar_streams(count + 1, kChannels, in, out));
   const std::vector<T> input(in, in + size);

@@ -3,8 +3,11 @@
 // for outputs, and where the project's data is.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -81,5 +84,16 @@ void write_text(const std::string& path, const std::string& text);
 
 // Lines of text (newlines counted).
 int line_count(const std::string& text);
+
+// Two arrays of size values in buffer (resized to hold them), each starting on an
+// alignment-byte boundary and the second a whole number of those after the first: the layout
+// DenseRotation::planar_streams asks for, whatever the allocator's placement.
+template <class T>
+std::pair<T*, T*> aligned_pair(std::vector<T>& buffer, std::size_t size, std::size_t alignment) {
+  const std::size_t step = alignment / sizeof(T), whole = (size + step - 1) / step * step;
+  buffer.assign(2 * whole + step, T(0));
+  T* const first = buffer.data() + (step - reinterpret_cast<std::uintptr_t>(buffer.data()) / sizeof(T) % step) % step;
+  return {first, first + whole};
+}
 
 }  // namespace zhf::test

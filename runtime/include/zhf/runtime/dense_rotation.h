@@ -293,7 +293,7 @@ class DenseRotation {
         odd += V(d[(j + 1) * n + i]) * x[j + 1];
       }
       even += V(d[(n - 1) * n + i]) * x[n - 1];
-      store<kStreamed>(even + odd, out + i * stride);
+      store_row<kStreamed>(even + odd, out + i * stride);
     }
   }
   template <class V, int L, bool kStreamed>
@@ -304,7 +304,7 @@ class DenseRotation {
     for_each_index<n>([&](auto i) {
       V even(T(0)), odd(T(0));
       for_each_index<n>([&](auto j) { (j % 2 ? odd : even) += V(d[j * n + i]) * x[j]; });
-      store<kStreamed>(even + odd, out + i * stride);
+      store_row<kStreamed>(even + odd, out + i * stride);
     });
   }
   template <class V>
@@ -312,18 +312,14 @@ class DenseRotation {
     if constexpr (std::is_same_v<V, T>) return *p;
     else return V::load(p);
   }
-  template <bool kStreamed = false>
-  static void store(const T& value, T* p) {
-    *p = value;
-  }
-  template <bool kStreamed = false>
-  static void store(const P& value, T* p) {
-    value.store(p);
-  }
-  template <bool kStreamed = false>
-  static void store(const Line& value, T* p) {
+  static void store(const T& value, T* p) { *p = value; }
+  static void store(const P& value, T* p) { value.store(p); }
+  static void store(const Line& value, T* p) { value.store(p); }
+  // A row of apply_planar_band: past the caches where kStreamed (whole-line steps only).
+  template <bool kStreamed, class V>
+  static void store_row(const V& value, T* p) {
     if constexpr (kStreamed) value.stream(p);
-    else value.store(p);
+    else store(value, p);
   }
 
   template <int N>
