@@ -83,9 +83,9 @@ void run_order(std::size_t items, int runs, int threads) {
 }
 
 template <int N>
-void run_soa(std::size_t count, int runs) {
+void run_soa(std::size_t count, std::size_t stride, int runs) {
   constexpr std::size_t n = N * N;
-  std::vector<float> r(9 * count), in(n * count), out(n * count);
+  std::vector<float> r(9 * stride), in(n * stride), out(n * stride);
   std::mt19937_64 rng(N);
   zhf::sh::Normal<> normal;
   for (std::size_t v = 0; v < count; ++v) {
@@ -93,25 +93,31 @@ void run_soa(std::size_t count, int runs) {
     const double length = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
     for (double& a : axis) a /= length;
     const zhf::runtime::Matrix3 m = zhf::runtime::rotation_about_unit_axis(axis, 3 * normal(rng));
-    for (int k = 0; k < 9; ++k) r[k * count + v] = float(m[k]);
+    for (int k = 0; k < 9; ++k) r[k * stride + v] = float(m[k]);
   }
-  for (float& x : in) x = float(normal(rng));
-  const double t_generated =
-      best_seconds(runs * 5, [&] { zhf::gen::Kernels<N>::template rotate_batch<float>(count, r.data(), in.data(), out.data()); });
-  const double t_packs = best_seconds(runs * 5, [&] { zhf::runtime::rotate_soa<N>(count, r.data(), in.data(), out.data()); });
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t v = 0; v < count; ++v) in[i * stride + v] = float(normal(rng));
+  // The generated loop takes no stride: timed where the planes are count apart.
+  char generated[32] = "-";
+  if (stride == count) {
+    const double t = best_seconds(
+        runs * 5, [&] { zhf::gen::Kernels<N>::template rotate_batch<float>(count, r.data(), in.data(), out.data()); });
+    std::snprintf(generated, sizeof generated, "%.2f ns", t / count * 1e9);
+  }
+  const double t_packs = best_seconds(runs * 5, [&] { zhf::runtime::rotate_soa<N>(count, stride, r.data(), in.data(), out.data()); });
   // The scalar kernel once per rotation, on the same rotations and vectors laid out one after another.
   std::vector<float> r_each(9 * count), in_each(n * count), out_each(n * count);
   for (std::size_t v = 0; v < count; ++v) {
-    for (int k = 0; k < 9; ++k) r_each[9 * v + k] = r[k * count + v];
-    for (std::size_t i = 0; i < n; ++i) in_each[n * v + i] = in[i * count + v];
+    for (int k = 0; k < 9; ++k) r_each[9 * v + k] = r[k * stride + v];
+    for (std::size_t i = 0; i < n; ++i) in_each[n * v + i] = in[i * stride + v];
   }
   const double t_scalar = best_seconds(runs * 5, [&] {
     for (std::size_t v = 0; v < count; ++v)
       zhf::gen::Kernels<N>::template rotate<float>(&r_each[9 * v], &in_each[n * v], &out_each[n * v]);
   });
-  std::printf("N=%d soa, %zu rotations, one thread: rotate_soa %.2f ns per rotation; generated rotate_batch %.2f ns; "
+  std::printf("N=%d soa, %zu rotations, planes %zu apart, one thread: rotate_soa %.2f ns per rotation; generated rotate_batch %s; "
               "scalar rotate per rotation %.2f ns (%.2fx rotate_soa)\n",
-              N, count, t_packs / count * 1e9, t_generated / count * 1e9, t_scalar / count * 1e9, t_scalar / t_packs);
+              N, count, stride, t_packs / count * 1e9, generated, t_scalar / count * 1e9, t_scalar / t_packs);
 }
 
 }  // namespace
@@ -128,14 +134,18 @@ int main(int argc, char** argv) {
     run_order<4>(items, int(runs), threads);
     run_order<8>(items / 4, int(runs), threads);
   }
-  // Planes 16 KiB apart (a power of two: rotate_soa copies the inputs through its block), then not.
-  for (std::size_t count : {4096, 4000}) {
-    run_soa<3>(count, int(runs));
-    run_soa<4>(count, int(runs));
-    run_soa<5>(count, int(runs));
-    run_soa<6>(count, int(runs));
-    run_soa<7>(count, int(runs));
-    run_soa<8>(count, int(runs));
+  // Planes 16 KiB apart (a power of two: rotate_soa copies the inputs through its block), the same
+  // count on planes padded to soa_plane_stride, then a count that spreads them itself.
+  const struct {
+    std::size_t count, stride;
+  } layouts[] = {{4096, 4096}, {4096, zhf::runtime::soa_plane_stride<3, float>(4096)}, {4000, 4000}};
+  for (const auto& layout : layouts) {
+    run_soa<3>(layout.count, layout.stride, int(runs));
+    run_soa<4>(layout.count, layout.stride, int(runs));
+    run_soa<5>(layout.count, layout.stride, int(runs));
+    run_soa<6>(layout.count, layout.stride, int(runs));
+    run_soa<7>(layout.count, layout.stride, int(runs));
+    run_soa<8>(layout.count, layout.stride, int(runs));
   }
   return 0;
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -187,10 +188,11 @@ TEST(Batch, LargePlanarOutputsStoredPastTheCachesKeepTheirBytes) {
 }
 
 // rotate_soa against the reference and lane for lane against the scalar kernel, on random
-// rotations and the adversarial ones (axes, half turns, near-identity), count of them. Float
+// rotations and the adversarial ones (axes, half turns, near-identity), count of them, planes
+// stride values apart (the values past count in the output planes left as they were). Float
 // against the reference: the bound for any unit input of a float lobe stage.
 template <int N, class T>
-void check_soa(std::size_t count, double tolerance) {
+void check_soa(std::size_t count, double tolerance, std::size_t stride) {
   std::mt19937_64 rng(200 + N);
   std::vector<sh::RotationMatrix> rotations = {sh::RotationMatrix::Identity(), sh::RotationMatrix(Eigen::AngleAxisd(runtime::kPi, Eigen::Vector3d::UnitX())),
                                         sh::RotationMatrix(Eigen::AngleAxisd(runtime::kPi, Eigen::Vector3d(1, 1, 1).normalized())),
@@ -199,17 +201,25 @@ void check_soa(std::size_t count, double tolerance) {
   while (rotations.size() < count) rotations.push_back(sh::random_rotation(rng));
   const std::size_t n = N * N;
   const std::vector<T> vectors = unit_vectors<T>(count, N, rng);
-  std::vector<T> r(9 * count), in(n * count), out(n * count, T(7)), two(n * count);
+  std::vector<T> r(9 * stride), in(n * stride), out(n * stride, T(7)), two(n * stride);
   for (std::size_t v = 0; v < count; ++v) {
-    for (int k = 0; k < 9; ++k) r[k * count + v] = T(rotations[v](k / 3, k % 3));
-    for (std::size_t i = 0; i < n; ++i) in[i * count + v] = vectors[v * n + i];
+    for (int k = 0; k < 9; ++k) r[k * stride + v] = T(rotations[v](k / 3, k % 3));
+    for (std::size_t i = 0; i < n; ++i) in[i * stride + v] = vectors[v * n + i];
   }
-  runtime::rotate_soa<N>(count, r.data(), in.data(), out.data(), 1);
-  runtime::rotate_soa<N>(count, r.data(), in.data(), two.data(), 2);
+  if (stride == count)
+    runtime::rotate_soa<N>(count, r.data(), in.data(), out.data(), 1);
+  else
+    runtime::rotate_soa<N>(count, stride, r.data(), in.data(), out.data(), 1);
+  runtime::rotate_soa<N>(count, stride, r.data(), in.data(), two.data(), 2);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t v = count; v < stride; ++v) {
+      ASSERT_EQ(out[i * stride + v], T(7)) << "order " << N << ": a value past count written, index " << i << ", place " << v;
+      two[i * stride + v] = T(7);
+    }
   ASSERT_EQ(out, two) << "order " << N << ": the thread count changed the result";
   for (std::size_t v = 0; v < count; ++v) {
     T rv[9], single[N * N];
-    for (int k = 0; k < 9; ++k) rv[k] = r[k * count + v];
+    for (int k = 0; k < 9; ++k) rv[k] = r[k * stride + v];
     gen::Kernels<N>::template rotate<T>(rv, &vectors[v * n], single);
     Eigen::VectorXd f(n);
     for (std::size_t i = 0; i < n; ++i) f[i] = double(vectors[v * n + i]);
@@ -217,9 +227,9 @@ void check_soa(std::size_t count, double tolerance) {
     for (int k = 0; k < 9; ++k) exact_r(k / 3, k % 3) = double(rv[k]);
     const Eigen::VectorXd g = sh::apply_band_matrices(sh::ivanic_ruedenberg(exact_r, N), f);
     for (std::size_t i = 0; i < n; ++i) {
-      ASSERT_NEAR(double(out[i * count + v]), g[i], tolerance)
+      ASSERT_NEAR(double(out[i * stride + v]), g[i], tolerance)
           << "order " << N << ", band " << runtime::band_of(int(i)) << ", index " << i << ", rotation " << v;
-      ASSERT_NEAR(double(out[i * count + v]), double(single[i]), tolerance)
+      ASSERT_NEAR(double(out[i * stride + v]), double(single[i]), tolerance)
           << "lanes against the scalar kernel, order " << N << ", index " << i << ", rotation " << v;
     }
   }
@@ -260,8 +270,17 @@ void check_soa_counts(double tolerance) {
              reads_crowded_directly = runtime::soa_detail::reads_planes_directly<N, T>(crowded);
   EXPECT_EQ(reads_spread_directly, N <= runtime::soa_detail::kSoaDirectMaxOrder) << "order " << N;
   EXPECT_FALSE(reads_crowded_directly) << "order " << N;
-  check_soa<N, T>(spread, tolerance);
-  check_soa<N, T>(crowded, tolerance);
+  check_soa<N, T>(spread, tolerance, spread);
+  check_soa<N, T>(crowded, tolerance, crowded);
+  // The crowded count on planes padded to a stride that spreads them (the same stride above
+  // kSoaDirectMaxOrder, where they are copied anyway), and the spread one on planes 3 values past
+  // count apart (not a whole number of packs).
+  const std::size_t padded = runtime::soa_plane_stride<N, T>(crowded);
+  EXPECT_EQ(padded > crowded, N <= runtime::soa_detail::kSoaDirectMaxOrder) << "order " << N << ", stride " << padded;
+  EXPECT_EQ((runtime::soa_detail::reads_planes_directly<N, T>(padded)), N <= runtime::soa_detail::kSoaDirectMaxOrder)
+      << "order " << N << ", stride " << padded;
+  if (padded > crowded) check_soa<N, T>(crowded, tolerance, padded);
+  check_soa<N, T>(spread, tolerance, spread + 3);
 }
 
 TEST(Batch, AcrossRotationsMatchesTheReferenceAndTheScalarKernel) {
@@ -284,6 +303,34 @@ TEST(Batch, PlanesPerSetCountsCrowdedPlanes) {
   EXPECT_EQ(runtime::soa_detail::planes_per_set(4100, 18, sizeof(float)), 4);   // 16 bytes apart
   EXPECT_EQ(runtime::soa_detail::planes_per_set(1, 18, sizeof(float)), 16);     // 4 bytes apart: 16 in a line
   EXPECT_EQ(runtime::soa_detail::planes_per_set(1023, 18, sizeof(float)), 16);  // 4 bytes apart, downwards
+}
+
+// soa_plane_stride against strides worked by hand (4112 floats: the planes 64 bytes apart
+// within the set span), and over every count to 5000: never below count, spread, and where
+// padded a whole number of lines within a set span of count. Strides below count and offsets
+// past a size_t refused.
+TEST(Batch, PlaneStrideSpreadsThePlanes) {
+  EXPECT_EQ((runtime::soa_plane_stride<3, float>(4096)), 4112u);
+  EXPECT_EQ((runtime::soa_plane_stride<3, float>(4095)), 4112u);
+  EXPECT_EQ((runtime::soa_plane_stride<3, float>(4000)), 4000u);
+  EXPECT_EQ((runtime::soa_plane_stride<2, float>(1024)), 1040u);
+  EXPECT_EQ((runtime::soa_plane_stride<4, double>(2048)), 2056u);
+  EXPECT_EQ((runtime::soa_plane_stride<5, float>(4096)), 4096u);
+  const std::size_t line = runtime::kCacheLineBytes / sizeof(float), span = runtime::kCacheSetSpanBytes / sizeof(float);
+  for (std::size_t count = 0; count <= 5000; ++count) {
+    const std::size_t stride = runtime::soa_plane_stride<3, float>(count);
+    ASSERT_TRUE((runtime::soa_detail::reads_planes_directly<3, float>(stride))) << "count " << count << ", stride " << stride;
+    if (stride == count) continue;
+    ASSERT_GT(stride, count);
+    ASSERT_EQ(stride % line, 0u) << "count " << count << ", stride " << stride;
+    ASSERT_LE(stride - count, span) << "count " << count << ", stride " << stride;
+  }
+  std::vector<float> r(9 * 16), in(9 * 16), out(9 * 16);
+  EXPECT_THROW(runtime::rotate_soa<3>(16, 15, r.data(), in.data(), out.data()), std::invalid_argument);
+  const std::size_t most = std::numeric_limits<std::size_t>::max();
+  EXPECT_THROW(runtime::rotate_soa<3>(16, most / 18 + 1, r.data(), in.data(), out.data()), std::invalid_argument);
+  EXPECT_THROW((runtime::soa_plane_stride<3, float>(most / span * span)), std::invalid_argument);  // crowded
+  EXPECT_EQ(out, std::vector<float>(9 * 16));
 }
 
 TEST(Batch, PerVectorRotationsDoNotDependOnTheThreadCount) {

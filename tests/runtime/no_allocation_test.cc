@@ -119,6 +119,10 @@ TEST(NoAllocation, AcrossRotationsDoesNotAllocate) {
     EXPECT_EQ(allocations_of([&] { runtime::rotate_soa<4>(count, d.r.data(), d.in.data(), d.out.data(), 1); }), 0)
         << count << " rotations";
   }
+  // The same 4096 on planes padded to a stride that spreads them.
+  const std::size_t count = 4096, stride = runtime::soa_plane_stride<4, float>(count);
+  Data<float> d(4, stride);
+  EXPECT_EQ(allocations_of([&] { runtime::rotate_soa<4>(count, stride, d.r.data(), d.in.data(), d.out.data(), 1); }), 0);
 }
 
 TEST(NoAllocation, NoRotateCallAllocatesAfterConstruction) {

@@ -8,15 +8,22 @@
 // the compiler vectorises only when count is a compile-time constant (4 to 6 times slower
 // otherwise).
 //
-// Layout (structure of arrays, as rotate_batch_orderN): R[k count + v] for the row-major entries
-// k < 9 of rotation v, coeffs[i count + v] and rotated[i count + v] for i < N^2. Convention as
-// Rotator. Orders whose rotate kernel keeps any lobe stage in T (kLobeStage 0: every shipped
-// order, 2..8, whose bands rotate by zxzxz); per lane the accuracy of gen::Kernels<N>::rotate<T>.
+// Layout (structure of arrays, as rotate_batch_orderN): R[k stride + v] for the row-major entries
+// k < 9 of rotation v, coeffs[i stride + v] and rotated[i stride + v] for i < N^2, v < count;
+// stride is count unless given (planes padded past count, or views into wider arrays: values
+// between count and stride are neither read nor written). Convention as Rotator. Orders whose
+// rotate kernel keeps any lobe stage in T (kLobeStage 0: every shipped order, 2..8, whose bands
+// rotate by zxzxz); per lane the accuracy of gen::Kernels<N>::rotate<T>.
 // Cost: the kernel's operation count (zhf_orderN.h's banner) per kLanes rotations; no allocation.
+// Planes a multiple of 1024 floats apart share the L1 cache's sets, which costs up to order 4 (1.6x
+// at order 3): soa_plane_stride gives a stride that avoids it.
 #pragma once
 
 #include <algorithm>
 #include <cstddef>
+#include <limits>
+#include <stdexcept>
+#include <string>
 
 #include "zhf/runtime/pack.h"
 #include "zhf/runtime/parallel.h"
@@ -43,10 +50,10 @@ inline constexpr int kSoaSteps = 16;
 inline constexpr int kSoaDirectMaxOrder = 4;
 inline constexpr int kSoaMaxPlanesPerSet = 8;
 
-// The most of `planes` planes, count values of `value_bytes` apart, whose offsets within a cache
+// The most of `planes` planes, stride values of `value_bytes` apart, whose offsets within a cache
 // set span fall into one line-wide window (all of them where the distance is a multiple of it).
-inline int planes_per_set(std::size_t count, int planes, std::size_t value_bytes) {
-  const std::size_t span = kCacheSetSpanBytes, distance = count % span * value_bytes % span;
+inline int planes_per_set(std::size_t stride, int planes, std::size_t value_bytes) {
+  const std::size_t span = kCacheSetSpanBytes, distance = stride % span * value_bytes % span;
   int most = 0;
   for (int k = 0; k < planes; ++k) {
     int near = 0;
@@ -57,17 +64,17 @@ inline int planes_per_set(std::size_t count, int planes, std::size_t value_bytes
   return most;
 }
 
-// Whether rotate_soa<N> reads the inputs of count rotations straight from their planes.
+// Whether rotate_soa<N> reads its inputs straight from planes stride values apart.
 template <int N, class T>
-bool reads_planes_directly(std::size_t count) {
-  return N <= kSoaDirectMaxOrder && planes_per_set(count, 9 + N * N, sizeof(T)) <= kSoaMaxPlanesPerSet;
+bool reads_planes_directly(std::size_t stride) {
+  return N <= kSoaDirectMaxOrder && planes_per_set(stride, 9 + N * N, sizeof(T)) <= kSoaMaxPlanesPerSet;
 }
 
 // rotate_soa's items [begin, end), the inputs read straight from the planes where direct. Its
 // arguments are values here, not a closure's references: the packs' stores (memcpy) could
 // otherwise alias them and force a reload after every store.
 template <int N, class T>
-void rotate_range(std::size_t count, const T* R, const T* coeffs, T* rotated, std::size_t begin, std::size_t end,
+void rotate_range(std::size_t stride, const T* R, const T* coeffs, T* rotated, std::size_t begin, std::size_t end,
                   bool direct) {
   using P = Pack<T>;
   constexpr int L = P::kLanes;
@@ -79,14 +86,14 @@ void rotate_range(std::size_t count, const T* R, const T* coeffs, T* rotated, st
   std::size_t v = begin;
   auto copy_out = [&] {
     for (int i = 0; i < N * N; ++i)
-      for (int s = 0; s < kSoaSteps; ++s) out[s][i].store(rotated + i * count + v + s * L);
+      for (int s = 0; s < kSoaSteps; ++s) out[s][i].store(rotated + i * stride + v + s * L);
   };
   if (direct) {
     for (; v + kSoaSteps * L <= end; v += kSoaSteps * L) {
       for (int s = 0; s < kSoaSteps; ++s) {
         P step_r[9], step_f[N * N];  // the step's own: r and f, which the tail shares, ran 6 % slower
-        for (int k = 0; k < 9; ++k) step_r[k] = P::load(R + k * count + v + s * L);
-        for (int i = 0; i < N * N; ++i) step_f[i] = P::load(coeffs + i * count + v + s * L);
+        for (int k = 0; k < 9; ++k) step_r[k] = P::load(R + k * stride + v + s * L);
+        for (int i = 0; i < N * N; ++i) step_f[i] = P::load(coeffs + i * stride + v + s * L);
         gen::Kernels<N>::template rotate<P>(step_r, step_f, out[s]);
       }
       copy_out();
@@ -95,47 +102,76 @@ void rotate_range(std::size_t count, const T* R, const T* coeffs, T* rotated, st
     P in[kSoaSteps][9 + N * N];
     for (; v + kSoaSteps * L <= end; v += kSoaSteps * L) {
       for (int k = 0; k < 9; ++k)
-        for (int s = 0; s < kSoaSteps; ++s) in[s][k] = P::load(R + k * count + v + s * L);
+        for (int s = 0; s < kSoaSteps; ++s) in[s][k] = P::load(R + k * stride + v + s * L);
       for (int i = 0; i < N * N; ++i)
-        for (int s = 0; s < kSoaSteps; ++s) in[s][9 + i] = P::load(coeffs + i * count + v + s * L);
+        for (int s = 0; s < kSoaSteps; ++s) in[s][9 + i] = P::load(coeffs + i * stride + v + s * L);
       for (int s = 0; s < kSoaSteps; ++s) gen::Kernels<N>::template rotate<P>(in[s], in[s] + 9, out[s]);
       copy_out();
     }
   }
   for (; v + L <= end; v += L) {
-    for (int k = 0; k < 9; ++k) r[k] = P::load(R + k * count + v);
-    for (int i = 0; i < N * N; ++i) f[i] = P::load(coeffs + i * count + v);
+    for (int k = 0; k < 9; ++k) r[k] = P::load(R + k * stride + v);
+    for (int i = 0; i < N * N; ++i) f[i] = P::load(coeffs + i * stride + v);
     gen::Kernels<N>::template rotate<P>(r, f, g);
-    for (int i = 0; i < N * N; ++i) g[i].store(rotated + i * count + v);
+    for (int i = 0; i < N * N; ++i) g[i].store(rotated + i * stride + v);
   }
   if (v == end) return;
   // The last few: lanes past the end hold the identity and zeros.
   const std::size_t left = end - v;
   T lanes[L];
   for (int k = 0; k < 9; ++k) {
-    for (int j = 0; j < L; ++j) lanes[j] = std::size_t(j) < left ? R[k * count + v + j] : T(k % 4 == 0);
+    for (int j = 0; j < L; ++j) lanes[j] = std::size_t(j) < left ? R[k * stride + v + j] : T(k % 4 == 0);
     r[k] = P::load(lanes);
   }
   for (int i = 0; i < N * N; ++i) {
-    for (int j = 0; j < L; ++j) lanes[j] = std::size_t(j) < left ? coeffs[i * count + v + j] : T(0);
+    for (int j = 0; j < L; ++j) lanes[j] = std::size_t(j) < left ? coeffs[i * stride + v + j] : T(0);
     f[i] = P::load(lanes);
   }
   gen::Kernels<N>::template rotate<P>(r, f, g);
   for (int i = 0; i < N * N; ++i) {
     g[i].store(lanes);
-    for (std::size_t j = 0; j < left; ++j) rotated[i * count + v + j] = lanes[j];
+    for (std::size_t j = 0; j < left; ++j) rotated[i * stride + v + j] = lanes[j];
   }
 }
 
 }  // namespace soa_detail
 
+// With the planes stride values apart. Throws std::invalid_argument where stride < count or a
+// plane's offset would not fit a size_t.
+template <int N, class T>
+void rotate_soa(std::size_t count, std::size_t stride, const T* R, const T* coeffs, T* rotated, int threads = 1) {
+  static_assert(gen::Kernels<N>::kLobeStage == 0, "rotate_soa: this order's kernel runs its lobe stage in double");
+  if (stride < count)
+    throw std::invalid_argument("rotate_soa: stride " + std::to_string(stride) + " is below count " + std::to_string(count));
+  if (stride > std::numeric_limits<std::size_t>::max() / std::size_t(9 + N * N))
+    throw std::invalid_argument("rotate_soa: stride " + std::to_string(stride) + " is too large for a plane offset");
+  const bool direct = soa_detail::reads_planes_directly<N, T>(stride);
+  parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
+    soa_detail::rotate_range<N>(stride, R, coeffs, rotated, begin, end, direct);
+  });
+}
+
 template <int N, class T>
 void rotate_soa(std::size_t count, const T* R, const T* coeffs, T* rotated, int threads = 1) {
-  static_assert(gen::Kernels<N>::kLobeStage == 0, "rotate_soa: this order's kernel runs its lobe stage in double");
-  const bool direct = soa_detail::reads_planes_directly<N, T>(count);
-  parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
-    soa_detail::rotate_range<N>(count, R, coeffs, rotated, begin, end, direct);
-  });
+  rotate_soa<N>(count, count, R, coeffs, rotated, threads);
+}
+
+// A plane stride for count rotations of order N in T: count itself where rotate_soa<N> reads
+// planes that far apart directly already, or never does (above kSoaDirectMaxOrder); otherwise the
+// smallest multiple of a cache line's values (16 floats, 8 doubles) from count up at which it does,
+// at most one set span past count (4112 for 4096 floats at orders 2..4: the planes 64 bytes apart
+// within the span), so planes that start on a line all do. Throws std::invalid_argument where that
+// stride would not fit a size_t.
+template <int N, class T>
+std::size_t soa_plane_stride(std::size_t count) {
+  if (N > soa_detail::kSoaDirectMaxOrder || soa_detail::reads_planes_directly<N, T>(count)) return count;
+  constexpr std::size_t line = kCacheLineBytes / sizeof(T), span = kCacheSetSpanBytes / sizeof(T);
+  if (count > std::numeric_limits<std::size_t>::max() / std::size_t(9 + N * N) - 2 * span)
+    throw std::invalid_argument("soa_plane_stride: count " + std::to_string(count) + " is too large");
+  // A stride one line past a multiple of the span spreads every plane into a window of its own.
+  std::size_t stride = (count + line - 1) / line * line;
+  while (!soa_detail::reads_planes_directly<N, T>(stride)) stride += line;
+  return stride;
 }
 
 }  // namespace zhf::runtime
