@@ -303,18 +303,20 @@ TEST(Batch, PlanesPerSetCountsCrowdedPlanes) {
   EXPECT_EQ(runtime::soa_detail::planes_per_set(4100, 18, sizeof(float)), 4);   // 16 bytes apart
   EXPECT_EQ(runtime::soa_detail::planes_per_set(1, 18, sizeof(float)), 16);     // 4 bytes apart: 16 in a line
   EXPECT_EQ(runtime::soa_detail::planes_per_set(1023, 18, sizeof(float)), 16);  // 4 bytes apart, downwards
+  EXPECT_EQ(runtime::soa_detail::planes_per_set(4112, 18, sizeof(float), 128), 2);  // 64 bytes apart, two-line windows
+  EXPECT_EQ(runtime::soa_detail::planes_per_set(4128, 18, sizeof(float), 128), 1);  // 128 bytes apart
 }
 
-// soa_plane_stride against strides worked by hand (4112 floats: the planes 64 bytes apart
-// within the set span), and over every count to 5000: never below count, spread, and where
-// padded a whole number of lines within a set span of count. Strides below count and offsets
-// past a size_t refused.
+// soa_plane_stride against strides worked by hand (4128 floats: the planes 128 bytes apart
+// within the set span), and over every count to 5000: never below count, read directly, and where
+// padded a whole number of lines, within a set span of count, each plane two lines or more from
+// the next. Strides below count and offsets past a size_t refused.
 TEST(Batch, PlaneStrideSpreadsThePlanes) {
-  EXPECT_EQ((runtime::soa_plane_stride<3, float>(4096)), 4112u);
-  EXPECT_EQ((runtime::soa_plane_stride<3, float>(4095)), 4112u);
+  EXPECT_EQ((runtime::soa_plane_stride<3, float>(4096)), 4128u);
+  EXPECT_EQ((runtime::soa_plane_stride<3, float>(4095)), 4128u);
   EXPECT_EQ((runtime::soa_plane_stride<3, float>(4000)), 4000u);
-  EXPECT_EQ((runtime::soa_plane_stride<2, float>(1024)), 1040u);
-  EXPECT_EQ((runtime::soa_plane_stride<4, double>(2048)), 2056u);
+  EXPECT_EQ((runtime::soa_plane_stride<2, float>(1024)), 1056u);
+  EXPECT_EQ((runtime::soa_plane_stride<4, double>(2048)), 2064u);
   EXPECT_EQ((runtime::soa_plane_stride<5, float>(4096)), 4096u);
   const std::size_t line = runtime::kCacheLineBytes / sizeof(float), span = runtime::kCacheSetSpanBytes / sizeof(float);
   for (std::size_t count = 0; count <= 5000; ++count) {
@@ -324,6 +326,8 @@ TEST(Batch, PlaneStrideSpreadsThePlanes) {
     ASSERT_GT(stride, count);
     ASSERT_EQ(stride % line, 0u) << "count " << count << ", stride " << stride;
     ASSERT_LE(stride - count, span) << "count " << count << ", stride " << stride;
+    ASSERT_EQ(runtime::soa_detail::planes_per_set(stride, 18, sizeof(float), 2 * runtime::kCacheLineBytes), 1)
+        << "count " << count << ", stride " << stride;
   }
   std::vector<float> r(9 * 16), in(9 * 16), out(9 * 16);
   EXPECT_THROW(runtime::rotate_soa<3>(16, 15, r.data(), in.data(), out.data()), std::invalid_argument);

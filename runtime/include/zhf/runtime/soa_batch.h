@@ -51,14 +51,16 @@ inline constexpr int kSoaDirectMaxOrder = 4;
 inline constexpr int kSoaMaxPlanesPerSet = 8;
 
 // The most of `planes` planes, stride values of `value_bytes` apart, whose offsets within a cache
-// set span fall into one line-wide window (all of them where the distance is a multiple of it).
-inline int planes_per_set(std::size_t stride, int planes, std::size_t value_bytes) {
+// set span fall into one window of window_bytes (a line: the planes that share a set; all of them
+// where the distance is a multiple of the span).
+inline int planes_per_set(std::size_t stride, int planes, std::size_t value_bytes,
+                          std::size_t window_bytes = kCacheLineBytes) {
   const std::size_t span = kCacheSetSpanBytes, distance = stride % span * value_bytes % span;
   int most = 0;
   for (int k = 0; k < planes; ++k) {
     int near = 0;
     for (int j = 0; j < planes; ++j)
-      near += (span + j * distance % span - k * distance % span) % span < std::size_t(kCacheLineBytes);
+      near += (span + j * distance % span - k * distance % span) % span < window_bytes;
     most = std::max(most, near);
   }
   return most;
@@ -158,19 +160,20 @@ void rotate_soa(std::size_t count, const T* R, const T* coeffs, T* rotated, int 
 
 // A plane stride for count rotations of order N in T: count itself where rotate_soa<N> reads
 // planes that far apart directly already, or never does (above kSoaDirectMaxOrder); otherwise the
-// smallest multiple of a cache line's values (16 floats, 8 doubles) from count up at which it does,
-// at most one set span past count (4112 for 4096 floats at orders 2..4: the planes 64 bytes apart
-// within the span), so planes that start on a line all do. Throws std::invalid_argument where that
-// stride would not fit a size_t.
+// smallest multiple of a cache line's values (16 floats, 8 doubles) from count up at which every
+// plane's offset within the set span is two lines or more from every other's, at most one span
+// past count (4128 for 4096 floats: the planes 128 bytes apart; one line apart, 4112, was 1.07x
+// slower at order 3 on Zen 4, the neighbouring lines then the next planes'), so planes that start
+// on a line all do. Throws std::invalid_argument where that stride would not fit a size_t.
 template <int N, class T>
 std::size_t soa_plane_stride(std::size_t count) {
   if (N > soa_detail::kSoaDirectMaxOrder || soa_detail::reads_planes_directly<N, T>(count)) return count;
   constexpr std::size_t line = kCacheLineBytes / sizeof(T), span = kCacheSetSpanBytes / sizeof(T);
   if (count > std::numeric_limits<std::size_t>::max() / std::size_t(9 + N * N) - 2 * span)
     throw std::invalid_argument("soa_plane_stride: count " + std::to_string(count) + " is too large");
-  // A stride one line past a multiple of the span spreads every plane into a window of its own.
+  // Two lines apart (a stride two lines past a multiple of the span) fits up to 32 planes in the span.
   std::size_t stride = (count + line - 1) / line * line;
-  while (!soa_detail::reads_planes_directly<N, T>(stride)) stride += line;
+  while (soa_detail::planes_per_set(stride, 9 + N * N, sizeof(T), 2 * kCacheLineBytes) > 1) stride += line;
   return stride;
 }
 
