@@ -162,9 +162,8 @@ void rotate_soa(std::size_t count, const T* R, const T* coeffs, T* rotated, int 
 // planes that far apart directly already, or never does (above kSoaDirectMaxOrder); otherwise the
 // smallest multiple of a cache line's values (16 floats, 8 doubles) from count up at which every
 // plane's offset within the set span is two lines or more from every other's, at most one span
-// past count (4128 for 4096 floats: the planes 128 bytes apart; one line apart, 4112, was 1.07x
-// slower at order 3 on Zen 4, the neighbouring lines then the next planes'), so planes that start
-// on a line all do. Throws std::invalid_argument where that stride would not fit a size_t.
+// past count (4128 for 4096 floats: the planes 128 bytes apart; one line apart, 4112, ran 1.07x
+// slower at order 3 on Zen 4), so planes that start on a line all do. Throws std::invalid_argument where that stride would not fit a size_t.
 template <int N, class T>
 std::size_t soa_plane_stride(std::size_t count) {
   if (N > soa_detail::kSoaDirectMaxOrder || soa_detail::reads_planes_directly<N, T>(count)) return count;
