@@ -140,19 +140,19 @@ class BandRows {
   // The three angles' multiples m = 0..7 (zero past the order): the zyz_multiples steps with the
   // angles in lanes a, b, g of one register, then transposed to one row per angle. The first
   // multiples of a and g come from their numerators (cos a, sin a, cos g, sin g) sin b, formed
-  // while the square root runs. Order 4 divides them by sin b after the root. From order 5 nothing
-  // waits for the root: they are scaled by p, a power of two near 1 / sin b read off column2's
-  // exponent (exact), so the multiples come out times (p sin b)^m, and each row's lane m is scaled
-  // back by q^m, q = 1 / (p sin b) from a division that runs beside the chain (1.03x at order 5;
-  // at order 4, with half the multiples, 0.97x).
+  // while the square root runs. Order 4 divides them by sin b after the root. From order 5 no
+  // division follows the root: they are scaled by p, a power of two near 1 / sin b read off
+  // column2's exponent (exact), so the multiples come out times (p sin b)^m, and each row's lane m
+  // is scaled back by q^m, q = 1 / (p sin b) from a division that runs beside the chain (1.03x at
+  // order 5; at order 4, with half the multiples, 0.97x).
   static void angle_rows(const float r[9], Turns& turns) {
     constexpr bool kScaledBack = N > 4;
     const float column2 = r[2] * r[2] + r[5] * r[5];
     const bool locked = !(column2 > float(tolerance::kGimbalLockSine2));
     const float sine = std::sqrt(column2), scaled2 = locked ? 1.0f : column2;
     // scaled2 = 2^e x with 1 <= x < 2 (a normal float: above kGimbalLockSine2): p = 2^-floor(e / 2)
-    // and 1 / p^2 = 2^(2 floor(e / 2)), made from its exponent in the vector unit (a trip through
-    // the integer registers put 0.7 ns back on the chain).
+    // and 1 / p^2 = 2^(2 floor(e / 2)), made from its exponent in the vector unit (through the
+    // integer registers it ran slower).
     const __m128i half_exponent = _mm_srai_epi32(
         _mm_sub_epi32(_mm_srli_epi32(_mm_castps_si128(_mm_set_ss(scaled2)), 23), _mm_set1_epi32(127)), 1);
     const __m128i bias = _mm_set1_epi32(127);
