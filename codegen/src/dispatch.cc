@@ -19,8 +19,7 @@ namespace {
 // 30.4 ns and the scalar kernel's 41.6 ns (1024 random rotations, median of 31 alternating runs,
 // AMD EPYC, g++ 12 -O3 -march=x86-64-v3).
 constexpr int kLanesFrom = 4;
-constexpr int kLanesUpToAvx2 = 4;
-constexpr int kLanesUpToBaseline = 4;
+constexpr int kLanesUpToX86 = 4;
 constexpr const char* kMeasuredOn = "x86-64: lanes at order 4, with AVX2 and on baseline SSE2";
 // Where the band-rows kernel (runtime/band_rows.h: float, built only for AVX2 and FMA) is the
 // faster path for one float vector per rotation, against the scalar kernels and lanes, in one
@@ -62,8 +61,7 @@ EmittedFile emit_dispatch_header(const std::vector<int>& orders, const std::vect
   for (int n : lanes_orders) out << "template <>\ninline constexpr bool kHasLanes<" << n << "> = true;\n";
   out << "\n// Where runtime/lanes.h is the faster verified path, by measurement: " << kMeasuredOn << ";\n"
       << "// other architectures unmeasured (the scalar kernels). docs/performance.md has the figures.\n"
-      << "#if defined(__x86_64__) || defined(_M_X64)\n#if defined(__AVX2__)\ninline constexpr int kLanesUpTo = " << kLanesUpToAvx2
-      << ";\n#else\ninline constexpr int kLanesUpTo = " << kLanesUpToBaseline << ";\n#endif\n#else\n"
+      << "#if defined(__x86_64__) || defined(_M_X64)\ninline constexpr int kLanesUpTo = " << kLanesUpToX86 << ";\n#else\n"
       << "inline constexpr int kLanesUpTo = 0;\n#endif\ninline constexpr int kLanesFrom = " << kLanesFrom << ";\n\n";
   out << "// Where runtime/band_rows.h is the faster verified path for float, by measurement: order 2 (bands 0\n"
       << "// and 1 in one register) and from this order to its last (runtime::kBandRowsMaxOrder), in builds\n"
@@ -73,15 +71,25 @@ EmittedFile emit_dispatch_header(const std::vector<int>& orders, const std::vect
       << "template <class T>\nruntime::KernelSet<T> fastest_kernels(int order) {\n"
       << "  return with_order(order, [](auto n) {\n"
       << "    constexpr int N = decltype(n)::value;\n"
-      << "    if constexpr (std::is_same_v<T, float> && runtime::kBandRowsBuilt) {\n"
-      << "      if constexpr (N == 2) return runtime::bands01_kernels();\n"
-      << "      if constexpr (N >= kBandRowsFrom && N <= runtime::kBandRowsMaxOrder) return runtime::band_rows_kernels<N>();\n"
+      << "    // One branch instantiated per order and type: only the kernels chosen are compiled.\n"
+      << "    constexpr bool band_rows = std::is_same_v<T, float> && runtime::kBandRowsBuilt;\n"
+      << "    if constexpr (band_rows && N == 2) {\n"
+      << "      return runtime::bands01_kernels();\n"
+      << "    } else if constexpr (band_rows && N >= kBandRowsFrom && N <= runtime::kBandRowsMaxOrder) {\n"
+      << "      return runtime::band_rows_kernels<N>();\n"
+      << "    } else if constexpr (kHasLanes<N> && N >= kLanesFrom && N <= kLanesUpTo) {\n"
+      << "      return runtime::lanes_kernels<N, T>();\n"
+      << "    } else {\n"
+      << "      return runtime::scalar_kernels<N, T>();\n"
       << "    }\n"
-      << "    if constexpr (kHasLanes<N>) {\n"
-      << "      if constexpr (N >= kLanesFrom && N <= kLanesUpTo) return runtime::lanes_kernels<N, T>();\n"
-      << "    }\n"
-      << "    return runtime::scalar_kernels<N, T>();\n"
       << "  });\n}\n\n";
+  out << "// The fastest rotator of any order 1..runtime::kMaxZxzxzOrder for the instruction set this header\n"
+      << "// is compiled for: the generated orders' fastest kernels, runtime::Rotator::zxzxz elsewhere.\n"
+      << "// Throws std::invalid_argument for any other order. (zhf::dispatch::Rotator<T>::make picks among\n"
+      << "// instruction sets at run time.)\n"
+      << "template <class T>\nruntime::Rotator<T> fastest_rotator(int order) {\n"
+      << "  if (order >= " << orders.front() << " && order <= " << orders.back() << ") return runtime::Rotator<T>::with(fastest_kernels<T>(order));\n"
+      << "  return runtime::Rotator<T>::zxzxz(order);\n}\n\n";
   out << "// The generated scalar kernels of an order chosen at run time.\n"
       << "template <class T>\nruntime::KernelSet<T> scalar_kernels(int order) {\n"
       << "  return with_order(order, [](auto n) { return runtime::scalar_kernels<decltype(n)::value, T>(); });\n}\n\n";

@@ -65,11 +65,7 @@ inline constexpr bool kHasLanes<8> = true;
 // Where runtime/lanes.h is the faster verified path, by measurement: x86-64: lanes at order 4, with AVX2 and on baseline SSE2;
 // other architectures unmeasured (the scalar kernels). docs/performance.md has the figures.
 #if defined(__x86_64__) || defined(_M_X64)
-#if defined(__AVX2__)
 inline constexpr int kLanesUpTo = 4;
-#else
-inline constexpr int kLanesUpTo = 4;
-#endif
 #else
 inline constexpr int kLanesUpTo = 0;
 #endif
@@ -85,15 +81,28 @@ template <class T>
 runtime::KernelSet<T> fastest_kernels(int order) {
   return with_order(order, [](auto n) {
     constexpr int N = decltype(n)::value;
-    if constexpr (std::is_same_v<T, float> && runtime::kBandRowsBuilt) {
-      if constexpr (N == 2) return runtime::bands01_kernels();
-      if constexpr (N >= kBandRowsFrom && N <= runtime::kBandRowsMaxOrder) return runtime::band_rows_kernels<N>();
+    // One branch instantiated per order and type: only the kernels chosen are compiled.
+    constexpr bool band_rows = std::is_same_v<T, float> && runtime::kBandRowsBuilt;
+    if constexpr (band_rows && N == 2) {
+      return runtime::bands01_kernels();
+    } else if constexpr (band_rows && N >= kBandRowsFrom && N <= runtime::kBandRowsMaxOrder) {
+      return runtime::band_rows_kernels<N>();
+    } else if constexpr (kHasLanes<N> && N >= kLanesFrom && N <= kLanesUpTo) {
+      return runtime::lanes_kernels<N, T>();
+    } else {
+      return runtime::scalar_kernels<N, T>();
     }
-    if constexpr (kHasLanes<N>) {
-      if constexpr (N >= kLanesFrom && N <= kLanesUpTo) return runtime::lanes_kernels<N, T>();
-    }
-    return runtime::scalar_kernels<N, T>();
   });
+}
+
+// The fastest rotator of any order 1..runtime::kMaxZxzxzOrder for the instruction set this header
+// is compiled for: the generated orders' fastest kernels, runtime::Rotator::zxzxz elsewhere.
+// Throws std::invalid_argument for any other order. (zhf::dispatch::Rotator<T>::make picks among
+// instruction sets at run time.)
+template <class T>
+runtime::Rotator<T> fastest_rotator(int order) {
+  if (order >= 2 && order <= 8) return runtime::Rotator<T>::with(fastest_kernels<T>(order));
+  return runtime::Rotator<T>::zxzxz(order);
 }
 
 // The generated scalar kernels of an order chosen at run time.

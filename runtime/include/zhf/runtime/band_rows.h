@@ -342,6 +342,10 @@ KernelSet<float> band_rows_kernels() {
   k.path = "band_rows";
   k.rotate = [](const float* r, const float* in, float* out) { BandRows<N>::instance().rotate(r, in, out, 1); };
   k.rotate_rgb = [](const float* r, const float* in, float* out) { BandRows<N>::instance().rotate(r, in, out, 3); };
+  k.rotate_batch = [](std::size_t count, const float* r, const float* in, float* out) {
+    const BandRows<N>& rows = BandRows<N>::instance();
+    for (std::size_t v = 0; v < count; ++v) rows.rotate(r + 9 * v, in + N * N * v, out + N * N * v, 1);
+  };
   return k;
 }
 
@@ -349,7 +353,8 @@ inline KernelSet<float> bands01_kernels() {
   KernelSet<float> k;
   k.order = 2;
   k.path = "bands01";
-  k.rotate = [](const float* r, const float* in, float* out) { avx2::rotate_bands01(r, in, out); };
+  k.rotate = &avx2::rotate_bands01;
+  k.rotate_batch = &rotate_each<float, 2, &avx2::rotate_bands01>;
   k.rotate_rgb = [](const float* r, const float* in, float* out) {
     for (int c = 0; c < 3; ++c) avx2::rotate_bands01(r, in + 4 * c, out + 4 * c);
   };

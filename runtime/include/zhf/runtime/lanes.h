@@ -311,6 +311,7 @@ KernelSet<T> lanes_kernels() {
   KernelSet<T> k = scalar_kernels<N, T>();
   k.path = "lanes";
   k.rotate = &rotate_lanes<N, T, kStage>;
+  k.rotate_batch = &rotate_each<T, N, &rotate_lanes<N, T, kStage>>;
 #if ZHF_LANES_ONE_REGISTER
   if constexpr (lanes_detail::kOneRegister<N, T, kStage>)
     k.rotate_rgb = [](const float* r, const float* in, float* out) { lanes_detail::rotate_one_register<N>(r, in, out, 3); };

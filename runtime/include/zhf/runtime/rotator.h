@@ -67,7 +67,8 @@ KernelSet<T> scalar_kernels() {
   KernelSet<T> k;
   k.order = N;
   k.path = "scalar";
-  k.rotate = [](const T* r, const T* in, T* out) { gen::Kernels<N>::template rotate<T>(r, in, out); };
+  k.rotate = &gen::Kernels<N>::template rotate<T>;
+  k.rotate_batch = &rotate_each<T, N, &gen::Kernels<N>::template rotate<T>>;
   // The generated RGB kernels take planar [3][N^2] arrays; the runtime API passes flat ones.
   k.rotate_rgb = [](const T* r, const T* in, T* out) {
     using Planar = T[N * N];
@@ -154,6 +155,7 @@ class Rotator {
   void rotate_batch(std::size_t count, const T* r, const T* in, T* out, int threads = 0) const {
     const std::size_t n = static_cast<std::size_t>(coefficients());
     parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
+      if (kernels_.rotate_batch) return kernels_.rotate_batch(end - begin, r + 9 * begin, in + n * begin, out + n * begin);
       for (std::size_t v = begin; v < end; ++v) rotate(r + 9 * v, in + n * v, out + n * v);
     });
   }
