@@ -1,0 +1,114 @@
+// Included first by every unit of one instruction-set path (isa_order.cc, isa_any.cc), each
+// compiled with that path's flags (dispatch/CMakeLists.txt) and with ZHF_DISPATCH_ISA (an Isa
+// enumerator) and ZHF_DISPATCH_NAMESPACE defined.
+//
+// The runtime is header-only: its inline functions and templates compiled here under another
+// instruction set keep their mangled names, and the linker would merge them with another path's
+// copy (or the baseline one the rest of zhf uses). So the token zhf is renamed to the path's own
+// namespace before the runtime is included; the interface is reached as zhf_dispatch_api.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "backend.h"
+
+#if !defined(ZHF_DISPATCH_ISA) || !defined(ZHF_DISPATCH_NAMESPACE)
+#error "a dispatch unit needs ZHF_DISPATCH_ISA and ZHF_DISPATCH_NAMESPACE"
+#endif
+
+#define zhf ZHF_DISPATCH_NAMESPACE
+#include "zhf/runtime/dense_rotation.h"
+#include "zhf/runtime/orthogonal.h"
+#include "zhf/runtime/parallel.h"
+#include "zhf/runtime/rotator.h"
+#include "zhf_kernels.h"
+
+namespace zhf::dispatch_unit {
+
+namespace api = zhf_dispatch_api;
+inline constexpr api::Isa kIsa = api::Isa::ZHF_DISPATCH_ISA;
+
+// An orthogonal transform prepared for count vectors (runtime::OrthogonalTransform::prepare).
+template <class T>
+class IsaPrepared final : public api::PreparedBackend<T> {
+ public:
+  IsaPrepared(const runtime::Rotator<T>& rotator, const T* q, std::size_t count)
+      : transform_(rotator, q), prepared_(transform_.prepare(count)), n_(std::size_t(rotator.coefficients())) {}
+  IsaPrepared(const IsaPrepared&) = delete;  // prepared_ refers to transform_
+  IsaPrepared& operator=(const IsaPrepared&) = delete;
+
+  void apply(std::size_t count, const T* in, T* out, int threads) const override {
+    runtime::parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t v = begin; v < end; ++v) prepared_.apply(in + n_ * v, out + n_ * v);
+    });
+  }
+
+ private:
+  runtime::OrthogonalTransform<T> transform_;
+  typename runtime::OrthogonalTransform<T>::Prepared prepared_;
+  std::size_t n_;
+};
+
+// A runtime::Rotator of this path behind the library's interface.
+template <class T>
+class IsaBackend final : public api::Backend<T> {
+ public:
+  explicit IsaBackend(runtime::Rotator<T> rotator) : rotator_(std::move(rotator)) {}
+
+  int order() const override { return rotator_.order(); }
+  std::string path() const override { return rotator_.path(); }
+  void rotate(const T* r, const T* in, T* out) const override { rotator_.rotate(r, in, out); }
+  void rotate_rgb(const T* r, const T* in, T* out) const override { rotator_.rotate_rgb(r, in, out); }
+  void rotate_batch(std::size_t count, const T* r, const T* in, T* out, int threads) const override {
+    rotator_.rotate_batch(count, r, in, out, threads);
+  }
+  void transform_each(std::size_t count, const T* q, const T* in, T* out, int threads) const override {
+    const std::size_t n = static_cast<std::size_t>(rotator_.coefficients());
+    runtime::parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t v = begin; v < end; ++v) runtime::OrthogonalTransform<T>(rotator_, q + 9 * v).apply(in + n * v, out + n * v);
+    });
+  }
+  std::unique_ptr<api::PreparedBackend<T>> prepare(const T* q, std::size_t count) const override {
+    return std::make_unique<IsaPrepared<T>>(rotator_, q, count);
+  }
+  std::vector<std::vector<T>> band_matrices(const T* q) const override {
+    return runtime::OrthogonalTransform<T>(rotator_, q).dense().bands();
+  }
+  void apply_splats(const T* q, std::size_t count, const T* in, T* out, int threads) const override {
+    runtime::OrthogonalTransform<T>(rotator_, q).dense().apply_splats(count, in, out, threads);
+  }
+  void apply_planar(const T* q, std::size_t count, int channels, const T* in, T* out, int threads) const override {
+    runtime::OrthogonalTransform<T>(rotator_, q).dense().apply_planar(count, channels, in, out, threads);
+  }
+
+ private:
+  runtime::Rotator<T> rotator_;
+};
+
+// The fastest kernels of generated order N (zhf_kernels.h's choice for this instruction set).
+template <int N, class T>
+std::unique_ptr<api::Backend<T>> generated() {
+  return std::make_unique<IsaBackend<T>>(runtime::Rotator<T>::with(gen::fastest_kernels<T>(N)));
+}
+
+// Any order: the generated orders through their own units, zxzxz elsewhere (order 1 included).
+template <class T>
+std::unique_ptr<api::Backend<T>> any_order(int order) {
+  if (order >= 2 && order <= runtime::kMaxGeneratedOrder)
+    return gen::with_order(order, [](auto n) { return api::make_generated<kIsa, decltype(n)::value, T>(); });
+  return std::make_unique<IsaBackend<T>>(runtime::Rotator<T>::zxzxz(order));
+}
+
+}  // namespace zhf::dispatch_unit

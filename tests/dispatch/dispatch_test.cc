@@ -1,0 +1,227 @@
+// zhf::dispatch: each instruction-set path this CPU runs, forced in turn, against the recurrence
+// in long double at every generated order and at runtime orders beyond them, float and double,
+// on the extreme rotations and random ones; reflections, shared transforms and the bulk layouts
+// against the single-vector path; a path the CPU lacks or the library does not have refused in
+// one line, by the call and through ZHF_ISA in the CLI.
+#include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "test_support.h"
+#include "zhf/dispatch/rotator.h"
+#include "zhf/runtime/band_recurrence.h"
+#include "zhf/runtime/limits.h"
+#include "zhf/runtime/sh_eval.h"
+#include "zhf/runtime/tolerances.h"
+#include "zhf/sh/random.h"
+#include "zhf/sh/rotation_matrix.h"
+
+namespace zhf {
+namespace {
+
+using dispatch::Isa;
+using dispatch::Rotator;
+
+// Restores the path in use when a test that forces paths ends.
+class DispatchTest : public ::testing::Test {
+ protected:
+  void TearDown() override { dispatch::use_isa(dispatch::isa_name(dispatch::supported_isas().front())); }
+};
+
+// The worst error of rotator on a random unit vector under r against the recurrence in long
+// double; at: the coefficient where it is.
+template <class T>
+double worst_error(const Rotator<T>& rotator, const sh::RotationMatrix& r, std::mt19937_64& rng, int& at) {
+  const int order = rotator.order(), n = order * order;
+  sh::Normal<> normal;
+  std::vector<double> f(n);
+  double norm = 0;
+  for (double& x : f) x = normal(rng), norm += x * x;
+  std::vector<T> rt(9), in(n), out(n);
+  for (int i = 0; i < 9; ++i) rt[i] = T(r(i / 3, i % 3));
+  for (int i = 0; i < n; ++i) in[i] = T(f[i] / std::sqrt(norm)), f[i] = double(in[i]);
+  rotator.rotate(rt.data(), in.data(), out.data());
+  const auto bands = runtime::recurrence_band_matrices<long double>(r.data(), order);
+  double worst = 0;
+  for (int l = 0; l < order; ++l)
+    for (int i = 0; i < 2 * l + 1; ++i) {
+      long double expected = 0;
+      for (int j = 0; j < 2 * l + 1; ++j) expected += bands[l][i * (2 * l + 1) + j] * f[l * l + j];
+      const double error = double(std::abs(out[l * l + i] - expected));
+      if (error > worst) worst = error, at = l * l + i;
+    }
+  return worst;
+}
+
+template <class T>
+double tolerance(int order) {
+  if (std::is_same_v<T, double>) return runtime::tolerance::kDouble;
+  return order <= runtime::kMaxGeneratedOrder ? runtime::tolerance::kFloatRotation : runtime::tolerance::kRuntimeOrdersFloat;
+}
+
+template <class T>
+void check_every_order(const std::string& isa) {
+  const char* type = std::is_same_v<T, float> ? "float" : "double";
+  std::mt19937_64 rng(54);
+  for (int order : {1, 2, 3, 4, 5, 6, 7, 8, 9, 16, 32}) {
+    const Rotator<T> rotator = Rotator<T>::make(order);
+    ASSERT_EQ(dispatch::isa_name(rotator.isa()), isa);
+    std::vector<std::pair<std::string, sh::RotationMatrix>> rotations = sh::extreme_rotations({});
+    for (int k = 0; k < 20; ++k) rotations.push_back({"random " + std::to_string(k), sh::random_rotation(rng)});
+    for (const auto& [name, r] : rotations) {
+      int at = 0;
+      EXPECT_LE(worst_error(rotator, r, rng, at), tolerance<T>(order))
+          << isa << " (" << rotator.path() << "), " << type << ", order " << order << ", rotation '" << name << "', band "
+          << runtime::band_of(at) << ", index " << at;
+    }
+  }
+}
+
+TEST_F(DispatchTest, EveryPathThisCpuRunsMatchesTheReferenceAtEveryOrder) {
+  const std::vector<Isa> isas = dispatch::supported_isas();
+  ASSERT_FALSE(isas.empty());
+  // Set where the CPU is known (an emulated one): the paths it must find, fastest first.
+  if (const char* expected = std::getenv("ZHF_TEST_EXPECTED_PATHS")) {
+    std::string found;
+    for (Isa isa : isas) found += (found.empty() ? "" : ",") + std::string(dispatch::isa_name(isa));
+    ASSERT_EQ(found, expected);
+  }
+  for (Isa isa : isas) {
+    dispatch::use_isa(dispatch::isa_name(isa));
+    ASSERT_EQ(dispatch::active_isa(), isa);
+    check_every_order<float>(dispatch::isa_name(isa));
+    check_every_order<double>(dispatch::isa_name(isa));
+  }
+}
+
+// Random unit vectors of an order, count of them.
+template <class T>
+std::vector<T> random_vectors(int order, std::size_t count, std::mt19937_64& rng) {
+  sh::Normal<> normal;
+  std::vector<T> v(count * order * order);
+  for (T& x : v) x = T(normal(rng) / order);
+  return v;
+}
+
+// The batch, reflection, shared and bulk entry points of every path against its rotate().
+template <class T>
+void check_entry_points(const std::string& isa, int order) {
+  const std::string where = isa + ", order " + std::to_string(order) + (std::is_same_v<T, float> ? ", float" : ", double");
+  const double tol = std::is_same_v<T, float> ? runtime::tolerance::kFloatRotation : runtime::tolerance::kDouble;
+  std::mt19937_64 rng(540 + order);
+  const Rotator<T> rotator = Rotator<T>::make(order);
+  const std::size_t n = std::size_t(order) * order, count = 300;  // past the batch threshold of one thread
+  const std::vector<T> in = random_vectors<T>(order, count, rng);
+  std::vector<T> rs(9 * count), qs(9 * count);
+  for (std::size_t v = 0; v < count; ++v) {
+    const sh::RotationMatrix r = sh::random_rotation(rng);
+    for (int i = 0; i < 9; ++i) rs[9 * v + i] = T(r(i / 3, i % 3)), qs[9 * v + i] = (v % 2 ? -1 : 1) * rs[9 * v + i];
+  }
+  std::vector<T> batch(n * count), each(n * count), shared(n * count), one(n);
+  rotator.rotate_batch(count, rs.data(), in.data(), batch.data(), 2);
+  rotator.transform_each(count, qs.data(), in.data(), each.data(), 2);
+  rotator.transform_shared(count, qs.data() + 9, in.data(), shared.data(), 2);
+  const std::vector<std::vector<T>> bands = rotator.band_matrices(qs.data() + 9);
+  for (std::size_t v = 0; v < count; ++v) {
+    rotator.rotate(rs.data() + 9 * v, in.data() + n * v, one.data());
+    for (std::size_t i = 0; i < n; ++i) {
+      const int l = runtime::band_of(int(i));
+      ASSERT_EQ(batch[n * v + i], one[i]) << where << ": rotate_batch, vector " << v << ", band " << l << ", index " << i;
+      // q = -R on odd vectors: the rotation's odd bands negated.
+      const T reflected = (v % 2 && l % 2) ? -one[i] : one[i];
+      ASSERT_EQ(each[n * v + i], reflected) << where << ": transform_each, vector " << v << ", band " << l << ", index " << i;
+    }
+    // Vector v under the shared q (-R_1): through its band matrices.
+    for (int l = 0; l < order; ++l) {
+      const int size = 2 * l + 1;
+      for (int i = 0; i < size; ++i) {
+        double expected = 0;
+        for (int j = 0; j < size; ++j) expected += double(bands[l][i * size + j]) * double(in[n * v + l * l + j]);
+        ASSERT_NEAR(shared[n * v + l * l + i], expected, tol) << where << ": transform_shared, vector " << v << ", band " << l
+                                                                << ", index " << l * l + i;
+      }
+    }
+  }
+  // The 3DGS layout and planes under one q: three channels of every vector, against transform_shared.
+  std::vector<T> splats(3 * n * count), planes(3 * n * count), splats_out(3 * n * count), planes_out(3 * n * count);
+  const std::vector<T> rgb = random_vectors<T>(order, 3 * count, rng);
+  std::vector<T> expected(3 * n * count);
+  rotator.transform_shared(3 * count, qs.data() + 9, rgb.data(), expected.data(), 1);
+  for (std::size_t v = 0; v < count; ++v)
+    for (int c = 0; c < 3; ++c)
+      for (std::size_t i = 0; i < n; ++i) {
+        const T x = rgb[(3 * v + c) * n + i];
+        splats[3 * n * v + (i == 0 ? c : 3 + c * (n - 1) + i - 1)] = x;
+        planes[(c * n + i) * count + v] = x;
+      }
+  rotator.apply_splats(qs.data() + 9, count, splats.data(), splats_out.data(), 2);
+  rotator.apply_planar(qs.data() + 9, count, 3, planes.data(), planes_out.data(), 2);
+  for (std::size_t v = 0; v < count; ++v)
+    for (int c = 0; c < 3; ++c)
+      for (std::size_t i = 0; i < n; ++i) {
+        const T e = expected[(3 * v + c) * n + i];
+        const int l = runtime::band_of(int(i));
+        ASSERT_NEAR(splats_out[3 * n * v + (i == 0 ? c : 3 + c * (n - 1) + i - 1)], e, tol)
+            << where << ": apply_splats, item " << v << ", channel " << c << ", band " << l << ", index " << i;
+        ASSERT_NEAR(planes_out[(c * n + i) * count + v], e, tol)
+            << where << ": apply_planar, item " << v << ", channel " << c << ", band " << l << ", index " << i;
+      }
+}
+
+TEST_F(DispatchTest, BatchReflectionSharedAndBulkCallsAgreeWithOneVectorOnEveryPath) {
+  for (Isa isa : dispatch::supported_isas()) {
+    dispatch::use_isa(dispatch::isa_name(isa));
+    for (int order : {2, 3, 4, 5, 8, 12}) {
+      check_entry_points<float>(dispatch::isa_name(isa), order);
+      check_entry_points<double>(dispatch::isa_name(isa), order);
+    }
+  }
+}
+
+TEST_F(DispatchTest, UnknownPathsAndPathsTheCpuLacksAreRefusedInOneLine) {
+  auto refusal = [](const std::string& name) {
+    try {
+      dispatch::use_isa(name);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const std::string unknown = refusal("sse9\n");
+  EXPECT_NE(unknown.find("use_isa: 'sse9\\x0a' is not one of this build's paths ("), std::string::npos) << unknown;
+  EXPECT_EQ(unknown.find('\n'), std::string::npos);
+  const Isa before = dispatch::active_isa();
+  for (const char* name : {"avx512", "avx2", "sse2", "neon", "generic"}) {
+    bool supported = false;
+    for (Isa isa : dispatch::supported_isas()) supported = supported || name == std::string(dispatch::isa_name(isa));
+    if (supported) continue;
+    const std::string message = refusal(name);
+    EXPECT_FALSE(message.empty()) << name << " was accepted";
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    EXPECT_EQ(dispatch::active_isa(), before) << "a refused " << name << " changed the path";
+  }
+  EXPECT_THROW(Rotator<float>::make(0), std::invalid_argument);
+  EXPECT_THROW(Rotator<double>::make(runtime::kMaxZxzxzOrder + 1), std::invalid_argument);
+}
+
+TEST_F(DispatchTest, TheCliNamesItsPathAndRefusesAWrongZhfIsa) {
+  const std::string fastest = dispatch::isa_name(dispatch::supported_isas().front());
+  const test::RunResult version = test::run_zhf(std::string("--version"));
+  EXPECT_EQ(version.exit_code, 0);
+  EXPECT_NE(version.out.find("rotation path " + fastest), std::string::npos) << version.out;
+  for (Isa isa : dispatch::supported_isas()) {
+    const test::RunResult forced = test::run_zhf({"--version"}, "", {"ZHF_ISA=" + std::string(dispatch::isa_name(isa))});
+    EXPECT_NE(forced.out.find(std::string("rotation path ") + dispatch::isa_name(isa)), std::string::npos) << forced.out;
+  }
+  const test::RunResult wrong = test::run_zhf({"--version"}, "", {"ZHF_ISA=avx1024"});
+  EXPECT_EQ(wrong.exit_code, 2);
+  EXPECT_EQ(test::line_count(wrong.err), 1) << wrong.err;
+  EXPECT_NE(wrong.err.find("ZHF_ISA: 'avx1024' is not one of this build's paths"), std::string::npos) << wrong.err;
+}
+
+}  // namespace
+}  // namespace zhf
