@@ -5,6 +5,7 @@
 
 #include "commands.h"
 #include "options.h"
+#include "zhf/dispatch/isa.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/signals.h"
 
@@ -72,8 +73,15 @@ std::string help_command(CLI::App& app, int argc, char** argv) {
 int main(int argc, char** argv) {
   using namespace zhf::cli;
   const zhf::io::InterruptGuard interrupts;
+  // The instruction-set path every rotation of this run takes: a wrong ZHF_ISA is refused first.
+  std::string isa;
+  try {
+    isa = zhf::dispatch::isa_name(zhf::dispatch::active_isa());
+  } catch (const std::invalid_argument& e) {
+    return fail(kExitUsage, e.what());
+  }
   CLI::App app{"zhf " ZHF_VERSION ": fast real spherical-harmonic rotation by sparse zonal-harmonic factorisation"};
-  app.set_version_flag("--version", "zhf " ZHF_VERSION);
+  app.set_version_flag("--version", "zhf " ZHF_VERSION " (rotation path " + isa + ")");
   app.require_subcommand(1);
   Action action;
   const std::string command = recorded_command(argc, argv);

@@ -1,12 +1,15 @@
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "commands.h"
 #include "options.h"
 #include "transform_options.h"
+#include "zhf/dispatch/rotator.h"
 #include "zhf/io/coefficients.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
@@ -18,7 +21,6 @@
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/rotator.h"
 #include "zhf/runtime/table_io.h"
-#include "zhf_kernels.h"
 
 namespace zhf::cli {
 namespace {
@@ -40,10 +42,12 @@ int run_rotate(const RotateOptions& o) {
   io::PendingFile out_file(o.out);  // refuse an unwritable output before the work
   const io::CoefficientFile file = io::read_coefficients(o.coeffs, o.channels);
   const int order = file.order;
-  // Order 1 is band 0 alone, which no rotation changes.
+  // Order 1 is band 0 alone, which no rotation changes. The generated orders run on the CPU's
+  // fastest path (zhf::dispatch); the orders above them through their lobe tables.
+  std::optional<dispatch::Rotator<double>> fastest;
   std::unique_ptr<runtime::Rotator<double>> rotator;
   if (order > 1 && order <= runtime::kMaxGeneratedOrder) {
-    rotator = std::make_unique<runtime::Rotator<double>>(runtime::Rotator<double>::with(gen::fastest_kernels<double>(order)));
+    fastest.emplace(dispatch::Rotator<double>::make(order));
   } else if (order > runtime::kMaxGeneratedOrder) {
     const std::string tables = o.tables.empty() ? pipeline::project().lobes() : o.tables;
     const std::string table = runtime::table_path(tables, order);
@@ -51,21 +55,22 @@ int run_rotate(const RotateOptions& o) {
       throw io::InputError(o.coeffs + ": order " + std::to_string(order) + " has no lobe table (" + table + ")");
     rotator = std::make_unique<runtime::Rotator<double>>(runtime::Rotator<double>::from_table(runtime::read_lobe_table(table, order)));
   }
-  std::unique_ptr<runtime::OrthogonalTransform<double>> transform;
-  if (rotator) transform = std::make_unique<runtime::OrthogonalTransform<double>>(*rotator, r.data());
+  const size_t n = static_cast<size_t>(order) * order, count = file.signals.size();
+  std::vector<double> in(count * n), out(count * n);
+  for (size_t v = 0; v < count; ++v) std::copy(file.signals[v].begin(), file.signals[v].end(), in.begin() + n * v);
+  if (fastest) {
+    fastest->transform_shared(count, r.data(), in.data(), out.data(), 1);
+  } else if (rotator) {
+    const runtime::OrthogonalTransform<double> transform(*rotator, r.data());
+    for (size_t v = 0; v < count; ++v) transform.apply(in.data() + n * v, out.data() + n * v);
+  } else {
+    out = in;
+  }
   nlohmann::ordered_json vectors = nlohmann::ordered_json::array();
-  const size_t n = static_cast<size_t>(order) * order;
-  std::vector<double> out(n);
-  for (size_t s = 0; s < file.signals.size(); s += file.channels) {
+  for (size_t s = 0; s < count; s += file.channels) {
     nlohmann::ordered_json channels = nlohmann::ordered_json::array();
-    for (int c = 0; c < file.channels; ++c) {
-      if (transform) {
-        transform->apply(file.signals[s + c].data(), out.data());
-      } else {
-        out = file.signals[s + c];
-      }
-      channels.push_back(out);
-    }
+    for (int c = 0; c < file.channels; ++c)
+      channels.push_back(std::vector<double>(out.begin() + n * (s + c), out.begin() + n * (s + c + 1)));
     vectors.push_back(file.channels == 1 ? channels[0] : channels);
   }
   out_file.write(io::json_text(vectors));

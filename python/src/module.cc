@@ -10,10 +10,13 @@
 #include <atomic>
 #include <cmath>
 #include <cstddef>
+#include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "zhf/dispatch/rotator.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/io/lobe_table_writer.h"
@@ -24,27 +27,61 @@
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/rotator.h"
 #include "zhf/sh/analysis.h"
-#include "zhf_kernels.h"
 
 namespace py = pybind11;
 namespace rt = zhf::runtime;
+namespace zd = zhf::dispatch;
 
 namespace {
 
 template <class T>
 using Array = py::array_t<T, py::array::c_style>;
 
-// The rotator of an order: the generated kernels (orders 2..8, the fastest verified path) or the
-// given table's path (any order up to 32).
+// The rotation of one order: without a table, zhf::dispatch's on the CPU's fastest path (orders
+// 1..8, the generated kernels); with one, the table's (runtime::Rotator::from_table).
 template <class T>
-rt::Rotator<T> rotator_for(int order, const rt::LobeTable* table) {
-  if (table) {
+class Rotation {
+ public:
+  Rotation(int order, const rt::LobeTable* table) {
+    if (!table) {
+      fastest_.emplace(zd::Rotator<T>::make(order));
+      return;
+    }
     if (table->order != order)
       throw rt::InputError("table: order " + std::to_string(table->order) + ", but coeffs have order " + std::to_string(order));
-    return rt::Rotator<T>::from_table(*table);
+    table_ = std::make_shared<const rt::Rotator<T>>(rt::Rotator<T>::from_table(*table));
   }
-  return rt::Rotator<T>::with(zhf::gen::fastest_kernels<T>(order));
-}
+
+  // count vectors, each under its own orthogonal q[9 v + k], on the calling thread.
+  void each(std::size_t count, const T* q, const T* in, T* out) const {
+    if (fastest_) return fastest_->transform_each(count, q, in, out, 1);
+    const std::size_t n = std::size_t(table_->coefficients());
+    for (std::size_t v = 0; v < count; ++v) rt::OrthogonalTransform<T>(*table_, q + 9 * v).apply(in + n * v, out + n * v);
+  }
+
+  // One orthogonal q prepared for count vectors: apply(part, in, out) on the calling thread.
+  std::function<void(std::size_t, const T*, T*)> shared(const T* q, std::size_t count) const {
+    if (fastest_) {
+      auto prepared = fastest_->prepare(q, count);
+      return [prepared](std::size_t part, const T* in, T* out) { prepared.apply(part, in, out, 1); };
+    }
+    auto transform = std::make_shared<const rt::OrthogonalTransform<T>>(*table_, q);
+    auto prepared = std::make_shared<const typename rt::OrthogonalTransform<T>::Prepared>(transform->prepare(count));
+    const std::size_t n = std::size_t(table_->coefficients());
+    return [transform, prepared, n](std::size_t part, const T* in, T* out) {
+      for (std::size_t v = 0; v < part; ++v) prepared->apply(in + n * v, out + n * v);
+    };
+  }
+
+  std::vector<std::vector<T>> band_matrices(const T* q) const {
+    if (fastest_) return fastest_->band_matrices(q);
+    return rt::OrthogonalTransform<T>(*table_, q).dense().bands();
+  }
+
+ private:
+  std::optional<zd::Rotator<T>> fastest_;
+  std::shared_ptr<const rt::Rotator<T>> table_;  // outlives the transforms shared() hands out
+};
 
 int order_of(const py::buffer_info& coeffs) {
   const auto n = static_cast<std::size_t>(coeffs.shape[1]);
@@ -64,10 +101,11 @@ void refuse_non_finite(const T* data, std::size_t from, std::size_t total, std::
 }
 
 // Rotates count vectors of n coefficients on the runtime's threads, in blocks that stay in cache:
-// each block's input is checked for non-finite numbers first, then rotate_one(v, in_v, out_v)
-// runs on its vectors. A non-finite entry is refused, naming the first (out is then garbage).
-template <class T, class RotateOne>
-void rotate_checked(const T* in, T* out, std::size_t count, std::size_t n, int threads, const RotateOne& rotate_one) {
+// each block's input is checked for non-finite numbers first, then rotate_block(v, part, in_v,
+// out_v) rotates its part vectors from vector v. A non-finite entry is refused, naming the first
+// (out is then garbage).
+template <class T, class RotateBlock>
+void rotate_checked(const T* in, T* out, std::size_t count, std::size_t n, int threads, const RotateBlock& rotate_block) {
   constexpr std::size_t kBlock = 256;
   std::atomic<std::size_t> first_bad_block{count};
   rt::parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
@@ -79,7 +117,7 @@ void rotate_checked(const T* in, T* out, std::size_t count, std::size_t n, int t
         }
         return;
       }
-      for (std::size_t v = b; v < e; ++v) rotate_one(v, in + n * v, out + n * v);
+      rotate_block(b, e - b, in + n * b, out + n * b);
     }
   });
   refuse_non_finite(in, first_bad_block.load() * n, count * n, n);
@@ -117,14 +155,8 @@ Array<T> rotate_shared(const Array<T>& coeffs, const Array<double>& rotation, co
   T* dst = out.mutable_data();
   {
     py::gil_scoped_release release;
-    if (order == 1) {
-      rotate_checked(src, dst, count, n, threads, [](std::size_t, const T* f, T* g) { g[0] = f[0]; });
-    } else {
-      const rt::Rotator<T> rotator = rotator_for<T>(order, table);
-      const rt::OrthogonalTransform<T> transform(rotator, r);
-      const auto prepared = transform.prepare(count);
-      rotate_checked(src, dst, count, n, threads, [&](std::size_t, const T* f, T* g) { prepared.apply(f, g); });
-    }
+    const auto apply = Rotation<T>(order, table).shared(r, count);
+    rotate_checked(src, dst, count, n, threads, [&](std::size_t, std::size_t part, const T* f, T* g) { apply(part, f, g); });
   }
   return out;
 }
@@ -146,14 +178,10 @@ Array<T> rotate_each(const Array<T>& coeffs, const Array<double>& rotations, con
     py::gil_scoped_release release;
     for (std::size_t v = 0; v < count; ++v) check_rotation(r + 9 * v, v, true);
     std::vector<T> rotations_t(r, r + 9 * count);
-    if (order == 1) {
-      rotate_checked(src, dst, count, n, threads, [](std::size_t, const T* f, T* g) { g[0] = f[0]; });
-    } else {
-      const rt::Rotator<T> rotator = rotator_for<T>(order, table);
-      rotate_checked(src, dst, count, n, threads, [&](std::size_t v, const T* f, T* g) {
-        rt::OrthogonalTransform<T>(rotator, rotations_t.data() + 9 * v).apply(f, g);
-      });
-    }
+    const Rotation<T> rotation(order, table);
+    rotate_checked(src, dst, count, n, threads, [&](std::size_t v, std::size_t part, const T* f, T* g) {
+      rotation.each(part, rotations_t.data() + 9 * v, f, g);
+    });
   }
   return out;
 }
@@ -169,12 +197,11 @@ std::vector<Array<double>> band_matrices(const Array<double>& rotation, int orde
     bands.push_back(one);
     return bands;
   }
-  const rt::Rotator<double> rotator = rotator_for<double>(order, table);
-  const rt::DenseRotation<double> d = rt::OrthogonalTransform<double>(rotator, rotation.data()).dense();
+  const std::vector<std::vector<double>> matrices = Rotation<double>(order, table).band_matrices(rotation.data());
   for (int l = 0; l < order; ++l) {
     const auto size = static_cast<std::size_t>(rt::band_size(l));
     Array<double> band({size, size});
-    std::copy(d.bands()[l].begin(), d.bands()[l].end(), band.mutable_data());
+    std::copy(matrices[l].begin(), matrices[l].end(), band.mutable_data());
     bands.push_back(band);
   }
   return bands;
@@ -277,6 +304,14 @@ Array<double> table_directions(const rt::LobeTable& table) {
 PYBIND11_MODULE(_zhf, m) {
   m.doc() = "zhf's C++ core; use the zhf package, which shapes arrays for it";
   m.attr("__version__") = ZHF_VERSION;
+  m.def("isa", [] { return std::string(zd::isa_name(zd::active_isa())); },
+        "the instruction-set path rotations take: sse2, avx2 or avx512 on x86-64, neon on aarch64 (ZHF_ISA forces one)");
+  m.def("use_isa", &zd::use_isa, py::arg("name"), "forces an instruction-set path the CPU runs for the rotations that follow");
+  m.def("isas", [] {
+    std::vector<std::string> names;
+    for (zd::Isa isa : zd::supported_isas()) names.push_back(zd::isa_name(isa));
+    return names;
+  }, "the instruction-set paths this CPU runs, fastest first");
   m.attr("max_table_order") = rt::kMaxTableOrder;
   m.attr("max_generated_order") = rt::kMaxGeneratedOrder;
   m.attr("max_threads") = rt::kMaxThreads;

@@ -212,3 +212,32 @@ def test_bad_input_is_a_value_error_naming_the_field(call, message):
         call()
     assert message in str(raised.value)
     assert "\n" not in str(raised.value)
+
+
+def test_every_isa_path_the_cpu_runs_rotates_alike():
+    # Each path this CPU runs, forced in turn, against the double reference (real_sh), and the
+    # path picked first restored; a path it lacks or an unknown name refused in one line.
+    picked = zhf.isa()
+    assert picked == zhf.isas()[0]
+    rng = np.random.default_rng(54)
+    try:
+        for name in zhf.isas():
+            zhf.use_isa(name)
+            assert zhf.isa() == name
+            for order in (2, 4, 5, 8):
+                f = unit_vectors(rng, (300, order * order))
+                rotations = np.stack([random_rotation(rng) for _ in range(300)])
+                w = random_directions(rng, 20)
+                for dtype, tol in ((np.float64, TOL["pointwise"]), (np.float32, 10 * TOL["float_rotation"])):
+                    g = zhf.rotate(f.astype(dtype), rotations.astype(dtype), threads=1)
+                    g_at_w = np.einsum("vi,di->vd", g.astype(np.float64), real_sh(order, w))
+                    rtw = np.einsum("dj,vjk->vdk", w, rotations)  # rows R^T w per vector
+                    f_at_rtw = np.stack([f[v] @ real_sh(order, rtw[v]).T for v in range(len(f))])
+                    error = np.abs(g_at_w - f_at_rtw).max()
+                    assert error <= tol * order, f"{name}, order {order}, {dtype.__name__}: {error:.3g}"
+    finally:
+        zhf.use_isa(picked)
+    for bad in ("sse9", "avx1024"):
+        with pytest.raises(ValueError, match="is not one of this build's paths"):
+            zhf.use_isa(bad)
+    assert zhf.isa() == picked

@@ -18,7 +18,7 @@ import warnings
 import numpy as np
 
 from . import _zhf
-from ._zhf import LobeTable, __version__, conventions
+from ._zhf import LobeTable, __version__, conventions, isa, isas, use_isa
 
 __all__ = [
     "LobeTable",
@@ -26,10 +26,13 @@ __all__ = [
     "band_matrices",
     "conventions",
     "convert",
+    "isa",
+    "isas",
     "matrix_from_quaternion",
     "order_of",
     "read_lobe_table",
     "rotate",
+    "use_isa",
     "write_lobe_table",
     "__version__",
 ]

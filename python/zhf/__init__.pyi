@@ -10,6 +10,10 @@ __version__: str
 QuaternionOrder = Literal["wxyz", "xyzw"]
 conventions: list[str]
 
+def isa() -> str: ...  # the instruction-set path rotations take ("sse2", "avx2", "avx512", "neon")
+def isas() -> list[str]: ...  # the paths this CPU runs, fastest first
+def use_isa(name: str) -> None: ...  # forces one of isas() for the rotations that follow
+
 class LobeTable:
     order: int
     lobe_sharing: bool

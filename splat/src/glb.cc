@@ -365,7 +365,7 @@ class GlbReader : public SceneReader {
     transform_.scale = scale;
     transform_.translation = {global[3], global[7], global[11]};
     layout_ = layout_of(canonical_header(degree_, splats_), "canonical record");
-    math_.emplace(layout_, transform_, splats_);
+    math_.emplace(layout_, transform_);
   }
 
   void decode(std::uint64_t splat, std::uint64_t s, double* v, const Canonical& c) {

@@ -199,7 +199,7 @@ Summary convert(const std::string& in, const std::string& out, FileFormat from, 
   const std::unique_ptr<SceneReader> reader = open_reader(from, in);
   const ply::Header header = canonical_header(reader->degree(), reader->splats());
   const Layout layout = layout_of(header, "canonical record");
-  const SplatMath math(layout, transform, reader->splats());
+  const SplatMath math(layout, transform);
   io::PendingFile pending(out);
   const std::unique_ptr<SceneWriter> writer = open_writer(to, pending, reader->degree(), reader->splats(), spz_version);
   const std::size_t size = header.properties.size();
@@ -318,7 +318,7 @@ Summary transform_file(const std::string& in, const std::string& out, const Tran
                        std::to_string(header.vertices) + " splats of " + std::to_string(header.record_bytes) + " bytes)" +
                        (size < expected ? ": truncated" : ": bytes after the last splat"));
   }
-  const SplatMath math(layout, transform, header.vertices);
+  const SplatMath math(layout, transform);
   io::PendingFile pending(out);
   pending.write(header.text);
   if (header.format == ply::Format::kAscii) {

@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "zhf/io/errors.h"
+#include "zhf/dispatch/rotator.h"
 #include "zhf/runtime/conventions.h"
-#include "zhf_kernels.h"
 
 namespace zhf::splat {
 namespace {
@@ -59,7 +59,7 @@ Layout layout_of(const ply::Header& header, const std::string& source) {
   return layout;
 }
 
-SplatMath::SplatMath(const Layout& layout, const Transform& t, std::uint64_t splats) : layout_(layout), t_(t) {
+SplatMath::SplatMath(const Layout& layout, const Transform& t) : layout_(layout), t_(t) {
   const runtime::Matrix3& r = t.r;
   reflection_ = runtime::determinant(r.data()) < 0;
   runtime::Matrix3 proper = r;
@@ -70,10 +70,11 @@ SplatMath::SplatMath(const Layout& layout, const Transform& t, std::uint64_t spl
   if (layout.degree >= 1) {
     const runtime::Convention& convention = t.convention ? *t.convention : *runtime::find_convention("3dgs");
     const runtime::Matrix3 q = convention.rotation_in_zhf_terms(r);
-    rotator_ = std::make_unique<runtime::Rotator<double>>(
-        runtime::Rotator<double>::with(gen::fastest_kernels<double>(layout.degree + 1)));
-    sh_ = std::make_unique<runtime::OrthogonalTransform<double>>(*rotator_, q.data());
-    prepared_.emplace(sh_->prepare(3 * splats));
+    const int order = layout.degree + 1;
+    // An axis map moves coefficients exactly; any other q through its band matrices, built on the
+    // CPU's fastest path (zhf::dispatch) once for the whole scene.
+    exact_ = runtime::exact_coefficient_map(q.data(), order);
+    if (!exact_) sh_.emplace(order, dispatch::Rotator<double>::make(order).band_matrices(q.data()));
   }
 }
 
@@ -97,13 +98,17 @@ void SplatMath::apply(double* v) const {
   }
   if (layout_.log_scale[0] >= 0)
     for (int i : layout_.log_scale) v[i] += log_scale_;
-  if (prepared_) {
+  if (exact_ || sh_) {
     const int n2 = (layout_.degree + 1) * (layout_.degree + 1), per = n2 - 1;
-    double in[16], out[16];
+    double in[runtime::kMaxGeneratedOrder * runtime::kMaxGeneratedOrder], out[runtime::kMaxGeneratedOrder * runtime::kMaxGeneratedOrder];
     for (int c = 0; c < 3; ++c) {
       in[0] = v[layout_.dc[c]];
       for (int j = 0; j < per; ++j) in[1 + j] = v[layout_.rest[c * per + j]];
-      prepared_->apply(in, out);
+      if (exact_) {
+        exact_->apply(in, out);
+      } else {
+        sh_->apply(in, out);
+      }
       for (int j = 0; j < per; ++j) v[layout_.rest[c * per + j]] = out[1 + j];
     }
   }

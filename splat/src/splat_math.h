@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "zhf/io/ply.h"
+#include "zhf/runtime/dense_rotation.h"
 #include "zhf/runtime/orthogonal.h"
-#include "zhf/runtime/rotator.h"
 #include "zhf/splat/scene.h"
 
 namespace zhf::splat {
@@ -31,8 +31,7 @@ Layout layout_of(const io::ply::Header& header, const std::string& source);
 
 class SplatMath {
  public:
-  // splats: how many there are (three colour vectors each decide how the SH is applied).
-  SplatMath(const Layout& layout, const Transform& t, std::uint64_t splats);
+  SplatMath(const Layout& layout, const Transform& t);
   void apply(double* values) const;
 
  private:
@@ -41,9 +40,8 @@ class SplatMath {
   bool reflection_ = false;
   std::array<double, 4> turn_{};
   double log_scale_ = 0;
-  std::unique_ptr<runtime::Rotator<double>> rotator_;
-  std::unique_ptr<runtime::OrthogonalTransform<double>> sh_;
-  std::optional<runtime::OrthogonalTransform<double>::Prepared> prepared_;
+  std::optional<runtime::CoefficientMap> exact_;
+  std::optional<runtime::DenseRotation<double>> sh_;
 };
 
 }  // namespace zhf::splat
