@@ -15,7 +15,7 @@ packages=(
   glslang-tools spirv-tools libvulkan-dev mesa-vulkan-drivers
   libhealpix-cxx-dev libcfitsio-dev gnuplot-nox
   python3 python3-dev pybind11-dev python3-numpy python3-pytest
-  qemu-user
+  qemu-user g++-aarch64-linux-gnu googletest
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -4,7 +4,9 @@
 #      module's pytest suite among them);
 #   2. every test again under AddressSanitizer + UndefinedBehaviorSanitizer (the Python module
 #      aside: an instrumented extension cannot load into an uninstrumented interpreter);
-#   3. each libFuzzer target for ZHF_FUZZ_SECONDS (default 60) on its seed corpus, one per core at a time.
+#   3. the runtime's, the generated kernels' and zhf::dispatch's tests cross-built for aarch64 and
+#      run under qemu-aarch64 (scripts/test_aarch64.sh: correctness on ARM, never timing);
+#   4. each libFuzzer target for ZHF_FUZZ_SECONDS (default 60) on its seed corpus, one per core at a time.
 # Non-zero exit on any failure. ZHF_QUICK=1 runs stage 1 only.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
@@ -24,7 +26,7 @@ asan_build="${ZHF_BUILD}-asan"
 # use-after-scope poisoning: GCC at -O2 poisoning every scoped temporary of the straight-line
 # generated kernels (instantiated by the tests at every order, float and double) took 4.5x as long
 # to compile them, and this stage's build twice as long (about 45 min against 23 on 2 cores). The
-# readers keep use-after-scope checks in stage 3 (clang's default).
+# readers keep use-after-scope checks in stage 4 (clang's default).
 asan_flags="-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG -fno-sanitize-address-use-after-scope"
 cmake -S "$ZHF_ROOT" -B "$asan_build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "$asan_flags" -DZHF_SANITIZE=ON -DZHF_BENCH=OFF -DZHF_PYTHON=OFF >/dev/null
 cmake --build "$asan_build" -j "$ZHF_JOBS"
@@ -32,7 +34,11 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 ctest --test-dir "$asan_build" --output-on-failure -j "$ZHF_JOBS"
 echo "== stage 2 done at $(elapsed)"
 
-echo "== stage 3: fuzzing"
+echo "== stage 3: aarch64 under qemu"
+bash "$ZHF_ROOT/scripts/test_aarch64.sh"
+echo "== stage 3 done at $(elapsed)"
+
+echo "== stage 4: fuzzing"
 fuzz_build="${ZHF_BUILD}-fuzz"
 fuzz_flags="-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -g1 -DNDEBUG"
 CC=clang CXX=clang++ cmake -S "$ZHF_ROOT" -B "$fuzz_build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "$fuzz_flags" -DZHF_FUZZ=ON >/dev/null
@@ -64,5 +70,5 @@ for corpus in json lobe_table coefficients scene manifest rotation_text ply hdr 
 done
 for pid in "${pids[@]}"; do wait "$pid" || failed=1; done
 [ "$failed" = 0 ] || exit 1
-echo "== stage 3 done at $(elapsed)"
+echo "== stage 4 done at $(elapsed)"
 echo "all stages passed"

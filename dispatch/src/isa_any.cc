@@ -1,5 +1,5 @@
-// Any order on one instruction-set path (isa_unit.h): the generated orders' units (isa_order.cc),
-// zxzxz beyond them.
+// Any order on one instruction-set path (isa_unit.h): the generated orders through their units
+// (isa_order.cc), zxzxz beyond them; and the members of the path's backend, compiled here once.
 #include "isa_unit.h"
 
 template <>
@@ -11,3 +11,67 @@ template <>
 std::unique_ptr<zhf_dispatch_api::Backend<double>> zhf_dispatch_api::make_backend<zhf::dispatch_unit::kIsa, double>(int order) {
   return zhf::dispatch_unit::any_order<double>(order);
 }
+
+namespace zhf::dispatch_unit {
+
+template <class T>
+IsaPrepared<T>::IsaPrepared(const runtime::Rotator<T>& rotator, const T* q, std::size_t count)
+    : transform_(rotator, q), prepared_(transform_.prepare(count)), n_(std::size_t(rotator.coefficients())) {}
+
+template <class T>
+void IsaPrepared<T>::apply(std::size_t count, const T* in, T* out, int threads) const {
+  runtime::parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) prepared_.apply(in + n_ * v, out + n_ * v);
+  });
+}
+
+template <class T>
+IsaBackend<T>::IsaBackend(runtime::Rotator<T> rotator) : rotator_(std::move(rotator)) {}
+template <class T>
+int IsaBackend<T>::order() const {
+  return rotator_.order();
+}
+template <class T>
+std::string IsaBackend<T>::path() const {
+  return rotator_.path();
+}
+template <class T>
+void IsaBackend<T>::rotate(const T* r, const T* in, T* out) const {
+  rotator_.rotate(r, in, out);
+}
+template <class T>
+void IsaBackend<T>::rotate_rgb(const T* r, const T* in, T* out) const {
+  rotator_.rotate_rgb(r, in, out);
+}
+template <class T>
+void IsaBackend<T>::rotate_batch(std::size_t count, const T* r, const T* in, T* out, int threads) const {
+  rotator_.rotate_batch(count, r, in, out, threads);
+}
+template <class T>
+void IsaBackend<T>::transform_each(std::size_t count, const T* q, const T* in, T* out, int threads) const {
+  const std::size_t n = static_cast<std::size_t>(rotator_.coefficients());
+  runtime::parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) runtime::OrthogonalTransform<T>(rotator_, q + 9 * v).apply(in + n * v, out + n * v);
+  });
+}
+template <class T>
+std::unique_ptr<api::PreparedBackend<T>> IsaBackend<T>::prepare(const T* q, std::size_t count) const {
+  return std::make_unique<IsaPrepared<T>>(rotator_, q, count);
+}
+template <class T>
+std::vector<std::vector<T>> IsaBackend<T>::band_matrices(const T* q) const {
+  return runtime::OrthogonalTransform<T>(rotator_, q).dense().bands();
+}
+template <class T>
+void IsaBackend<T>::apply_splats(const T* q, std::size_t count, const T* in, T* out, int threads) const {
+  runtime::OrthogonalTransform<T>(rotator_, q).dense().apply_splats(count, in, out, threads);
+}
+template <class T>
+void IsaBackend<T>::apply_planar(const T* q, std::size_t count, int channels, const T* in, T* out, int threads) const {
+  runtime::OrthogonalTransform<T>(rotator_, q).dense().apply_planar(count, channels, in, out, threads);
+}
+
+template class IsaBackend<float>;
+template class IsaBackend<double>;
+
+}  // namespace zhf::dispatch_unit

@@ -44,16 +44,10 @@ inline constexpr api::Isa kIsa = api::Isa::ZHF_DISPATCH_ISA;
 template <class T>
 class IsaPrepared final : public api::PreparedBackend<T> {
  public:
-  IsaPrepared(const runtime::Rotator<T>& rotator, const T* q, std::size_t count)
-      : transform_(rotator, q), prepared_(transform_.prepare(count)), n_(std::size_t(rotator.coefficients())) {}
+  IsaPrepared(const runtime::Rotator<T>& rotator, const T* q, std::size_t count);
   IsaPrepared(const IsaPrepared&) = delete;  // prepared_ refers to transform_
   IsaPrepared& operator=(const IsaPrepared&) = delete;
-
-  void apply(std::size_t count, const T* in, T* out, int threads) const override {
-    runtime::parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t v = begin; v < end; ++v) prepared_.apply(in + n_ * v, out + n_ * v);
-    });
-  }
+  void apply(std::size_t count, const T* in, T* out, int threads) const override;
 
  private:
   runtime::OrthogonalTransform<T> transform_;
@@ -61,41 +55,30 @@ class IsaPrepared final : public api::PreparedBackend<T> {
   std::size_t n_;
 };
 
-// A runtime::Rotator of this path behind the library's interface.
+// A runtime::Rotator of this path behind the library's interface. Its members are compiled once
+// per path, in isa_any.cc (the extern declarations below): the per-order units only make one, so
+// the dense band products of every order are not compiled again in each of them.
 template <class T>
 class IsaBackend final : public api::Backend<T> {
  public:
-  explicit IsaBackend(runtime::Rotator<T> rotator) : rotator_(std::move(rotator)) {}
-
-  int order() const override { return rotator_.order(); }
-  std::string path() const override { return rotator_.path(); }
-  void rotate(const T* r, const T* in, T* out) const override { rotator_.rotate(r, in, out); }
-  void rotate_rgb(const T* r, const T* in, T* out) const override { rotator_.rotate_rgb(r, in, out); }
-  void rotate_batch(std::size_t count, const T* r, const T* in, T* out, int threads) const override {
-    rotator_.rotate_batch(count, r, in, out, threads);
-  }
-  void transform_each(std::size_t count, const T* q, const T* in, T* out, int threads) const override {
-    const std::size_t n = static_cast<std::size_t>(rotator_.coefficients());
-    runtime::parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t v = begin; v < end; ++v) runtime::OrthogonalTransform<T>(rotator_, q + 9 * v).apply(in + n * v, out + n * v);
-    });
-  }
-  std::unique_ptr<api::PreparedBackend<T>> prepare(const T* q, std::size_t count) const override {
-    return std::make_unique<IsaPrepared<T>>(rotator_, q, count);
-  }
-  std::vector<std::vector<T>> band_matrices(const T* q) const override {
-    return runtime::OrthogonalTransform<T>(rotator_, q).dense().bands();
-  }
-  void apply_splats(const T* q, std::size_t count, const T* in, T* out, int threads) const override {
-    runtime::OrthogonalTransform<T>(rotator_, q).dense().apply_splats(count, in, out, threads);
-  }
-  void apply_planar(const T* q, std::size_t count, int channels, const T* in, T* out, int threads) const override {
-    runtime::OrthogonalTransform<T>(rotator_, q).dense().apply_planar(count, channels, in, out, threads);
-  }
+  explicit IsaBackend(runtime::Rotator<T> rotator);
+  int order() const override;
+  std::string path() const override;
+  void rotate(const T* r, const T* in, T* out) const override;
+  void rotate_rgb(const T* r, const T* in, T* out) const override;
+  void rotate_batch(std::size_t count, const T* r, const T* in, T* out, int threads) const override;
+  void transform_each(std::size_t count, const T* q, const T* in, T* out, int threads) const override;
+  std::unique_ptr<api::PreparedBackend<T>> prepare(const T* q, std::size_t count) const override;
+  std::vector<std::vector<T>> band_matrices(const T* q) const override;
+  void apply_splats(const T* q, std::size_t count, const T* in, T* out, int threads) const override;
+  void apply_planar(const T* q, std::size_t count, int channels, const T* in, T* out, int threads) const override;
 
  private:
   runtime::Rotator<T> rotator_;
 };
+
+extern template class IsaBackend<float>;
+extern template class IsaBackend<double>;
 
 // The fastest kernels of generated order N (zhf_kernels.h's choice for this instruction set).
 template <int N, class T>

@@ -62,6 +62,7 @@ void Rotator<T>::transform_shared(std::size_t count, const T q[9], const T* in, 
 template <class T>
 PreparedTransform<T> Rotator<T>::prepare(const T q[9], std::size_t count) const {
   PreparedTransform<T> p;
+  p.backend_ = backend_;
   p.prepared_ = backend_->prepare(q, count);
   return p;
 }

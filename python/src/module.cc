@@ -68,7 +68,7 @@ class Rotation {
     auto transform = std::make_shared<const rt::OrthogonalTransform<T>>(*table_, q);
     auto prepared = std::make_shared<const typename rt::OrthogonalTransform<T>::Prepared>(transform->prepare(count));
     const std::size_t n = std::size_t(table_->coefficients());
-    return [transform, prepared, n](std::size_t part, const T* in, T* out) {
+    return [rotator = table_, transform, prepared, n](std::size_t part, const T* in, T* out) {
       for (std::size_t v = 0; v < part; ++v) prepared->apply(in + n * v, out + n * v);
     };
   }
@@ -80,7 +80,7 @@ class Rotation {
 
  private:
   std::optional<zd::Rotator<T>> fastest_;
-  std::shared_ptr<const rt::Rotator<T>> table_;  // outlives the transforms shared() hands out
+  std::shared_ptr<const rt::Rotator<T>> table_;  // shared with what shared() hands out, which refers to it
 };
 
 int order_of(const py::buffer_info& coeffs) {

@@ -26,7 +26,8 @@ template <class T>
 class PreparedBackend;
 }  // namespace detail
 
-// One orthogonal transform prepared for many vectors (Rotator::prepare).
+// One orthogonal transform prepared for many vectors (Rotator::prepare); it keeps what it needs
+// of its Rotator alive.
 template <class T>
 class PreparedTransform {
  public:
@@ -36,6 +37,7 @@ class PreparedTransform {
  private:
   template <class>
   friend class Rotator;
+  std::shared_ptr<const detail::Backend<T>> backend_;  // the prepared transform refers to it
   std::shared_ptr<const detail::PreparedBackend<T>> prepared_;
 };
 
