@@ -13,7 +13,6 @@
 
 #include "test_support.h"
 #include "zhf/dispatch/rotator.h"
-#include "zhf/runtime/band_recurrence.h"
 #include "zhf/runtime/limits.h"
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/runtime/tolerances.h"
@@ -45,16 +44,7 @@ double worst_error(const Rotator<T>& rotator, const sh::RotationMatrix& r, std::
   for (int i = 0; i < 9; ++i) rt[i] = T(r(i / 3, i % 3));
   for (int i = 0; i < n; ++i) in[i] = T(f[i] / std::sqrt(norm)), f[i] = double(in[i]);
   rotator.rotate(rt.data(), in.data(), out.data());
-  const auto bands = runtime::recurrence_band_matrices<long double>(r.data(), order);
-  double worst = 0;
-  for (int l = 0; l < order; ++l)
-    for (int i = 0; i < 2 * l + 1; ++i) {
-      long double expected = 0;
-      for (int j = 0; j < 2 * l + 1; ++j) expected += bands[l][i * (2 * l + 1) + j] * f[l * l + j];
-      const double error = double(std::abs(out[l * l + i] - expected));
-      if (error > worst) worst = error, at = l * l + i;
-    }
-  return worst;
+  return test::worst_against_recurrence(r.data(), order, f, out.data(), at);
 }
 
 template <class T>

@@ -38,17 +38,8 @@ double worst_error(const runtime::Rotator<T>& rotator, const sh::RotationMatrix&
   for (int i = 0; i < 9; ++i) rt[i] = T(r(i / 3, i % 3));
   for (int i = 0; i < n; ++i) in[i] = T(f[i]), f[i] = double(in[i]);
   rotator.rotate(rt.data(), in.data(), out.data());
-  // The reference in long double: in double the recurrence's rounding reaches ~5e-7 at l = 127.
-  const auto bands = runtime::recurrence_band_matrices<long double>(r.data(), order);
-  double worst = 0;
-  for (int l = 0; l < order; ++l)
-    for (int i = 0; i < 2 * l + 1; ++i) {
-      long double expected = 0;
-      for (int j = 0; j < 2 * l + 1; ++j) expected += bands[l][i * (2 * l + 1) + j] * f[l * l + j];
-      const double error = double(std::abs(out[l * l + i] - expected));
-      if (error > worst) worst = error, at = l * l + i;
-    }
-  return worst;
+  const std::vector<double> f_values(f.data(), f.data() + n);
+  return test::worst_against_recurrence(r.data(), order, f_values, out.data(), at);
 }
 
 TEST(ZxzxzOrders, EveryOrderToTheLimitMatchesTheReference) {

@@ -3,6 +3,7 @@
 // for outputs, and where the project's data is.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -13,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "zhf/io/process.h"
+#include "zhf/runtime/band_recurrence.h"
 
 namespace zhf::test {
 
@@ -94,6 +96,22 @@ std::pair<T*, T*> aligned_pair(std::vector<T>& buffer, std::size_t size, std::si
   buffer.assign(2 * whole + step, T(0));
   T* const first = buffer.data() + (step - reinterpret_cast<std::uintptr_t>(buffer.data()) / sizeof(T) % step) % step;
   return {first, first + whole};
+}
+
+// The largest |out_i - (D(R) f)_i| over the N^2 coefficients of one rotated vector, D(R) from the
+// recurrence in long double (in double its rounding reaches ~5e-7 at l = 127); at: that i.
+template <class T>
+double worst_against_recurrence(const double r[9], int order, const std::vector<double>& f, const T* out, int& at) {
+  const auto bands = runtime::recurrence_band_matrices<long double>(r, order);
+  double worst = 0;
+  for (int l = 0; l < order; ++l)
+    for (int i = 0; i < 2 * l + 1; ++i) {
+      long double expected = 0;
+      for (int j = 0; j < 2 * l + 1; ++j) expected += bands[l][i * (2 * l + 1) + j] * f[l * l + j];
+      const double error = double(std::abs(out[l * l + i] - expected));
+      if (error > worst) worst = error, at = l * l + i;
+    }
+  return worst;
 }
 
 }  // namespace zhf::test
