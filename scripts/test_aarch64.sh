@@ -8,4 +8,7 @@ cross_build="${ZHF_BUILD}-aarch64"
 cmake -S "$ZHF_ROOT" -B "$cross_build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DZHF_WERROR=ON -DZHF_RUNTIME_TESTS_ONLY=ON \
   -DCMAKE_TOOLCHAIN_FILE="$ZHF_ROOT/cmake/aarch64-linux-gnu.cmake" >/dev/null
 cmake --build "$cross_build" -j "$ZHF_JOBS"
-ctest --test-dir "$cross_build" --output-on-failure -j "$ZHF_JOBS"
+# Left out: zxzxz at orders to 128 against the recurrence in long double, which is software quad
+# precision on aarch64 and takes many minutes under the emulator; dispatch_test holds every path
+# to the same reference to order 32.
+ctest --test-dir "$cross_build" --output-on-failure -j "$ZHF_JOBS" -E '^ZxzxzOrders\.EveryOrderToTheLimitMatchesTheReference$'

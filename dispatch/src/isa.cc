@@ -19,11 +19,11 @@ bool cpu_runs(Isa isa) {
     case Isa::kAvx2: return __builtin_cpu_supports("x86-64-v3");
     case Isa::kAvx512: return __builtin_cpu_supports("x86-64-v4");
 #elif defined(__x86_64__)
-    // Clang names features only; these are the levels' (the rest of v3, MOVBE and LZCNT, came
-    // with every CPU that has AVX2 and BMI2).
+    // Clang names features only, not all of them: these are the levels' (the rest of v3, F16C,
+    // MOVBE and LZCNT, came with every CPU that has AVX2 and BMI2).
     case Isa::kAvx2:
       return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi") &&
-             __builtin_cpu_supports("bmi2") && __builtin_cpu_supports("f16c");
+             __builtin_cpu_supports("bmi2");
     case Isa::kAvx512:
       return cpu_runs(Isa::kAvx2) && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
              __builtin_cpu_supports("avx512cd") && __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512vl");

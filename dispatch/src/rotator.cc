@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "backend.h"
 #include "zhf/runtime/limits.h"
@@ -12,10 +13,11 @@ namespace {
 // The factory of each built path (ZHF_DISPATCH_PATHS), chosen by value.
 template <class T, Isa... Paths>
 std::unique_ptr<detail::Backend<T>> make_on(Isa isa, int order) {
-  std::unique_ptr<detail::Backend<T>> made;
-  ((isa == Paths ? (made = detail::make_backend<Paths, T>(order), true) : false) || ...);
-  if (!made) throw std::invalid_argument(std::string("zhf::dispatch: path ") + isa_name(isa) + " is not built");
-  return made;
+  using Factory = std::unique_ptr<detail::Backend<T>> (*)(int);
+  const std::pair<Isa, Factory> factories[] = {{Paths, &detail::make_backend<Paths, T>}...};
+  for (const auto& [path, make] : factories)
+    if (path == isa) return make(order);
+  throw std::invalid_argument(std::string("zhf::dispatch: path ") + isa_name(isa) + " is not built");
 }
 
 }  // namespace

@@ -25,6 +25,14 @@ inline constexpr double kPaperConditionRelative = 0.01;
 // Other published and printed numbers: a value quoted to 10 digits; a number std::to_string wrote
 // (6 decimals).
 inline constexpr double kQuotedTenDigits = 1e-10;
+// One formula computed by two paths that the compiler may contract into fused multiply-adds
+// differently (GCC contracts by default where FMA is in the instruction set: aarch64's baseline,
+// x86-64-v3): equal where there is no FMA, within a few roundings (relative) where there is.
+#if defined(__FP_FAST_FMA)
+inline constexpr double kContractedRelative = 1e-14;
+#else
+inline constexpr double kContractedRelative = 0;
+#endif
 inline constexpr double kSixDecimals = 1e-6;
 
 struct RunResult {
