@@ -14,19 +14,23 @@ prefix=$work/prefix
 fail() { echo "package test: $*" >&2; exit 1; }
 
 cmake --install "$build" --prefix "$prefix" >/dev/null
+# A package built under the sanitizers holds an instrumented zhf::dispatch: its consumers link
+# the sanitizers' runtimes too.
+sanitize=""
+if grep -qs '^ZHF_SANITIZE:BOOL=ON' "$build/CMakeCache.txt"; then sanitize="-fsanitize=address,undefined"; fi
 table=$prefix/share/zhf/generated/lobes/order_12.json
 [ -f "$table" ] || fail "no installed lobe table at $table"
 
 echo "-- find_package(zhf CONFIG)"
 env -u CXXFLAGS -u LDFLAGS cmake -S "$here/consumer" -B "$work/consumer" -G Ninja -DCMAKE_BUILD_TYPE=Release \
-  -DCMAKE_PREFIX_PATH="$prefix" >/dev/null
+  -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_CXX_FLAGS="$sanitize" -DCMAKE_EXE_LINKER_FLAGS="$sanitize" >/dev/null
 cmake --build "$work/consumer" >/dev/null
 "$work/consumer/consumer" "$table"
 
 echo "-- pkg-config zhf"
 flags=$(PKG_CONFIG_PATH="$prefix/share/pkgconfig" pkg-config --cflags --libs zhf)
 # shellcheck disable=SC2086  # the flags are words
-g++ -std=c++17 -O2 "$here/consumer/main.cc" $flags -o "$work/consumer_pc"
+g++ -std=c++17 -O2 $sanitize "$here/consumer/main.cc" $flags -o "$work/consumer_pc"
 "$work/consumer_pc" "$table"
 
 echo "-- the installed zhf finds its installed tables"
