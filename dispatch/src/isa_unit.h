@@ -83,7 +83,7 @@ extern template class IsaBackend<double>;
 // The fastest kernels of generated order N (zhf_kernels.h's choice for this instruction set).
 template <int N, class T>
 std::unique_ptr<api::Backend<T>> generated() {
-  return std::make_unique<IsaBackend<T>>(runtime::Rotator<T>::with(gen::fastest_kernels<T>(N)));
+  return std::make_unique<IsaBackend<T>>(runtime::Rotator<T>::with(gen::fastest_kernels<N, T>()));
 }
 
 // Any order: the generated orders through their own units, zxzxz elsewhere (order 1 included).

@@ -76,23 +76,27 @@ inline constexpr int kLanesFrom = 4;
 // that have it (runtime::kBandRowsBuilt).
 inline constexpr int kBandRowsFrom = 5;
 
-// The fastest verified rotation path of a generated order (throws for any other order).
+// The fastest verified rotation path of generated order N. One branch is instantiated per order
+// and type: only the kernels chosen are compiled.
+template <int N, class T>
+runtime::KernelSet<T> fastest_kernels() {
+  constexpr bool band_rows = std::is_same_v<T, float> && runtime::kBandRowsBuilt;
+  if constexpr (band_rows && N == 2) {
+    return runtime::bands01_kernels();
+  } else if constexpr (band_rows && N >= kBandRowsFrom && N <= runtime::kBandRowsMaxOrder) {
+    return runtime::band_rows_kernels<N>();
+  } else if constexpr (kHasLanes<N> && N >= kLanesFrom && N <= kLanesUpTo) {
+    return runtime::lanes_kernels<N, T>();
+  } else {
+    return runtime::scalar_kernels<N, T>();
+  }
+}
+
+// The same for an order chosen at run time: every generated order's kernels are compiled (throws
+// for any other order).
 template <class T>
 runtime::KernelSet<T> fastest_kernels(int order) {
-  return with_order(order, [](auto n) {
-    constexpr int N = decltype(n)::value;
-    // One branch instantiated per order and type: only the kernels chosen are compiled.
-    constexpr bool band_rows = std::is_same_v<T, float> && runtime::kBandRowsBuilt;
-    if constexpr (band_rows && N == 2) {
-      return runtime::bands01_kernels();
-    } else if constexpr (band_rows && N >= kBandRowsFrom && N <= runtime::kBandRowsMaxOrder) {
-      return runtime::band_rows_kernels<N>();
-    } else if constexpr (kHasLanes<N> && N >= kLanesFrom && N <= kLanesUpTo) {
-      return runtime::lanes_kernels<N, T>();
-    } else {
-      return runtime::scalar_kernels<N, T>();
-    }
-  });
+  return with_order(order, [](auto n) { return fastest_kernels<decltype(n)::value, T>(); });
 }
 
 // The fastest rotator of any order 1..runtime::kMaxZxzxzOrder for the instruction set this header

@@ -250,7 +250,7 @@ void check_worst_unit_vectors() {
 // gen::kLanesUpTo), the scalar kernels elsewhere, held to the same targets.
 template <int N>
 void check_fastest_path() {
-  const auto rotator = runtime::Rotator<float>::with(gen::fastest_kernels<float>(N));
+  const auto rotator = runtime::Rotator<float>::with(gen::fastest_kernels<N, float>());
 #if defined(__x86_64__)
   const bool band_rows = runtime::kBandRowsBuilt && N >= gen::kBandRowsFrom && N <= runtime::kBandRowsMaxOrder;
   const bool bands01 = runtime::kBandRowsBuilt && N == 2;
