@@ -1,17 +1,22 @@
-// The batch entry points (rotate_shared, rotate_batch, rotate_soa, the bulk layouts of
-// DenseRotation) against the Ivanic-Ruedenberg reference and against themselves across thread
-// counts; quaternions against Eigen's conversion.
+// The batch entry points (shared rotations and the bulk layouts on every zhf::dispatch path,
+// rotate_batch, rotate_soa, DenseRotation's planes stored past the caches) against the
+// Ivanic-Ruedenberg reference and against themselves across thread counts; quaternions against
+// Eigen's conversion. The run-time orders go through zhf::dispatch, where each order's kernels
+// are compiled once per path, rather than instantiating every order here.
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "dispatch_paths.h"
 #include "test_support.h"
+#include "zhf/dispatch/rotator.h"
 #include "zhf/runtime/limits.h"
 #include "zhf/runtime/pack.h"
 #include "zhf/runtime/rotation.h"
@@ -21,7 +26,10 @@
 #include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
-#include "zhf_kernels.h"
+#include "zhf_order2.h"
+#include "zhf_order3.h"
+#include "zhf_order4.h"
+#include "zhf_order5.h"
 
 namespace zhf {
 namespace {
@@ -44,39 +52,41 @@ std::vector<T> unit_vectors(std::size_t count, int order, std::mt19937_64& rng) 
 }
 
 template <class T>
-void check_shared(int order, double tolerance) {
+void check_shared(const std::string& path, int order, double tolerance) {
   std::mt19937_64 rng(order);
   const sh::RotationMatrix m = sh::random_rotation(rng);
   T r[9];
   for (int i = 0; i < 9; ++i) r[i] = T(m(i / 3, i % 3));
   const sh::BandMatrices exact = sh::ivanic_ruedenberg(m, order);
-  const auto rotator = runtime::Rotator<T>::with(gen::fastest_kernels<T>(order));
+  const auto rotator = dispatch::Rotator<T>::make(order);
   const std::size_t n = std::size_t(order) * order;
   // Below N^2 vectors one by one, above it through the band matrices, above the thread threshold
   // on two threads.
   for (std::size_t count : {std::size_t(3), n + 1, runtime::kParallelBatchThreshold + 7}) {
     const std::vector<T> in = unit_vectors<T>(count, order, rng);
     std::vector<T> out(in.size()), one_thread(in.size());
-    rotator.rotate_shared(count, r, in.data(), out.data(), 2);
-    rotator.rotate_shared(count, r, in.data(), one_thread.data(), 1);
-    ASSERT_EQ(out, one_thread) << "order " << order << ", " << count << " vectors: the thread count changed the result";
+    rotator.transform_shared(count, r, in.data(), out.data(), 2);
+    rotator.transform_shared(count, r, in.data(), one_thread.data(), 1);
+    ASSERT_EQ(out, one_thread) << path << ", order " << order << ", " << count << " vectors: the thread count changed the result";
     for (std::size_t v = 0; v < count; v += 1 + count / 16) {
       Eigen::VectorXd f(n);
       for (std::size_t i = 0; i < n; ++i) f[i] = double(in[v * n + i]);
       const Eigen::VectorXd g = sh::apply_band_matrices(exact, f);
       for (std::size_t i = 0; i < n; ++i)
         ASSERT_NEAR(double(out[v * n + i]), g[i], tolerance)
-            << "order " << order << ", band " << runtime::band_of(int(i)) << ", index " << i << ", vector " << v << " of "
+            << path << ", order " << order << ", band " << runtime::band_of(int(i)) << ", index " << i << ", vector " << v << " of "
             << count;
     }
   }
 }
 
 TEST(Batch, SharedRotationMatchesTheReferenceAtEveryGeneratedOrder) {
-  for (int order = 2; order <= runtime::kMaxGeneratedOrder; ++order) {
-    check_shared<double>(order, kDouble);
-    check_shared<float>(order, kFloatRotation);
-  }
+  test::on_every_dispatch_path([](const std::string& path) {
+    for (int order = 2; order <= runtime::kMaxGeneratedOrder; ++order) {
+      check_shared<double>(path, order, kDouble);
+      check_shared<float>(path, order, kFloatRotation);
+    }
+  });
 }
 
 // The bulk layouts of one rotation (random, identity, a half turn, a tiny turn): 3DGS's
@@ -84,12 +94,12 @@ TEST(Batch, SharedRotationMatchesTheReferenceAtEveryGeneratedOrder) {
 // reference per channel. Counts not a multiple of the pack
 // width, so the planar tail runs too.
 template <class T>
-void check_layouts(int order, const sh::RotationMatrix& m, double tolerance) {
+void check_layouts(const std::string& path, int order, const sh::RotationMatrix& m, double tolerance) {
   std::mt19937_64 rng(100 + order);
   T r[9];
   for (int i = 0; i < 9; ++i) r[i] = T(m(i / 3, i % 3));
   const sh::BandMatrices exact = sh::ivanic_ruedenberg(m, order);
-  const runtime::DenseRotation<T> dense = runtime::Rotator<T>::with(gen::fastest_kernels<T>(order)).dense(r);
+  const auto rotator = dispatch::Rotator<T>::make(order);
   const std::size_t n = std::size_t(order) * order, rest = n - 1, item = 3 * n;
   for (std::size_t count : {std::size_t(1), std::size_t(13), runtime::kParallelBatchThreshold + 5}) {
     const std::vector<T> channels = unit_vectors<T>(3 * count, order, rng);  // vector 3 v + c
@@ -102,12 +112,12 @@ void check_layouts(int order, const sh::RotationMatrix& m, double tolerance) {
         for (std::size_t i = 0; i < n; ++i) planar[(c * n + i) * count + v] = channel(v, c)[i];
       }
     std::vector<T> splats_out(splats.size()), planar_out(planar.size()), splats_in_place = splats, planar_in_place = planar;
-    dense.apply_splats(count, splats.data(), splats_out.data(), 2);
-    dense.apply_splats(count, splats_in_place.data(), splats_in_place.data(), 1);
-    dense.apply_planar(count, 3, planar.data(), planar_out.data(), 2);
-    dense.apply_planar(count, 3, planar_in_place.data(), planar_in_place.data(), 1);
-    ASSERT_EQ(splats_out, splats_in_place) << "order " << order << ": in place or the thread count changed the splats";
-    ASSERT_EQ(planar_out, planar_in_place) << "order " << order << ": in place or the thread count changed the planes";
+    rotator.apply_splats(r, count, splats.data(), splats_out.data(), 2);
+    rotator.apply_splats(r, count, splats_in_place.data(), splats_in_place.data(), 1);
+    rotator.apply_planar(r, count, 3, planar.data(), planar_out.data(), 2);
+    rotator.apply_planar(r, count, 3, planar_in_place.data(), planar_in_place.data(), 1);
+    ASSERT_EQ(splats_out, splats_in_place) << path << ", order " << order << ": in place or the thread count changed the splats";
+    ASSERT_EQ(planar_out, planar_in_place) << path << ", order " << order << ": in place or the thread count changed the planes";
     for (std::size_t v = 0; v < count; v += 1 + count / 16)
       for (int c = 0; c < 3; ++c) {
         Eigen::VectorXd f(n);
@@ -116,9 +126,9 @@ void check_layouts(int order, const sh::RotationMatrix& m, double tolerance) {
         for (std::size_t i = 0; i < n; ++i) {
           const double splat = i == 0 ? splats_out[item * v + c] : splats_out[item * v + 3 + c * rest + i - 1];
           const double plane = planar_out[(c * n + i) * count + v];
-          ASSERT_NEAR(splat, g[i], tolerance) << "splats, order " << order << ", band " << runtime::band_of(int(i))
+          ASSERT_NEAR(splat, g[i], tolerance) << path << ", splats, order " << order << ", band " << runtime::band_of(int(i))
                                               << ", index " << i << ", item " << v << ", channel " << c;
-          ASSERT_NEAR(plane, g[i], tolerance) << "planar, order " << order << ", band " << runtime::band_of(int(i))
+          ASSERT_NEAR(plane, g[i], tolerance) << path << ", planar, order " << order << ", band " << runtime::band_of(int(i))
                                               << ", index " << i << ", item " << v << ", channel " << c;
         }
       }
@@ -130,11 +140,13 @@ TEST(Batch, BulkLayoutsMatchTheReferenceAtEveryGeneratedOrder) {
   const std::vector<sh::RotationMatrix> rotations = {sh::random_rotation(rng), sh::RotationMatrix::Identity(),
                                               sh::RotationMatrix(Eigen::AngleAxisd(runtime::kPi, Eigen::Vector3d(1, 1, 1).normalized())),
                                               sh::RotationMatrix(Eigen::AngleAxisd(1e-7, Eigen::Vector3d::UnitZ()))};
-  for (int order = 2; order <= runtime::kMaxGeneratedOrder; ++order)
-    for (const sh::RotationMatrix& m : rotations) {
-      check_layouts<double>(order, m, kDouble);
-      check_layouts<float>(order, m, kFloatRotation);
-    }
+  test::on_every_dispatch_path([&](const std::string& path) {
+    for (int order = 2; order <= runtime::kMaxGeneratedOrder; ++order)
+      for (const sh::RotationMatrix& m : rotations) {
+        check_layouts<double>(path, order, m, kDouble);
+        check_layouts<float>(path, order, m, kFloatRotation);
+      }
+  });
 }
 
 // apply_planar on outputs large enough to be stored past the caches: the same bytes as in place
@@ -149,7 +161,7 @@ void check_streamed_planar(double tolerance) {
   const sh::RotationMatrix m = sh::random_rotation(rng);
   T r[9];
   for (int i = 0; i < 9; ++i) r[i] = T(m(i / 3, i % 3));
-  const runtime::DenseRotation<T> dense = runtime::Rotator<T>::with(gen::fastest_kernels<T>(kOrder)).dense(r);
+  const runtime::DenseRotation<T> dense = runtime::Rotator<T>::template of<kOrder>().dense(r);
   // Just past the size, planes whole lines apart; in and out each from a line.
   const std::size_t line = runtime::kCacheLineBytes / sizeof(T), count = ((std::size_t(64) << 20) / sizeof(T) / planes / line + 1) * line,
                     size = planes * count;
@@ -348,7 +360,7 @@ TEST(Batch, PerVectorRotationsDoNotDependOnTheThreadCount) {
   }
   const std::vector<float> in = unit_vectors<float>(count, kOrder, rng);
   std::vector<float> two(in.size()), one(in.size()), single(n);
-  const auto rotator = runtime::Rotator<float>::with(gen::fastest_kernels<float>(kOrder));
+  const auto rotator = runtime::Rotator<float>::of<kOrder>();
   rotator.rotate_batch(count, r.data(), in.data(), two.data(), 2);
   rotator.rotate_batch(count, r.data(), in.data(), one.data(), 1);
   ASSERT_EQ(two, one);

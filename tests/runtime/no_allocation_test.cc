@@ -1,5 +1,6 @@
 // No rotate call allocates once its rotator is built: every global allocation in this program is
-// counted, and each path is called after construction with the count watched.
+// counted, and each path is called after construction with the count watched: the header-only
+// rotators, and the compiled library's (zhf::dispatch) on every instruction-set path this CPU runs.
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -7,18 +8,23 @@
 #include <new>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "dispatch_paths.h"
 #include "test_support.h"
+#include "zhf/dispatch/rotator.h"
 #include "zhf/runtime/lanes.h"
 #include "zhf/runtime/limits.h"
 #include "zhf/runtime/table_io.h"
 #include "zhf/runtime/rotator.h"
 #include "zhf/runtime/soa_batch.h"
 #include "zhf/sh/random.h"
-#include "zhf_kernels.h"
+#include "zhf_order2.h"
+#include "zhf_order4.h"
+#include "zhf_order5.h"
 
 namespace {
 std::atomic<long> allocations{0};
@@ -91,6 +97,26 @@ void check_rotator(const runtime::Rotator<T>& rotator, const std::string& name) 
       << name << " apply_planar, order " << order;
 }
 
+// The compiled library's rotate calls (its bulk layouts build the transform's band matrices per
+// call, by design).
+template <class T>
+void check_compiled(const dispatch::Rotator<T>& rotator, const std::string& name) {
+  const int order = rotator.order();
+  const std::size_t count = 64;
+  Data<T> d(order, count);
+  EXPECT_EQ(allocations_of([&] { rotator.rotate(d.r.data(), d.in.data(), d.out.data()); }), 0) << name << " rotate, order " << order;
+  EXPECT_EQ(allocations_of([&] { rotator.rotate_rgb(d.r.data(), d.in.data(), d.out.data()); }), 0)
+      << name << " rotate_rgb, order " << order;
+  EXPECT_EQ(allocations_of([&] { rotator.rotate_batch(count, d.r.data(), d.in.data(), d.out.data(), 1); }), 0)
+      << name << " rotate_batch on one thread, order " << order;
+}
+
+template <int... N>
+void check_generated_orders(std::integer_sequence<int, N...>) {
+  (check_rotator(runtime::Rotator<float>::of<N>(), "generated float"), ...);
+  (check_rotator(runtime::Rotator<double>::of<N>(), "generated double"), ...);
+}
+
 TEST(NoAllocation, TheCounterSeesAllocations) {
   EXPECT_GT(allocations_of([] { std::vector<int> v(10); }), 0);
   struct alignas(64) Wide {
@@ -126,11 +152,15 @@ TEST(NoAllocation, AcrossRotationsDoesNotAllocate) {
 }
 
 TEST(NoAllocation, NoRotateCallAllocatesAfterConstruction) {
-  for (int order = runtime::kMinGeneratedOrder; order <= runtime::kMaxGeneratedOrder; ++order) {
-    check_rotator(runtime::Rotator<float>::with(gen::scalar_kernels<float>(order)), "scalar float");
-    check_rotator(runtime::Rotator<float>::with(gen::fastest_kernels<float>(order)), "fastest float");
-    check_rotator(runtime::Rotator<double>::with(gen::fastest_kernels<double>(order)), "fastest double");
-  }
+  // The header-only kernels at the orders where the paths change (bands 0 and 1, lanes, band rows
+  // where the build has them); every order on every compiled path.
+  check_generated_orders(std::integer_sequence<int, 2, 4, 5>());
+  test::on_every_dispatch_path([](const std::string& path) {
+    for (const int order : {1, 2, 3, 4, 5, 6, 7, 8, 9, 40}) {
+      check_compiled(dispatch::Rotator<float>::make(order), path + " float");
+      check_compiled(dispatch::Rotator<double>::make(order), path + " double");
+    }
+  });
   for (int order : {3, 8, 12, 16, 32}) {
     const runtime::LobeTable table =
         runtime::read_lobe_table(test::checked_in_table(order));
