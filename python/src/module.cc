@@ -14,6 +14,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "zhf/dispatch/rotator.h"
@@ -104,13 +105,14 @@ void refuse_non_finite(const T* data, std::size_t from, std::size_t total, std::
 // each block's input is checked for non-finite numbers first, then rotate_block(v, part, in_v,
 // out_v) rotates its part vectors from vector v. A non-finite entry is refused, naming the first
 // (out is then garbage).
+constexpr std::size_t kCheckedBlock = 256;  // vectors: a block's input stays in cache while it is checked and rotated
+
 template <class T, class RotateBlock>
 void rotate_checked(const T* in, T* out, std::size_t count, std::size_t n, int threads, const RotateBlock& rotate_block) {
-  constexpr std::size_t kBlock = 256;
   std::atomic<std::size_t> first_bad_block{count};
   rt::parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t b = begin; b < end; b += kBlock) {
-      const std::size_t e = std::min(end, b + kBlock);
+    for (std::size_t b = begin; b < end; b += kCheckedBlock) {
+      const std::size_t e = std::min(end, b + kCheckedBlock);
       if (!rt::all_finite(in + b * n, (e - b) * n)) {
         std::size_t seen = first_bad_block.load();
         while (b < seen && !first_bad_block.compare_exchange_weak(seen, b)) {
@@ -176,11 +178,17 @@ Array<T> rotate_each(const Array<T>& coeffs, const Array<double>& rotations, con
   const double* r = rotations.data();
   {
     py::gil_scoped_release release;
-    for (std::size_t v = 0; v < count; ++v) check_rotation(r + 9 * v, v, true);
-    std::vector<T> rotations_t(r, r + 9 * count);
+    for (std::size_t v = 0; v < count; ++v)
+      if (!rt::rotation_accepted(r + 9 * v, rt::tolerance::kRotationDefect, rt::Handedness::kEither)) check_rotation(r + 9 * v, v, true);
     const Rotation<T> rotation(order, table);
     rotate_checked(src, dst, count, n, threads, [&](std::size_t v, std::size_t part, const T* f, T* g) {
-      rotation.each(part, rotations_t.data() + 9 * v, f, g);
+      if constexpr (std::is_same_v<T, double>) {
+        rotation.each(part, r + 9 * v, f, g);
+      } else {
+        T block[9 * kCheckedBlock];  // the block's rotations in T, converted where they are used
+        std::copy(r + 9 * v, r + 9 * (v + part), block);
+        rotation.each(part, block, f, g);
+      }
     });
   }
   return out;

@@ -1,7 +1,9 @@
 // Numerical extremes through the runtime and the generated kernels (issue: nothing silent).
+#include <array>
 #include <cmath>
 #include <limits>
 #include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -93,6 +95,40 @@ TEST(Extremes, HugeTinyAndZeroMagnitudesInFloat) {
     rotator.rotate(r.data(), zero.data(), out.data());
     for (int i = 0; i < f.size(); ++i) EXPECT_EQ(out[i], 0.0f) << "order " << order << " index " << i;
   }
+}
+
+// rotation_accepted, the check of many matrices, accepts what validate_rotation accepts: rotations,
+// reflections, defects either side of the tolerance, scaled and non-finite matrices.
+TEST(Extremes, RotationAcceptedAgreesWithValidate) {
+  std::mt19937_64 rng(31);
+  std::vector<std::array<double, 9>> matrices;
+  for (int k = 0; k < 200; ++k) {
+    const sh::RotationMatrix m = sh::random_rotation(rng);
+    std::array<double, 9> r;
+    for (int i = 0; i < 9; ++i) r[i] = m(i / 3, i % 3);
+    matrices.push_back(r);
+    std::array<double, 9> changed = r;
+    for (int i = 0; i < 3; ++i) changed[i] = -changed[i];  // a reflection
+    matrices.push_back(changed);
+    changed = r;
+    const double defect = runtime::tolerance::kRotationDefect * std::ldexp(1.0, k % 5 - 2);  // 1/4 to 4 times the tolerance
+    changed[k % 9] += defect;
+    matrices.push_back(changed);
+    changed = r;
+    for (double& x : changed) x *= 1 + defect;
+    matrices.push_back(changed);
+  }
+  for (double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(), 1e200}) {
+    std::array<double, 9> r = matrices[0];
+    r[4] = bad;
+    matrices.push_back(r);
+  }
+  for (std::size_t k = 0; k < matrices.size(); ++k)
+    for (const runtime::Handedness h : {runtime::Handedness::kProper, runtime::Handedness::kEither}) {
+      const bool validated = runtime::validate_rotation(matrices[k].data(), runtime::tolerance::kRotationDefect, h).ok;
+      ASSERT_EQ(runtime::rotation_accepted(matrices[k].data(), runtime::tolerance::kRotationDefect, h), validated)
+          << "matrix " << k << (h == runtime::Handedness::kEither ? ", either handedness" : ", proper only");
+    }
 }
 
 TEST(Extremes, ValidateMeasuresTheDefectAndNearestRotationRepairs) {

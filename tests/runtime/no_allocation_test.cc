@@ -79,36 +79,33 @@ long allocations_of(Call&& call) {
   return allocations.load() - before;
 }
 
+constexpr std::size_t kVectors = 64;
+
+// The rotate, RGB and one-thread batch calls of a rotator of either kind (the header-only one or
+// the compiled library's, whose bulk layouts build the transform's band matrices per call, by
+// design); returns its data for further calls.
+template <class T, template <class> class AnyRotator>
+Data<T> check_rotate_calls(const AnyRotator<T>& rotator, const std::string& name) {
+  const int order = rotator.order();
+  Data<T> d(order, kVectors);
+  EXPECT_EQ(allocations_of([&] { rotator.rotate(d.r.data(), d.in.data(), d.out.data()); }), 0) << name << " rotate, order " << order;
+  EXPECT_EQ(allocations_of([&] { rotator.rotate_rgb(d.r.data(), d.in.data(), d.out.data()); }), 0)
+      << name << " rotate_rgb, order " << order;
+  EXPECT_EQ(allocations_of([&] { rotator.rotate_batch(kVectors, d.r.data(), d.in.data(), d.out.data(), 1); }), 0)
+      << name << " rotate_batch on one thread, order " << order;
+  return d;
+}
+
 template <class T>
 void check_rotator(const runtime::Rotator<T>& rotator, const std::string& name) {
   const int order = rotator.order();
-  const std::size_t count = 64;
-  Data<T> d(order, count);
-  EXPECT_EQ(allocations_of([&] { rotator.rotate(d.r.data(), d.in.data(), d.out.data()); }), 0) << name << " rotate, order " << order;
-  EXPECT_EQ(allocations_of([&] { rotator.rotate_rgb(d.r.data(), d.in.data(), d.out.data()); }), 0)
-      << name << " rotate_rgb, order " << order;
-  EXPECT_EQ(allocations_of([&] { rotator.rotate_batch(count, d.r.data(), d.in.data(), d.out.data(), 1); }), 0)
-      << name << " rotate_batch on one thread, order " << order;
+  Data<T> d = check_rotate_calls(rotator, name);
   const runtime::DenseRotation<T> dense = rotator.dense(d.r.data());
   EXPECT_EQ(allocations_of([&] { dense.apply(d.in.data(), d.out.data()); }), 0) << name << " dense apply, order " << order;
-  EXPECT_EQ(allocations_of([&] { dense.apply_splats(count / 3, d.in.data(), d.out.data(), 1); }), 0)
+  EXPECT_EQ(allocations_of([&] { dense.apply_splats(kVectors / 3, d.in.data(), d.out.data(), 1); }), 0)
       << name << " apply_splats, order " << order;
-  EXPECT_EQ(allocations_of([&] { dense.apply_planar(count, 1, d.in.data(), d.out.data(), 1); }), 0)
+  EXPECT_EQ(allocations_of([&] { dense.apply_planar(kVectors, 1, d.in.data(), d.out.data(), 1); }), 0)
       << name << " apply_planar, order " << order;
-}
-
-// The compiled library's rotate calls (its bulk layouts build the transform's band matrices per
-// call, by design).
-template <class T>
-void check_compiled(const dispatch::Rotator<T>& rotator, const std::string& name) {
-  const int order = rotator.order();
-  const std::size_t count = 64;
-  Data<T> d(order, count);
-  EXPECT_EQ(allocations_of([&] { rotator.rotate(d.r.data(), d.in.data(), d.out.data()); }), 0) << name << " rotate, order " << order;
-  EXPECT_EQ(allocations_of([&] { rotator.rotate_rgb(d.r.data(), d.in.data(), d.out.data()); }), 0)
-      << name << " rotate_rgb, order " << order;
-  EXPECT_EQ(allocations_of([&] { rotator.rotate_batch(count, d.r.data(), d.in.data(), d.out.data(), 1); }), 0)
-      << name << " rotate_batch on one thread, order " << order;
 }
 
 template <int... N>
@@ -157,8 +154,8 @@ TEST(NoAllocation, NoRotateCallAllocatesAfterConstruction) {
   check_generated_orders(std::integer_sequence<int, 2, 4, 5>());
   test::on_every_dispatch_path([](const std::string& path) {
     for (const int order : {1, 2, 3, 4, 5, 6, 7, 8, 9, 40}) {
-      check_compiled(dispatch::Rotator<float>::make(order), path + " float");
-      check_compiled(dispatch::Rotator<double>::make(order), path + " double");
+      check_rotate_calls(dispatch::Rotator<float>::make(order), path + " float");
+      check_rotate_calls(dispatch::Rotator<double>::make(order), path + " double");
     }
   });
   for (int order : {3, 8, 12, 16, 32}) {

@@ -84,6 +84,28 @@ RotationCheck validate_rotation(const T r[9], double max_defect = tolerance::kRo
   return check;
 }
 
+// Whether validate_rotation(r, max_defect, handedness) accepts r: the same arithmetic on the six
+// distinct entries of R R^T and the determinant, without the measures' record or a message, for
+// checking many matrices (about half validate_rotation's cost). A non-finite entry fails every
+// comparison, so it is refused too.
+template <class T>
+bool rotation_accepted(const T r[9], double max_defect = tolerance::kRotationDefect,
+                       Handedness handedness = Handedness::kProper) {
+  double m[9];
+  for (int i = 0; i < 9; ++i) m[i] = r[i];
+  bool ok = true;
+  for (int i = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j) {
+      double dot = 0;
+      for (int k = 0; k < 3; ++k) dot += m[3 * i + k] * m[3 * j + k];
+      ok &= std::abs(dot - (i == j ? 1.0 : 0.0)) <= max_defect;
+    }
+  const double det = determinant(r);
+  ok &= std::abs(std::abs(det) - 1) <= max_defect;
+  if (handedness == Handedness::kProper) ok &= det > 0;
+  return ok;
+}
+
 // Nearest proper rotation to r (Frobenius), by the Newton iteration for the polar factor
 // X <- (X + X^-T) / 2, which converges quadratically from any nonsingular start. Accuracy: a few
 // ulps of double. Returns false (and leaves out untouched) for singular, non-finite or
