@@ -11,6 +11,11 @@
 namespace zhf::codegen {
 namespace {
 
+// Bytes of each plane per tile of the batch loop: two cache lines, whose sequential reads keep the
+// prefetcher ahead when all planes share one cache set (one line per tile left the batch 3x
+// slower at order 3 on planes 4096 floats apart); at order 8, 17.5 KiB of local blocks.
+constexpr int kBatchTileBytes = 128;
+
 std::string shortest(double value, Precision precision) {
   char buffer[64];
   if (precision == Precision::kFloat) {
@@ -48,8 +53,8 @@ class Printer {
           break;
         }
     if (f_.batch) {
-      out << "  for (std::size_t v = 0; v < count; ++v) {\n";
-      indent = "    ";
+      open_tiles(out);
+      indent = "      ";
     }
     for (int i : live) {
       const Node& n = f_.graph.node(i);
@@ -75,7 +80,7 @@ class Printer {
         out << indent << access(o.param, o.element, -1) << " = " << operand(o.node, -1, false) << ";\n";
       }
     }
-    if (f_.batch) out << "  }\n";
+    if (f_.batch) close_tiles(out);
     out << "}\n";
     return out.str();
   }
@@ -93,9 +98,48 @@ class Printer {
 
   std::string signature() const { return print_parameters(f_, c_); }
 
+  // The batch loop runs tile by tile: each input plane's part is first copied into a local block
+  // and the outputs are copied out of one, so the 3 + 2 N^2 streams never compete for a cache set
+  // (planes a power of two apart all map to the same sets: up to 8x slower), and the loop over a
+  // tile, on local arrays of fixed shape, can run across SIMD lanes. Every loop has a constant
+  // trip count, so the copies stay inline: the last tile ends at count, redoing vectors of the
+  // tile before it, and a batch shorter than a tile runs as one tile padded with zeros.
+  void open_tiles(std::ostream& out) const {
+    const std::string& T = c_.scalar;
+    out << "  constexpr std::size_t kTile = sizeof(" << T << ") <= 8 ? " << kBatchTileBytes << " / sizeof(" << T << ") : 16;\n"
+        << "  if (count < kTile) {\n";
+    for (const Param& p : f_.params)
+      out << "    " << T << " " << p.name << "_padded[" << p.size << " * kTile]" << (p.output ? "" : " = {}") << ";\n";
+    for (const Param& p : f_.params)
+      if (!p.output) out << copy_planes(p.size, p.name + "_padded[k * kTile + v]", p.name + "[k * count + v]", "count");
+    out << "    " << f_.name << "(kTile";
+    for (const Param& p : f_.params) out << ", " << p.name << "_padded";
+    out << ");\n";
+    for (const Param& p : f_.params)
+      if (p.output) out << copy_planes(p.size, p.name + "[k * count + v]", p.name + "_padded[k * kTile + v]", "count");
+    out << "    return;\n"
+        << "  }\n"
+        << "  for (std::size_t first = 0; first < count; first += kTile) {\n"
+        << "    const std::size_t start = first + kTile <= count ? first : count - kTile;\n";
+    for (const Param& p : f_.params) out << "    " << T << " " << p.name << "_tile[" << p.size << "][kTile];\n";
+    for (const Param& p : f_.params)
+      if (!p.output) out << copy_planes(p.size, p.name + "_tile[k][v]", p.name + "[k * count + start + v]", "kTile");
+    out << "    for (std::size_t v = 0; v < kTile; ++v) {\n";
+  }
+  void close_tiles(std::ostream& out) const {
+    out << "    }\n";
+    for (const Param& p : f_.params)
+      if (p.output) out << copy_planes(p.size, p.name + "[k * count + start + v]", p.name + "_tile[k][v]", "kTile");
+    out << "  }\n";
+  }
+  static std::string copy_planes(int planes, const std::string& to, const std::string& from, const std::string& values) {
+    return "    for (std::size_t k = 0; k < " + std::to_string(planes) + "; ++k)\n      for (std::size_t v = 0; v < " + values +
+           "; ++v) " + to + " = " + from + ";\n";
+  }
+
   std::string access(int param, int element, int lane) const {
     const Param& p = f_.params[param];
-    if (f_.batch) return p.name + "[" + std::to_string(element) + " * count + v]";
+    if (f_.batch) return p.name + "_tile[" + std::to_string(element) + "][v]";
     if (c_.wgsl && p.output) return "(*" + p.name + ")[" + std::to_string(element) + "]";
     if (p.channels > 1 && c_.planar_channels) return p.name + "[" + std::to_string(lane) + "][" + std::to_string(element) + "]";
     return p.name + "[" + std::to_string(element) + "]";

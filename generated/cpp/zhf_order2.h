@@ -148,26 +148,52 @@ ZHF_HOST_DEVICE inline void rotate_rgb_order2(const T R[9], const T coeffs[3][4]
 // rotate_batch_order2: rotated = coefficients of f(R^T w), R row-major mapping v to R v, for count vectors each with its own R (structure of arrays; the arrays must not overlap).
 template <class T>
 ZHF_HOST_DEVICE inline void rotate_batch_order2(std::size_t count, const T* __restrict R, const T* __restrict coeffs, T* __restrict rotated) {
-  for (std::size_t v = 0; v < count; ++v) {
-    const T t3 = coeffs[1 * count + v] * R[4 * count + v];
-    const T t6 = coeffs[2 * count + v] * R[5 * count + v];
-    const T t9 = coeffs[3 * count + v] * R[3 * count + v];
-    const T t11 = t3 + t6;
-    const T t12 = t9 + t11;
-    const T t15 = coeffs[1 * count + v] * R[7 * count + v];
-    const T t17 = coeffs[2 * count + v] * R[8 * count + v];
-    const T t19 = coeffs[3 * count + v] * R[6 * count + v];
-    const T t20 = t15 + t17;
-    const T t21 = t19 + t20;
-    const T t23 = coeffs[1 * count + v] * R[1 * count + v];
-    const T t25 = coeffs[2 * count + v] * R[2 * count + v];
-    const T t27 = coeffs[3 * count + v] * R[0 * count + v];
-    const T t28 = t23 + t25;
-    const T t29 = t27 + t28;
-    rotated[0 * count + v] = coeffs[0 * count + v];
-    rotated[1 * count + v] = t12;
-    rotated[2 * count + v] = t21;
-    rotated[3 * count + v] = t29;
+  constexpr std::size_t kTile = sizeof(T) <= 8 ? 128 / sizeof(T) : 16;
+  if (count < kTile) {
+    T R_padded[9 * kTile] = {};
+    T coeffs_padded[4 * kTile] = {};
+    T rotated_padded[4 * kTile];
+    for (std::size_t k = 0; k < 9; ++k)
+      for (std::size_t v = 0; v < count; ++v) R_padded[k * kTile + v] = R[k * count + v];
+    for (std::size_t k = 0; k < 4; ++k)
+      for (std::size_t v = 0; v < count; ++v) coeffs_padded[k * kTile + v] = coeffs[k * count + v];
+    rotate_batch_order2(kTile, R_padded, coeffs_padded, rotated_padded);
+    for (std::size_t k = 0; k < 4; ++k)
+      for (std::size_t v = 0; v < count; ++v) rotated[k * count + v] = rotated_padded[k * kTile + v];
+    return;
+  }
+  for (std::size_t first = 0; first < count; first += kTile) {
+    const std::size_t start = first + kTile <= count ? first : count - kTile;
+    T R_tile[9][kTile];
+    T coeffs_tile[4][kTile];
+    T rotated_tile[4][kTile];
+    for (std::size_t k = 0; k < 9; ++k)
+      for (std::size_t v = 0; v < kTile; ++v) R_tile[k][v] = R[k * count + start + v];
+    for (std::size_t k = 0; k < 4; ++k)
+      for (std::size_t v = 0; v < kTile; ++v) coeffs_tile[k][v] = coeffs[k * count + start + v];
+    for (std::size_t v = 0; v < kTile; ++v) {
+      const T t3 = coeffs_tile[1][v] * R_tile[4][v];
+      const T t6 = coeffs_tile[2][v] * R_tile[5][v];
+      const T t9 = coeffs_tile[3][v] * R_tile[3][v];
+      const T t11 = t3 + t6;
+      const T t12 = t9 + t11;
+      const T t15 = coeffs_tile[1][v] * R_tile[7][v];
+      const T t17 = coeffs_tile[2][v] * R_tile[8][v];
+      const T t19 = coeffs_tile[3][v] * R_tile[6][v];
+      const T t20 = t15 + t17;
+      const T t21 = t19 + t20;
+      const T t23 = coeffs_tile[1][v] * R_tile[1][v];
+      const T t25 = coeffs_tile[2][v] * R_tile[2][v];
+      const T t27 = coeffs_tile[3][v] * R_tile[0][v];
+      const T t28 = t23 + t25;
+      const T t29 = t27 + t28;
+      rotated_tile[0][v] = coeffs_tile[0][v];
+      rotated_tile[1][v] = t12;
+      rotated_tile[2][v] = t21;
+      rotated_tile[3][v] = t29;
+    }
+    for (std::size_t k = 0; k < 4; ++k)
+      for (std::size_t v = 0; v < kTile; ++v) rotated[k * count + start + v] = rotated_tile[k][v];
   }
 }
 

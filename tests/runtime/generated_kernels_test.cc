@@ -130,14 +130,11 @@ void check_variants() {
   using T = double;
   const auto all = cases(N, 50, 200 + N);
   const runtime::Rotator<T> generated = runtime::Rotator<T>::template of<N>();
-  std::vector<T> batch_r(9 * all.size()), batch_in(N * N * all.size()), batch_out(N * N * all.size());
   for (size_t k = 0; k < all.size(); ++k) {
     const auto r = to<T>(all[k].r);
     const auto in = to<T>(all[k].f);
     std::vector<T> scalar(N * N), other(N * N);
     Kernels<N>::template rotate<T>(r.data(), in.data(), scalar.data());
-    for (int i = 0; i < 9; ++i) batch_r[i * all.size() + k] = r[i];
-    for (int i = 0; i < N * N; ++i) batch_in[i * all.size() + k] = in[i];
 
     Kernels<N>::template rotate_signal_tailored<T>(r.data(), in.data(), other.data());
     for (int i = 0; i < N * N; ++i) EXPECT_NEAR(other[i], scalar[i], kDoubleTolerance) << "signal-tailored order " << N << " index " << i;
@@ -165,14 +162,26 @@ void check_variants() {
       for (int i = 0; i < N * N; ++i) EXPECT_NEAR(other[i], scalar[i], kDoubleTolerance) << "runtime JSON order " << N << " index " << i;
     }
   }
-  Kernels<N>::template rotate_batch<T>(all.size(), batch_r.data(), batch_in.data(), batch_out.data());
-  for (size_t k = 0; k < all.size(); ++k) {
-    const auto r = to<T>(all[k].r);
-    const auto in = to<T>(all[k].f);
-    std::vector<T> scalar(N * N);
-    Kernels<N>::template rotate<T>(r.data(), in.data(), scalar.data());
-    for (int i = 0; i < N * N; ++i)
-      EXPECT_NEAR(batch_out[i * all.size() + k], scalar[i], kSameArithmetic) << "batch order " << N << " vector " << k << " index " << i;
+  // The batch runs tiles of 16 doubles: counts below a tile (padded), one tile, a last tile that
+  // overlaps the one before it, and all the cases.
+  for (const size_t count : {size_t(0), size_t(1), size_t(15), size_t(16), size_t(17), size_t(40), all.size()}) {
+    std::vector<T> batch_r(9 * count), batch_in(N * N * count), batch_out(N * N * count);
+    for (size_t k = 0; k < count; ++k) {
+      const auto r = to<T>(all[k].r);
+      const auto in = to<T>(all[k].f);
+      for (int i = 0; i < 9; ++i) batch_r[i * count + k] = r[i];
+      for (int i = 0; i < N * N; ++i) batch_in[i * count + k] = in[i];
+    }
+    Kernels<N>::template rotate_batch<T>(count, batch_r.data(), batch_in.data(), batch_out.data());
+    for (size_t k = 0; k < count; ++k) {
+      const auto r = to<T>(all[k].r);
+      const auto in = to<T>(all[k].f);
+      std::vector<T> scalar(N * N);
+      Kernels<N>::template rotate<T>(r.data(), in.data(), scalar.data());
+      for (int i = 0; i < N * N; ++i)
+        EXPECT_NEAR(batch_out[i * count + k], scalar[i], kSameArithmetic)
+            << "batch order " << N << " of " << count << " vector " << k << " index " << i;
+    }
   }
 }
 

@@ -4,9 +4,9 @@
 // of steps are gathered in a local block and copied plane by plane into the strided arrays; the
 // inputs are read straight from the planes up to order 4 when the planes spread over the L1
 // cache's sets, and otherwise copied plane by plane into the block too (about 70 KiB of stack at
-// order 8). The generated rotate_batch_orderN reads its 3 + 2 N^2 strided streams directly, which
-// the compiler vectorises only when count is a compile-time constant (4 to 6 times slower
-// otherwise).
+// order 8). The generated rotate_batch_orderN copies through local blocks too, but runs the kernel
+// in T, which the compiler vectorises at order 3 and not from order 4 (the zxzxz bands' square
+// root and selections): there it is the scalar kernel's speed, about 2x rotate_soa's.
 //
 // Layout (structure of arrays, as rotate_batch_orderN): R[k stride + v] for the row-major entries
 // k < 9 of rotation v, coeffs[i stride + v] and rotated[i stride + v] for i < N^2, v < count;
