@@ -120,6 +120,7 @@ int run_generate(const GenerateCommandOptions& o, bool lobe_stage_given, bool me
   const pipeline::Project project = pipeline::project();
   options.tables_dir = o.tables.empty() ? project.lobes() : o.tables;
   options.out_dir = o.out.empty() ? project.generated() : o.out;
+  options.paths_dir = project.paths();
   options.stop = &io::interrupt_requested();
   options.module.lobe_stage = lobe_stage(o.lobe_stage);
   options.module.band_method = band_method(o.method);

@@ -1,6 +1,7 @@
 #include "zhf/codegen/dispatch.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <sstream>
 
 #include "c_family_printer.h"
@@ -8,27 +9,93 @@
 namespace zhf::codegen {
 namespace {
 
-// Where the lobe-parallel kernel (runtime/lanes.h) is the faster path for one vector per rotation,
-// float, against the scalar kernels (order 3 by its quadratic form, zxzxz at 4..8), as measured by
-// the peer harness (one run, median ns, AMD EPYC Zen 3 class, g++ 12 -O3; docs/performance.md):
-//   x86-64-v3 (AVX2, FMA), lanes / scalar: N=3 12.7/6.8, 4 22.3/28.6, 5 44.8/43.1, 6 82.6/62.8, 7 185.5/88.7, 8 275.1/120.8
-//   x86-64 baseline (SSE2), lanes / scalar: N=3 15.3/7.6, 4 28.4/30.6, 5 76.1/47.1
-// (order 5 with AVX2 went to the scalar kernel in two runs out of three). Other architectures were
-// not measured, so they keep the scalar kernels. Where AVX2 and FMA are targeted, lanes.h holds
-// order 4's float kernel in one register of lobes, in intrinsics: 21.2 ns against the band rows'
-// 30.4 ns and the scalar kernel's 41.6 ns (1024 random rotations, median of 31 alternating runs,
-// AMD EPYC, g++ 12 -O3 -march=x86-64-v3).
-constexpr int kLanesFrom = 4;
-constexpr int kLanesUpToX86 = 4;
-constexpr const char* kMeasuredOn = "x86-64: lanes at order 4, with AVX2 and on baseline SSE2";
-// Where the band-rows kernel (runtime/band_rows.h: float, built only for AVX2 and FMA) is the
-// faster path for one float vector per rotation, against the scalar kernels and lanes, in one
-// process (1024 random rotations, min ns of 31 alternating runs, AMD EPYC, g++ 12 -O3
-// -march=x86-64-v3), band rows / scalar: N=4 31.4/40.6 (lanes 35.5), 5 44.3/54.1, 6 55.0/77.3,
-// 7 67.2/127.8, 8 83.2/175.4; the peer harness's run is in docs/performance.md. Order 4 goes to
-// lanes (above). Order 2 (bands 0 and 1 in one register, band_rows.h's bands01_kernels) against
-// the scalar kernel, same build, K = 1024: 0.97 against 1.90 ns.
-constexpr int kBandRowsFrom = 5;
+// The preprocessor test for a build of each instruction set a table may be written for, in the
+// order path_table_isas() lists them (the first that holds wins).
+std::string build_test(const std::string& isa) {
+  if (isa == "avx512") return "defined(__AVX512F__) && ZHF_RUNTIME_AVX2_FMA";
+  if (isa == "avx2") return "ZHF_RUNTIME_AVX2_FMA";
+  if (isa == "sse2") return "defined(__x86_64__) || defined(_M_X64)";
+  return "defined(__aarch64__)";
+}
+
+// The table a build for isa follows: its own, else that of the instruction set below it whose
+// kernels it runs (avx512 -> avx2 -> sse2), else none (the scalar kernels).
+const PathTable* table_for(const std::string& isa, const std::vector<PathTable>& tables) {
+  const std::vector<std::string> chain = isa == "avx512" ? std::vector<std::string>{"avx512", "avx2", "sse2"}
+                                         : isa == "avx2" ? std::vector<std::string>{"avx2", "sse2"}
+                                                         : std::vector<std::string>{isa};
+  for (const std::string& candidate : chain)
+    for (const PathTable& t : tables)
+      if (t.isa == candidate) return &t;
+  return nullptr;
+}
+
+std::string path_enum(RotationPath p) {
+  switch (p) {
+    case RotationPath::kScalar: return "Path::kScalar";
+    case RotationPath::kLanes: return "Path::kLanes";
+    case RotationPath::kBandRows: return "Path::kBandRows";
+    case RotationPath::kBands01: return "Path::kBands01";
+  }
+  return "Path::kScalar";
+}
+
+std::string times_text(const PathTimes& t) {
+  std::string out = rotation_path_name(t.fastest);
+  out += " (";
+  for (size_t k = 0; k < t.ns.size(); ++k) {
+    char value[32];
+    std::snprintf(value, sizeof value, "%.3g", t.ns[k].second);
+    out += (k ? ", " : "") + std::string(rotation_path_name(t.ns[k].first)) + " " + value;
+  }
+  return out + ")";
+}
+
+// Path, kBuildIsa and fastest_path<T>(order) for each instruction set, from its table.
+std::string path_choice(const std::vector<PathTable>& tables) {
+  std::ostringstream out;
+  out << "// The rotation path of each generated order, by instruction set, from the measured tables in\n"
+      << "// generated/paths (bench/path_bench.cc writes them, zhf generate turns them into what follows); a\n"
+      << "// build whose instruction set has no table follows the one below it whose kernels it runs, or,\n"
+      << "// with none, the scalar kernels.\n"
+      << "enum class Path { kScalar, kLanes, kBandRows, kBands01 };\n\n"
+      << "// The name KernelSet::path gives a path.\n"
+      << "constexpr const char* path_name(Path path) {\n"
+      << "  return path == Path::kLanes ? \"lanes\" : path == Path::kBandRows ? \"band_rows\" : path == Path::kBands01 ? \"bands01\" : \"scalar\";\n"
+      << "}\n\n";
+  const std::vector<std::string>& isas = path_table_isas();
+  for (size_t k = 0; k < isas.size(); ++k) {
+    const std::string& isa = isas[k];
+    out << (k == 0 ? "#if " : "#elif ") << build_test(isa) << "\n";
+    out << "inline constexpr char kBuildIsa[] = \"" << isa << "\";\n";
+    const PathTable* table = table_for(isa, tables);
+    if (!table) {
+      out << "// " << isa << ": no table measured; the scalar kernels.\n"
+          << "template <class T>\nconstexpr Path fastest_path(int) {\n  return Path::kScalar;\n}\n";
+      continue;
+    }
+    out << "// " << isa << ": " << (table->isa == isa ? "" : "no table of its own; " + table->isa + "'s, ")
+        << "generated/paths/" << table->isa << ".json, measured on\n// " << comment_text(table->measured_on) << ".\n"
+        << "// The fastest path, with each path's ns per rotation, float; double:\n";
+    for (const OrderPaths& o : table->orders)
+      out << "//   order " << o.order << ": " << times_text(o.float_paths) << "; " << times_text(o.double_paths) << "\n";
+    out << "template <class T>\nconstexpr Path fastest_path(int order) {\n"
+        << "  [[maybe_unused]] constexpr bool is_float = std::is_same_v<T, float>, is_double = std::is_same_v<T, double>;\n"
+        << "  switch (order) {\n";
+    for (const OrderPaths& o : table->orders) {
+      if (o.float_paths.fastest == RotationPath::kScalar && o.double_paths.fastest == RotationPath::kScalar) continue;
+      const RotationPath f = o.float_paths.fastest, d = o.double_paths.fastest;
+      out << "    case " << o.order << ": return ";
+      if (f == d) out << "is_float || is_double ? " << path_enum(f) << " : Path::kScalar;\n";
+      else if (d == RotationPath::kScalar) out << "is_float ? " << path_enum(f) << " : Path::kScalar;\n";
+      else out << "is_float ? " << path_enum(f) << " : is_double ? " << path_enum(d) << " : Path::kScalar;\n";
+    }
+    out << "    default: return Path::kScalar;\n  }\n}\n";
+  }
+  out << "#else\ninline constexpr char kBuildIsa[] = \"generic\";\n"
+      << "template <class T>\nconstexpr Path fastest_path(int) {\n  return Path::kScalar;\n}\n#endif\n\n";
+  return out.str();
+}
 
 std::string list(const std::vector<int>& values) {
   std::string out;
@@ -39,7 +106,7 @@ std::string list(const std::vector<int>& values) {
 }  // namespace
 
 EmittedFile emit_dispatch_header(const std::vector<int>& orders, const std::vector<int>& lanes_orders,
-                                 const std::string& command) {
+                                 const std::vector<PathTable>& tables, const std::string& command) {
   std::ostringstream out;
   out << banner(command, {}) << "//   (none: dispatch only)\n";
   out << "// Every generated order (" << list(orders) << ") reachable at run time, and the fastest verified\n"
@@ -59,23 +126,16 @@ EmittedFile emit_dispatch_header(const std::vector<int>& orders, const std::vect
   out << "// Whether order N has lanes tables (zhf_lanes_orderN.h).\n"
       << "template <int N>\ninline constexpr bool kHasLanes = false;\n";
   for (int n : lanes_orders) out << "template <>\ninline constexpr bool kHasLanes<" << n << "> = true;\n";
-  out << "\n// Where runtime/lanes.h is the faster verified path, by measurement: " << kMeasuredOn << ";\n"
-      << "// other architectures unmeasured (the scalar kernels). docs/performance.md has the figures.\n"
-      << "#if defined(__x86_64__) || defined(_M_X64)\ninline constexpr int kLanesUpTo = " << kLanesUpToX86 << ";\n#else\n"
-      << "inline constexpr int kLanesUpTo = 0;\n#endif\ninline constexpr int kLanesFrom = " << kLanesFrom << ";\n\n";
-  out << "// Where runtime/band_rows.h is the faster verified path for float, by measurement: order 2 (bands 0\n"
-      << "// and 1 in one register) and from this order to its last (runtime::kBandRowsMaxOrder), in builds\n"
-      << "// that have it (runtime::kBandRowsBuilt).\n"
-      << "inline constexpr int kBandRowsFrom = " << kBandRowsFrom << ";\n\n";
+  out << "\n" << path_choice(tables);
   out << "// The fastest verified rotation path of generated order N. One branch is instantiated per order\n"
       << "// and type: only the kernels chosen are compiled.\n"
       << "template <int N, class T>\nruntime::KernelSet<T> fastest_kernels() {\n"
-      << "  constexpr bool band_rows = std::is_same_v<T, float> && runtime::kBandRowsBuilt;\n"
-      << "  if constexpr (band_rows && N == 2) {\n"
+      << "  constexpr Path path = fastest_path<T>(N);\n"
+      << "  if constexpr (path == Path::kBands01) {\n"
       << "    return runtime::bands01_kernels();\n"
-      << "  } else if constexpr (band_rows && N >= kBandRowsFrom && N <= runtime::kBandRowsMaxOrder) {\n"
+      << "  } else if constexpr (path == Path::kBandRows) {\n"
       << "    return runtime::band_rows_kernels<N>();\n"
-      << "  } else if constexpr (kHasLanes<N> && N >= kLanesFrom && N <= kLanesUpTo) {\n"
+      << "  } else if constexpr (path == Path::kLanes) {\n"
       << "    return runtime::lanes_kernels<N, T>();\n"
       << "  } else {\n"
       << "    return runtime::scalar_kernels<N, T>();\n"

@@ -245,7 +245,8 @@ GenerateResult generate(const GenerateOptions& options) {
     result.orders.push_back(summary);
   }
   if (full_tree && wants_cpp) {
-    const EmittedFile dispatch = emit_dispatch_header(options.orders, lanes_orders, options.command);
+    const std::vector<PathTable> tables = read_path_tables(options.paths_dir, options.orders, lanes_orders);
+    const EmittedFile dispatch = emit_dispatch_header(options.orders, lanes_orders, tables, options.command);
     tree.add("cpp/" + dispatch.file_name, dispatch.text,
              code_entry(FileKind::kDispatch, Language::kCpp, 0, FilePrecision::kTemplate, nullptr, dispatch, nullptr));
   }

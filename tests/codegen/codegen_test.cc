@@ -10,7 +10,9 @@
 #include <gtest/gtest.h>
 
 #include "test_support.h"
+#include "zhf/codegen/dispatch.h"
 #include "zhf/codegen/generate.h"
+#include "zhf/codegen/path_tables.h"
 #include "zhf/candidates/candidates.h"
 #include "zhf/codegen/kernels.h"
 #include "zhf/optimizer/objective.h"
@@ -46,7 +48,8 @@ TEST(ExpressionGraph, FoldsConstantsSignsAndSharesSubexpressions) {
 }
 
 // Counts the operators of each emitted function from the text alone: binary operators are
-// printed with spaces around them, negations as "-name".
+// printed with spaces around them, negations as "-name"; loops and index arithmetic (std::size_t:
+// the batch loop's tiles) are not the kernel's.
 std::map<std::string, OpCount> count_operators(const std::string& text) {
   std::map<std::string, OpCount> counts;
   const std::regex header(R"(^(?:(?:ZHF_HOST_DEVICE )?(?:inline )?void|fn) (\w+)\()");
@@ -61,7 +64,9 @@ std::map<std::string, OpCount> count_operators(const std::string& text) {
       continue;
     }
     if (line == "}") current.clear();
-    if (current.empty() || line.find(" = ") == std::string::npos || line.find("for (") != std::string::npos) continue;
+    if (current.empty() || line.find(" = ") == std::string::npos || line.find("for (") != std::string::npos ||
+        line.find("std::size_t") != std::string::npos)
+      continue;
     std::string rhs = std::regex_replace(line.substr(line.find(" = ") + 3), subscript, "");
     OpCount& c = counts[current];
     for (size_t p = rhs.find(" * "); p != std::string::npos; p = rhs.find(" * ", p + 1)) ++c.multiplies;
@@ -254,6 +259,7 @@ TEST(GeneratedFiles, MatchWhatTheGeneratorMakes) {
   const fs::path out = update ? kGenerated : fs::path(temp);
   GenerateOptions options;
   options.tables_dir = (kGenerated / "lobes").string();
+  options.paths_dir = (kGenerated / "paths").string();
   options.out_dir = out.string();
   const GenerateResult result = generate(options);
   if (update) GTEST_SKIP() << "ZHF_UPDATE_GENERATED set: rewrote " << kGenerated;
@@ -268,6 +274,56 @@ TEST(GeneratedFiles, MatchWhatTheGeneratorMakes) {
              << slurp(log).substr(0, 3000);
     }
   }
+}
+
+// The measured path tables: one naming a path its instruction set, type or order lacks, leaving an
+// order out, naming another instruction set or holding more than JSON is refused in one line
+// naming the file and the field; a build without a table of its own follows the one below it.
+TEST(PathTables, RefusedInOneLineNamingFileAndField) {
+  const test::TempDir temp;
+  const std::string dir = fs::path(temp).string();
+  const std::string file = (fs::path(dir) / "sse2.json").string();
+  const std::vector<int> orders = {2, 3};
+  const std::string scalar = R"({"fastest": "scalar", "ns": {"scalar": 1.5}})";
+  const auto table = [&](const std::string& isa, const std::string& float2, const std::string& rest) {
+    return R"({"format": "zhf-paths-1", "isa": ")" + isa + R"(", "measured_on": "a test", "orders": [{"order": 2, "float": )" +
+           float2 + R"(, "double": )" + scalar + "}" + rest + "]}";
+  };
+  const std::string order3 = R"(, {"order": 3, "float": )" + scalar + R"(, "double": )" + scalar + "}";
+  test::write_text(file, table("sse2", scalar, order3));
+  ASSERT_EQ(read_path_tables(dir, orders, {}).size(), 1u);
+  const struct {
+    std::string text, field;
+  } bad[] = {
+      {table("sse2", R"({"fastest": "bands01", "ns": {"bands01": 1}})", order3), "orders[0].float.fastest"},
+      {table("sse2", R"({"fastest": "lanes", "ns": {"lanes": 1}})", order3), "orders[0].float.fastest"},
+      {table("sse2", R"({"fastest": "scalar", "ns": {"scalar": 1, "band_rows": 0.5}})", order3), "orders[0].float.ns.band_rows"},
+      {table("sse2", R"({"fastest": "scalar", "ns": {"lanes_": 1}})", order3), "orders[0].float.ns"},
+      {table("sse2", scalar, ""), "orders"},
+      {table("sse2", scalar, R"(, {"order": 2, "float": )" + scalar + R"(, "double": )" + scalar + "}"), "orders[1].order"},
+      {table("avx2", scalar, order3), "isa"},
+      {table("sse2", scalar, order3) + " x", "sse2.json"},
+  };
+  for (const auto& b : bad) {
+    test::write_text(file, b.text);
+    try {
+      read_path_tables(dir, orders, {});
+      ADD_FAILURE() << "accepted: " << b.text;
+    } catch (const std::exception& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find("sse2.json"), std::string::npos) << message;
+      EXPECT_NE(message.find(b.field), std::string::npos) << "expected " << b.field << " in: " << message;
+      EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+  }
+  // Band rows for float at order 2 (bands 0 and 1) are an avx2 path: an avx512 build follows avx2's table.
+  test::write_text(file, table("sse2", scalar, order3));
+  test::write_text((fs::path(dir) / "avx2.json").string(),
+                   table("avx2", R"({"fastest": "bands01", "ns": {"scalar": 2, "bands01": 1}})", order3));
+  const std::string header = emit_dispatch_header(orders, {}, read_path_tables(dir, orders, {}), "test").text;
+  EXPECT_NE(header.find("// avx512: no table of its own; avx2's, generated/paths/avx2.json"), std::string::npos) << header;
+  EXPECT_NE(header.find("case 2: return is_float ? Path::kBands01 : Path::kScalar;"), std::string::npos) << header;
+  EXPECT_NE(header.find("// neon: no table measured; the scalar kernels."), std::string::npos) << header;
 }
 
 // An interrupt before the commit leaves the previous tree exactly as it was.

@@ -254,21 +254,12 @@ void check_worst_unit_vectors() {
   }
 }
 
-// The Rotator on the fastest path zhf_kernels.h picks: band_rows.h where built (AVX2 and FMA; order 2
-// and from gen::kBandRowsFrom), else lanes.h where measured faster (x86-64, orders gen::kLanesFrom..
-// gen::kLanesUpTo), the scalar kernels elsewhere, held to the same targets.
+// The Rotator on the fastest path zhf_kernels.h picks (its measured table for this build's
+// instruction set), held to the same targets.
 template <int N>
 void check_fastest_path() {
   const auto rotator = runtime::Rotator<float>::with(gen::fastest_kernels<N, float>());
-#if defined(__x86_64__)
-  const bool band_rows = runtime::kBandRowsBuilt && N >= gen::kBandRowsFrom && N <= runtime::kBandRowsMaxOrder;
-  const bool bands01 = runtime::kBandRowsBuilt && N == 2;
-  EXPECT_EQ(rotator.path(), bands01     ? "bands01"
-                            : band_rows ? "band_rows"
-                            : N >= gen::kLanesFrom && N <= gen::kLanesUpTo ? "lanes"
-                                                                           : "scalar")
-      << "order " << N;
-#endif
+  EXPECT_EQ(rotator.path(), gen::path_name(gen::fastest_path<float>(N))) << "order " << N << ", table of " << gen::kBuildIsa;
   double worst = 0;
   for (const Case& c : cases(N, 200, 600 + N)) {
     const auto r = to<float>(c.r);

@@ -7,12 +7,13 @@
 #include <vector>
 
 #include "zhf/codegen/backend.h"
+#include "zhf/codegen/path_tables.h"
 
 namespace zhf::codegen {
 
 // orders: the orders with kernel files (zhf_orderN.h); lanes_orders: those with lanes tables
-// (zhf_lanes_orderN.h).
+// (zhf_lanes_orderN.h); tables: the measured path tables (read_path_tables).
 EmittedFile emit_dispatch_header(const std::vector<int>& orders, const std::vector<int>& lanes_orders,
-                                 const std::string& command);
+                                 const std::vector<PathTable>& tables, const std::string& command);
 
 }  // namespace zhf::codegen

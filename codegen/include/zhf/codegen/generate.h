@@ -16,6 +16,7 @@ namespace zhf::codegen {
 
 struct GenerateOptions {
   std::string tables_dir;           // holds order_N.json (N >= 3) and lanes_order_N.json
+  std::string paths_dir;            // holds the measured path tables (path_tables.h); empty: none
   std::string out_dir;
   std::vector<int> orders = {2, 3, 4, 5, 6, 7, 8};
   std::vector<Language> languages = all_languages();

@@ -15,6 +15,7 @@ struct Project {
 
   std::string generated() const { return root + "/generated"; }
   std::string lobes() const { return root + "/generated/lobes"; }
+  std::string paths() const { return root + "/generated/paths"; }
   std::string designs() const { return root + "/generated/designs"; }
   std::string bench_tables() const { return root + "/bench/tables"; }
   // The naga-wasm package scripts/setup.sh installs into a checkout's tools/node (verify turns

@@ -103,6 +103,9 @@ inline constexpr int kMaxThreads = 256;
 // is 0.9 MiB; a coefficient file of this size holds tens of millions of numbers).
 inline constexpr std::size_t kMaxTableBytes = std::size_t(16) << 20;
 inline constexpr std::size_t kMaxSceneBytes = std::size_t(1) << 20;
+inline constexpr std::size_t kMaxPathTableBytes = std::size_t(64) << 10;
+// A path table's measured_on note (it goes into a comment of zhf_kernels.h).
+inline constexpr std::size_t kMaxPathTableNoteChars = 300;
 inline constexpr std::size_t kMaxManifestBytes = std::size_t(4) << 20;
 inline constexpr std::size_t kMaxCoefficientBytes = std::size_t(64) << 20;
 // Inside files: functions per manifest file and files per manifest (generous, checked before use);

@@ -1,0 +1,129 @@
+#include "zhf/codegen/path_tables.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <system_error>
+
+#include "zhf/io/errors.h"
+#include "zhf/io/files.h"
+#include "zhf/runtime/band_rows.h"
+#include "zhf/runtime/errors.h"
+#include "zhf/runtime/json.h"
+#include "zhf/runtime/limits.h"
+
+namespace zhf::codegen {
+namespace {
+
+namespace fs = std::filesystem;
+using runtime::json::Field;
+
+constexpr RotationPath kPaths[] = {RotationPath::kScalar, RotationPath::kLanes, RotationPath::kBandRows,
+                                   RotationPath::kBands01};
+
+RotationPath parse_path(const Field& f) {
+  std::vector<std::string_view> names;
+  for (RotationPath p : kPaths) names.push_back(rotation_path_name(p));
+  const std::string& name = f.one_of(names);
+  for (RotationPath p : kPaths)
+    if (name == rotation_path_name(p)) return p;
+  return RotationPath::kScalar;
+}
+
+// Whether a build for isa has path p for order in the type named.
+bool path_exists(RotationPath p, const std::string& isa, bool is_float, int order, const std::vector<int>& lanes_orders) {
+  const bool avx2 = isa == "avx2" || isa == "avx512";
+  switch (p) {
+    case RotationPath::kScalar: return true;
+    case RotationPath::kLanes: return std::find(lanes_orders.begin(), lanes_orders.end(), order) != lanes_orders.end();
+    case RotationPath::kBandRows:
+      return avx2 && is_float && order >= runtime::kBandRowsMinOrder && order <= runtime::kBandRowsMaxOrder;
+    case RotationPath::kBands01: return avx2 && is_float && order == 2;
+  }
+  return false;
+}
+
+PathTimes parse_times(const Field& f, const std::string& isa, bool is_float, int order, const std::vector<int>& lanes_orders) {
+  f.allow_only({"fastest", "ns"});
+  PathTimes times;
+  const Field fastest = f.member("fastest");
+  times.fastest = parse_path(fastest);
+  if (!path_exists(times.fastest, isa, is_float, order, lanes_orders))
+    fastest.fail(std::string(rotation_path_name(times.fastest)) + " does not exist for " + isa + ", " +
+                 (is_float ? "float" : "double") + ", order " + std::to_string(order));
+  const Field ns = f.member("ns");
+  ns.expect(runtime::json::Value::Kind::kObject);
+  for (RotationPath p : kPaths)
+    if (const auto t = ns.find(rotation_path_name(p))) {
+      if (!path_exists(p, isa, is_float, order, lanes_orders)) t->fail("a path that does not exist here");
+      const double ns_per_rotation = t->number();
+      if (!(ns_per_rotation > 0)) t->fail("must be above 0");
+      times.ns.emplace_back(p, ns_per_rotation);
+    }
+  ns.allow_only({"scalar", "lanes", "band_rows", "bands01"});
+  const bool timed = std::any_of(times.ns.begin(), times.ns.end(), [&](const auto& t) { return t.first == times.fastest; });
+  if (!timed) ns.fail("has no time for the fastest path");
+  return times;
+}
+
+PathTable read_table(const std::string& file, const std::string& isa, const std::vector<int>& orders,
+                     const std::vector<int>& lanes_orders) {
+  const runtime::json::Value root = io::read_json_file(file, runtime::kMaxPathTableBytes);
+  const Field top(root, file);
+  top.allow_only({"format", "isa", "measured_on", "orders"});
+  const Field format = top.member("format");
+  if (format.string() != "zhf-paths-1") format.fail("'" + io::excerpt(format.string()) + "' is not zhf-paths-1");
+  const Field isa_field = top.member("isa");
+  if (isa_field.string() != isa) isa_field.fail("'" + io::excerpt(isa_field.string()) + "' in " + isa + ".json");
+  PathTable table;
+  table.isa = isa;
+  table.file = file;
+  const Field measured = top.member("measured_on");
+  table.measured_on = measured.string();
+  if (table.measured_on.empty() || table.measured_on.size() > runtime::kMaxPathTableNoteChars || !runtime::is_printable_text(table.measured_on))
+    measured.fail("must be 1 to " + std::to_string(runtime::kMaxPathTableNoteChars) + " printable characters");
+  for (const Field& entry : top.member("orders").items(orders.size())) {
+    entry.allow_only({"order", "float", "double"});
+    OrderPaths o;
+    const Field order = entry.member("order");
+    o.order = order.integer(orders.front(), orders.back());
+    if (std::find(orders.begin(), orders.end(), o.order) == orders.end()) order.fail("not a generated order");
+    for (const OrderPaths& before : table.orders)
+      if (before.order == o.order) order.fail("listed twice");
+    o.float_paths = parse_times(entry.member("float"), isa, true, o.order, lanes_orders);
+    o.double_paths = parse_times(entry.member("double"), isa, false, o.order, lanes_orders);
+    table.orders.push_back(o);
+  }
+  std::sort(table.orders.begin(), table.orders.end(), [](const OrderPaths& a, const OrderPaths& b) { return a.order < b.order; });
+  return table;
+}
+
+}  // namespace
+
+const char* rotation_path_name(RotationPath path) {
+  switch (path) {
+    case RotationPath::kScalar: return "scalar";
+    case RotationPath::kLanes: return "lanes";
+    case RotationPath::kBandRows: return "band_rows";
+    case RotationPath::kBands01: return "bands01";
+  }
+  return "scalar";
+}
+
+const std::vector<std::string>& path_table_isas() {
+  static const std::vector<std::string> isas = {"avx512", "avx2", "sse2", "neon"};
+  return isas;
+}
+
+std::vector<PathTable> read_path_tables(const std::string& dir, const std::vector<int>& orders,
+                                        const std::vector<int>& lanes_orders) {
+  std::vector<PathTable> tables;
+  if (dir.empty() || orders.empty()) return tables;
+  for (const std::string& isa : path_table_isas()) {
+    const fs::path file = fs::path(dir) / (isa + ".json");
+    std::error_code ec;
+    if (fs::exists(file, ec)) tables.push_back(read_table(file.string(), isa, orders, lanes_orders));
+  }
+  return tables;
+}
+
+}  // namespace zhf::codegen
