@@ -16,14 +16,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <ctime>
-#include <fstream>
 #include <random>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "zhf/bench/machine.h"
 #include "zhf/io/files.h"
 #include "zhf/runtime/rotator.h"
 #include "zhf/sh/random.h"
@@ -110,20 +109,6 @@ nlohmann::ordered_json time_order(const Options& o) {
   return {{"order", N}, {"float", time_paths<N, float>(o)}, {"double", time_paths<N, double>(o)}};
 }
 
-std::string cpu_model() {
-  std::ifstream cpuinfo("/proc/cpuinfo");
-  for (std::string line; std::getline(cpuinfo, line);)
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  return "unknown CPU";
-}
-
-std::string today() {
-  const std::time_t now = std::time(nullptr);
-  char text[16];
-  std::strftime(text, sizeof text, "%Y-%m-%d", std::gmtime(&now));
-  return text;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -136,7 +121,7 @@ int main(int argc, char** argv) {
   orders.push_back(time_order<6>(o));
   orders.push_back(time_order<7>(o));
   orders.push_back(time_order<8>(o));
-  const std::string measured_on = cpu_model() + ", g++ " + __VERSION__ + " " + ZHF_PATH_BENCH_FLAGS + ", " + today() + ", " +
+  const std::string measured_on = zhf::bench::cpu_model() + ", g++ " + __VERSION__ + " " + ZHF_PATH_BENCH_FLAGS + ", " + zhf::bench::today() + ", " +
                                   std::to_string(o.rotations) + " rotations, best of " + std::to_string(o.reps);
   const nlohmann::ordered_json table = {
       {"format", "zhf-paths-1"}, {"isa", zhf::gen::kBuildIsa}, {"measured_on", measured_on}, {"orders", orders}};

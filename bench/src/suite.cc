@@ -15,6 +15,7 @@
 
 #include "healpix_method.h"
 #include "lanes_kernels.h"
+#include "zhf/bench/machine.h"
 #include "zhf/codegen/manifest.h"
 #include "zhf/frames/tight_frame_rotation.h"
 #include "zhf/io/errors.h"
@@ -340,21 +341,6 @@ Row batch_soa(const Scale& scale, const Pool& pool, const std::string& method, i
     for (size_t i = 0; i < n; ++i) first[v * n + i] = slices[0].out[i * slices[0].m + v];
   measure_error(pool, first, 1, checked, row);
   return row;
-}
-
-std::string cpu_model() {
-  std::ifstream in("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(in, line))
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  return "unknown";
-}
-
-std::string today() {
-  const std::time_t t = std::time(nullptr);
-  char buffer[32];
-  std::strftime(buffer, sizeof buffer, "%Y-%m-%d", std::gmtime(&t));
-  return buffer;
 }
 
 }  // namespace
