@@ -202,7 +202,9 @@ TEST(Conventions, EveryPresetIsItsSystemsFunctionInZhfsAxes) {
   };
   ASSERT_EQ(systems.size(), runtime::conventions().size());
   std::mt19937_64 rng(3);
-  for (const auto& [name, basis] : systems) {
+  for (const auto& system : systems) {
+    const std::string& name = system.first;
+    const auto& basis = system.second;  // a structured binding cannot be captured in C++17
     const runtime::Convention* c = runtime::find_convention(name);
     ASSERT_NE(c, nullptr) << name;
     const Matrix3 to_zhf = c->to_zhf(), from_zhf = c->from_zhf();
