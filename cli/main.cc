@@ -116,7 +116,13 @@ int main(int argc, char** argv) {
   }
   try {
     check_old_spellings();
-    return action();
+    const int code = action();
+    // A signal after the last output was committed still ends the run as an interrupted one.
+    if (zhf::io::interrupt_requested().load()) {
+      std::cerr << "zhf: interrupted after its outputs were written\n";
+      return zhf::io::interrupted_exit_code();
+    }
+    return code;
   } catch (const zhf::io::Interrupted&) {
     std::cerr << "zhf: interrupted; previous outputs are as they were\n";
     return zhf::io::interrupted_exit_code();

@@ -98,7 +98,7 @@ int run_optimize(const OptimizeOptions& o, const std::string& command) {
   if (outcome.interrupted) {
     // The best table so far goes beside the output, which stays untouched.
     const std::string path = (o.out.empty() ? "zhf-order-" + std::to_string(r.order) + ".json" : o.out) + ".interrupted.json";
-    io::write_file_atomically(path, text);
+    io::write_file_atomically(path, text, io::OnInterrupt::kCommit);
     std::fprintf(stderr, "zhf: interrupted; the best table so far is in %s (%s untouched)\n", path.c_str(),
                  o.out.empty() ? "no output" : o.out.c_str());
     return io::interrupted_exit_code();

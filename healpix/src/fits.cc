@@ -161,7 +161,13 @@ Cards check_headers(const std::string& head, std::uint64_t file_bytes, const std
     return cards;
   };
   if (head.compare(0, 9, "SIMPLE  =") != 0) fail("not a FITS file (no SIMPLE card)");
-  const long long axes_claimed = head.size() >= 240 && head.compare(160, 8, "NAXIS   ") == 0 ? std::atoi(head.substr(170, 20).c_str()) : 0;
+  // NAXIS read ahead, checked like every header integer: how many NAXISn cards must follow it.
+  long long axes_claimed = 0;
+  if (head.size() >= 240 && head.compare(160, 10, "NAXIS   = ") == 0) {
+    Cards third(source);
+    third.add("NAXIS", head.substr(170, 70));
+    axes_claimed = third.integer("NAXIS", 0, 999).value_or(0);
+  }
   std::vector<std::string> leading = {"SIMPLE", "BITPIX", "NAXIS"};
   for (long long k = 1; k <= std::min(axes_claimed, 999LL); ++k) leading.push_back("NAXIS" + std::to_string(k));
   const Cards primary = header("primary", leading);

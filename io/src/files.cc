@@ -123,7 +123,9 @@ void PendingFile::write_at(std::uint64_t offset, const char* data, std::size_t s
   }
 }
 
-void PendingFile::commit() {
+void PendingFile::commit(OnInterrupt on_interrupt) {
+  // A signal that came after the work's last check leaves the old file.
+  if (on_interrupt == OnInterrupt::kKeepThePrevious) throw_if_interrupted();
   // fsync flushes the file whoever wrote it: zhf through fd_, or another program by name.
   const bool flushed = fsync(fd_) == 0;
   const bool closed = ::close(fd_) == 0;
@@ -150,10 +152,10 @@ void PendingFile::commit() {
   committed_ = true;
 }
 
-void write_file_atomically(const std::string& path, const std::string& content) {
+void write_file_atomically(const std::string& path, const std::string& content, OnInterrupt on_interrupt) {
   PendingFile file(path);
   file.write(content);
-  file.commit();
+  file.commit(on_interrupt);
 }
 
 nlohmann::ordered_json to_ordered_json(const runtime::json::Value& value) {

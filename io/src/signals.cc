@@ -2,7 +2,10 @@
 
 #include <fcntl.h>
 #include <poll.h>
+#include <pthread.h>
 #include <unistd.h>
+
+#include <cerrno>
 
 #include <algorithm>
 #include <chrono>
@@ -20,8 +23,10 @@ namespace {
 std::atomic<bool> g_interrupted{false};
 std::atomic<int> g_signal{0};
 struct sigaction g_previous_int, g_previous_term, g_previous_pipe;
-// The handler wakes the watchdog through this pipe (write is async-signal-safe).
-int g_wake[2] = {-1, -1};
+// The handler wakes the watchdog through this pipe (write is async-signal-safe); the write end is
+// atomic because the handler reads it while the guard's end closes it.
+int g_wake_reader = -1;
+std::atomic<int> g_wake_writer{-1};
 
 std::mutex g_temporaries_mutex;
 std::set<std::string>& temporaries() {
@@ -30,13 +35,24 @@ std::set<std::string>& temporaries() {
 }
 
 extern "C" void on_signal(int signal) {
+  const int saved_errno = errno;  // the interrupted code may be about to read it
   int none = 0;
   g_signal.compare_exchange_strong(none, signal);
   g_interrupted.store(true);
   const char byte = 1;
-  if (g_wake[1] >= 0) {
-    const ssize_t written = ::write(g_wake[1], &byte, 1);
+  const int writer = g_wake_writer.load();
+  if (writer >= 0) {
+    const ssize_t written = ::write(writer, &byte, 1);
     (void)written;  // a full pipe already holds a wake-up
+  }
+  errno = saved_errno;
+}
+
+// read(2) of one byte, retried when a signal interrupts it: 1, or 0 at end of file, or -1.
+ssize_t read_byte(int fd, char* byte) {
+  for (;;) {
+    const ssize_t got = ::read(fd, byte, 1);
+    if (got >= 0 || errno != EINTR) return got;
   }
 }
 
@@ -44,17 +60,16 @@ extern "C" void on_signal(int signal) {
 // is still here, removes the temporaries and exits with the signal's code.
 void watch() {
   char byte = 0;
-  if (::read(g_wake[0], &byte, 1) != 1) return;
+  if (read_byte(g_wake_reader, &byte) != 1) return;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(runtime::kInterruptGraceSeconds);
-  pollfd wake{g_wake[0], POLLIN, 0};
+  pollfd wake{g_wake_reader, POLLIN, 0};
   while (std::chrono::steady_clock::now() < deadline) {
     const int left = static_cast<int>(
         std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now()).count());
-    if (poll(&wake, 1, std::max(1, left)) > 0 && (wake.revents & (POLLHUP | POLLERR))) return;  // the guard ended
-    if (wake.revents & POLLIN) {
-      const ssize_t got = ::read(g_wake[0], &byte, 1);
-      if (got == 0) return;
-    }
+    const int ready = poll(&wake, 1, std::max(1, left));
+    if (ready < 0) continue;  // EINTR: the deadline decides
+    if (ready > 0 && (wake.revents & (POLLHUP | POLLERR))) return;  // the guard ended
+    if (ready > 0 && (wake.revents & POLLIN) && read_byte(g_wake_reader, &byte) == 0) return;
   }
   {
     std::lock_guard<std::mutex> lock(g_temporaries_mutex);
@@ -89,12 +104,24 @@ void unregister_temporary(const std::string& path) {
 }
 
 InterruptGuard::InterruptGuard() {
-  if (pipe2(g_wake, O_CLOEXEC) == 0) {
-    fcntl(g_wake[1], F_SETFL, O_NONBLOCK);
+  int wake[2];
+  if (pipe2(wake, O_CLOEXEC) == 0) {
+    fcntl(wake[1], F_SETFL, O_NONBLOCK);
+    g_wake_reader = wake[0];
+    g_wake_writer.store(wake[1]);
+    // The watchdog never takes SIGINT or SIGTERM (it inherits this mask): the handler runs on a
+    // thread doing the work, and the watchdog's wait is never cut short.
+    sigset_t stop, previous;
+    sigemptyset(&stop);
+    sigaddset(&stop, SIGINT);
+    sigaddset(&stop, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &stop, &previous);
     g_watchdog = std::thread(watch);
+    pthread_sigmask(SIG_SETMASK, &previous, nullptr);
   }
   struct sigaction action {};
   action.sa_handler = on_signal;
+  action.sa_flags = SA_RESTART;  // the work's own reads and writes carry on; it polls the flag
   sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, &g_previous_int);
   sigaction(SIGTERM, &action, &g_previous_term);
@@ -109,11 +136,10 @@ InterruptGuard::~InterruptGuard() {
   sigaction(SIGTERM, &g_previous_term, nullptr);
   sigaction(SIGPIPE, &g_previous_pipe, nullptr);
   if (g_watchdog.joinable()) {
-    const int writer = g_wake[1];
-    g_wake[1] = -1;
-    ::close(writer);  // the watchdog reads end-of-file and returns
+    ::close(g_wake_writer.exchange(-1));  // the watchdog reads end-of-file and returns
     g_watchdog.join();
-    ::close(g_wake[0]);
+    ::close(g_wake_reader);
+    g_wake_reader = -1;
   }
 }
 

@@ -143,6 +143,8 @@ TEST(HealpixFits, MalformedBytesAreRefusedNamingTheSource) {
     bytes.replace(at, 80, card);
     return bytes;
   };
+  refused(with_key("NAXIS", "99999999999999999999"), "NAXIS is not an integer");  // read ahead, checked
+  refused(with_key("NAXIS", "1000"), "NAXIS 1000 is outside 0..999");
   refused(with_key("NSIDE", "3"), "column 1 holds 48 rows of 1 values, not 12 NSIDE^2 = 108");
   refused(with_key("NSIDE", "0"), "NSIDE 0 is outside 1..8192");
   refused(with_key("NSIDE", "'two'"), "NSIDE is not an integer");

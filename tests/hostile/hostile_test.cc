@@ -7,9 +7,11 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/stat.h>
+#include <sys/syscall.h>
 #include <sys/sysmacros.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -471,6 +473,58 @@ TEST(Hostile, WorkThatCannotPollIsEndedByTheWatchdog) {
   EXPECT_EQ(leftovers(box), "");
   ++tally()["WorkThatCannotPollIsEndedByTheWatchdog"].first;
   tally()["WorkThatCannotPollIsEndedByTheWatchdog"].second += exit == 143 && snapshot(box.dir()) == before && leftovers(box).empty();
+}
+
+// SIGTERM sent to each thread of a run in turn (tgkill), the watchdog's first: a run that cannot
+// poll must still be ended by the watchdog, which takes no signal, within the grace period.
+TEST(Hostile, SignalsToEveryThreadStillEndTheRun) {
+  Sandbox box;
+  box.write("design.json", "previous design\n");
+  const Snapshot before = snapshot(box.dir());
+  io::Process zhf = start_zhf({"designs", "--t", "31", "--starts", "1", "--quiet", "--out", box.path("design.json")}, "",
+                              {"TMPDIR=" + box.tmp()});
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  std::vector<int> threads;
+  for (const auto& task : fs::directory_iterator("/proc/" + std::to_string(zhf.pid()) + "/task"))
+    threads.push_back(std::stoi(task.path().filename().string()));
+  ASSERT_GE(threads.size(), 2u) << "no watchdog thread";
+  std::sort(threads.begin(), threads.end(), std::greater<int>());  // the watchdog starts before the work's threads
+  std::rotate(threads.begin(), threads.end() - 2, threads.end());  // so: the watchdog, the main thread, the rest
+  const auto sent = std::chrono::steady_clock::now();
+  for (int thread : threads) syscall(SYS_tgkill, zhf.pid(), thread, SIGTERM);
+  const int exit = exit_code_of(zhf);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
+  EXPECT_EQ(exit, 143) << threads.size() << " threads";
+  EXPECT_LT(seconds, runtime::kInterruptGraceSeconds + 2.0);
+  EXPECT_TRUE(snapshot(box.dir()) == before) << "the sandbox changed";
+  EXPECT_EQ(leftovers(box), "");
+  ++tally()["SignalsToEveryThreadStillEndTheRun"].first;
+  tally()["SignalsToEveryThreadStillEndTheRun"].second += exit == 143 && snapshot(box.dir()) == before && leftovers(box).empty();
+}
+
+// A signal after the work's last check, while the output is being committed: here the commit
+// waits in open(2) for a reader of the FIFO it writes through. Nothing reaches the FIFO, the
+// run ends with 143 within the grace period, nothing is left behind.
+TEST(Hostile, ASignalDuringTheCommitWritesNothing) {
+  Sandbox box;
+  const std::string fifo = box.path("out.fifo");
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const Snapshot before = snapshot(box.dir());
+  const test::TempDir errors_dir;
+  const std::string errors = errors_dir.string() + "/stderr.txt";
+  const auto started = std::chrono::steady_clock::now();
+  const int exit = interrupted_exit(box, {"designs", "--t", "5", "--quiet", "--out", fifo}, SIGTERM, 1500, errors);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  EXPECT_EQ(exit, 143) << read_text(errors);
+  EXPECT_LT(seconds, 1.5 + runtime::kInterruptGraceSeconds + 2.0);
+  const int reader = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);  // nothing was written into it
+  char byte = 0;
+  EXPECT_LE(::read(reader, &byte, 1), 0);
+  ::close(reader);
+  EXPECT_TRUE(snapshot(box.dir()) == before) << "the sandbox changed";
+  EXPECT_EQ(leftovers(box), "");
+  ++tally()["ASignalDuringTheCommitWritesNothing"].first;
+  tally()["ASignalDuringTheCommitWritesNothing"].second += exit == 143 && snapshot(box.dir()) == before && leftovers(box).empty();
 }
 
 TEST(Hostile, BenchLeavesUserFilesAloneAndReportsGnuplotFailing) {

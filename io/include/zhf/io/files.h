@@ -22,6 +22,11 @@ std::string read_text_file(const std::string& path, std::size_t max_bytes);
 // The file parsed as JSON (InputError naming the file, line and column otherwise).
 runtime::json::Value read_json_file(const std::string& path, std::size_t max_bytes);
 
+// Whether a commit goes ahead once SIGINT or SIGTERM has arrived (signals.h): by default it throws
+// Interrupted and the destination stays as it was; an output the interrupt itself asks for
+// (optimize's best table so far) is committed all the same.
+enum class OnInterrupt { kKeepThePrevious, kCommit };
+
 // A new empty file that becomes the destination only on commit(); otherwise the destructor
 // removes it. Unique (concurrent runs never share one). For a regular (or missing) destination
 // it sits beside it, so the commit is one rename; for a FIFO or device it sits in a private
@@ -43,7 +48,7 @@ class PendingFile {
   // sections are filled out of order.
   void write_at(std::uint64_t offset, const char* data, std::size_t size);
   // Flushes to disk, closes and moves (or copies) the bytes to the destination.
-  void commit();
+  void commit(OnInterrupt on_interrupt = OnInterrupt::kKeepThePrevious);
 
  private:
   std::string destination_;  // symlinks resolved
@@ -54,7 +59,8 @@ class PendingFile {
 };
 
 // PendingFile with content: the common case.
-void write_file_atomically(const std::string& path, const std::string& content);
+void write_file_atomically(const std::string& path, const std::string& content,
+                           OnInterrupt on_interrupt = OnInterrupt::kKeepThePrevious);
 
 // JSON text as zhf writes it everywhere: two-space indent, arrays of numbers on one line
 // (matrix rows stay readable), keys in insertion order, numbers round-trip exact, trailing
