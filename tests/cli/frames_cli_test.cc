@@ -31,6 +31,19 @@ TEST(DesignsCli, SameFileWhateverTheThreadsAndAsCheckedIn) {
   }
 }
 
+// Each symmetry asked for without --count takes its own count, where the default has another
+// symmetry (at t = 12 the default is tetrahedral, 84 points): antipodal 12-designs are 13-designs,
+// 94 points by symmetric_count.
+TEST(DesignsCli, ASymmetryWithoutACountPicksItsOwnCount) {
+  const test::TempDir dir;
+  const std::string out = (dir / "d.json").string();
+  const test::RunResult r = test::run_zhf("designs --t 12 --symmetric --quiet --json '" + out + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(test::read_text(out));
+  EXPECT_EQ(j.at("symmetric"), true);
+  EXPECT_EQ(j.at("points").size(), 94u) << r.out;
+}
+
 TEST(FrameCli, DesignsAreTightAndTablesReportTheirBands) {
   const std::string design = test::source_path("generated/designs/t_6.json");
   test::RunResult r = test::run_zhf("frame --points '" + design + "' --bands 0..3");
