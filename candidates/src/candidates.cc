@@ -14,7 +14,7 @@
 namespace zhf::candidates {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using runtime::kPi;
 
 std::string legendre_name(int l, int m) { return "P_" + std::to_string(l) + "^" + std::to_string(m); }
 

@@ -23,7 +23,7 @@
 namespace zhf::frames {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using runtime::kPi;
 // Levenberg-Marquardt steps of one start of whole orbits, and its stall test: every kStallIterations
 // steps the residual's norm must have fallen below kStallFactor of what it was.
 constexpr int kOrbitIterations = 400;

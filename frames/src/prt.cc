@@ -16,7 +16,7 @@
 namespace zhf::frames {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using runtime::kPi;
 // The reference rule: Gauss-Legendre panels in z times equal steps in phi.
 constexpr int kReferencePanels = 8, kReferencePanelNodes = 64, kReferencePhi = 1024;
 // The projections' rule: the largest Gauss product (degree 126, 8128 nodes).

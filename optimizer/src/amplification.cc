@@ -22,9 +22,9 @@
 namespace zhf::optimizer {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using runtime::kPi;
 // A singular set gets this instead of an infinite objective, so the simplex can move off it.
-constexpr double kSingularPenalty = 1e12;
+constexpr double kSingularAmplificationScore = 1e12;
 
 std::vector<std::array<double, 3>> directions(const std::vector<double>& x) {
   std::vector<std::array<double, 3>> dirs(x.size() / 2);
@@ -42,20 +42,20 @@ std::vector<double> amplifications(int order, const std::vector<double>& x) {
 double score(const std::vector<double>& a) {
   double worst = 0, sum = 0;
   for (double v : a) {
-    if (!std::isfinite(v)) return kSingularPenalty;
+    if (!std::isfinite(v)) return kSingularAmplificationScore;
     worst = std::max(worst, v);
     sum += v * v;
   }
-  return std::min(kSingularPenalty, 4 * worst * worst + sum / static_cast<double>(a.size()));
+  return std::min(kSingularAmplificationScore, 4 * worst * worst + sum / static_cast<double>(a.size()));
 }
 
-struct Problem {
+struct AmplificationProblem {
   int order;
   long evaluations = 0;
 };
 
-double objective(const std::vector<double>& x, std::vector<double>&, void* data) {
-  auto* p = static_cast<Problem*>(data);
+double amplification_objective(const std::vector<double>& x, std::vector<double>&, void* data) {
+  auto* p = static_cast<AmplificationProblem*>(data);
   ++p->evaluations;
   return score(amplifications(p->order, x));
 }
@@ -69,7 +69,7 @@ struct StartResult {
 
 // Subplex passes from one start point, each from where the previous one stopped.
 StartResult descend_from(int order, std::vector<double> x, const AmplificationOptions& options) {
-  Problem problem{order};
+  AmplificationProblem problem{order};
   StartResult result;
   for (int pass = 0; pass < options.passes; ++pass) {
     if (options.stop && options.stop->load()) {
@@ -77,7 +77,7 @@ StartResult descend_from(int order, std::vector<double> x, const AmplificationOp
       break;
     }
     nlopt::opt opt(nlopt::LN_SBPLX, static_cast<unsigned>(x.size()));
-    opt.set_min_objective(objective, &problem);
+    opt.set_min_objective(amplification_objective, &problem);
     opt.set_maxeval(options.max_evaluations_per_pass);
     opt.set_xtol_rel(runtime::tolerance::kContinuousSearchStep);
     double value = 0;

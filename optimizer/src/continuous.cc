@@ -14,7 +14,7 @@
 namespace zhf::optimizer {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using runtime::kPi;
 // A singular set gets this instead of an infinite objective, so the simplex can move off it.
 constexpr double kSingularPenalty = 1e6;
 

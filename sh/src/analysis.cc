@@ -14,7 +14,7 @@
 namespace zhf::sh {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using runtime::kPi;
 
 int order_of(const Eigen::VectorXd& f) {
   const int order = static_cast<int>(std::lround(std::sqrt(static_cast<double>(f.size()))));

@@ -41,8 +41,8 @@ namespace {
 using io::InputError;
 using runtime::json::Field;
 
-constexpr std::uint32_t kMagic = 0x46546c67, kJsonChunk = 0x4e4f534a, kBinChunk = 0x004e4942;
-constexpr std::uint64_t kHeaderBytes = 12, kChunkHeaderBytes = 8;
+constexpr std::uint32_t kGlbMagic = 0x46546c67, kJsonChunk = 0x4e4f534a, kBinChunk = 0x004e4942;
+constexpr std::uint64_t kGlbHeaderBytes = 12, kChunkHeaderBytes = 8;
 constexpr int kFloat = 5126, kByte = 5120, kUnsignedByte = 5121, kShort = 5122, kUnsignedShort = 5123;
 constexpr const char* kExtension = "KHR_gaussian_splatting";
 constexpr std::uint64_t kSubBlock = 4096;  // splats read per attribute at a time: bounded memory
@@ -181,10 +181,10 @@ class GlbReader : public SceneReader {
  public:
   explicit GlbReader(const std::string& path) : path_(path), file_(open_input(path)) {
     const std::uint64_t size = regular_file_size(path, "a .glb is read by offsets into it");
-    unsigned char header[kHeaderBytes + kChunkHeaderBytes];
+    unsigned char header[kGlbHeaderBytes + kChunkHeaderBytes];
     if (size < sizeof header) throw InputError(path + ": " + std::to_string(size) + " bytes: too short for a .glb header");
     fill(0, header, sizeof header);
-    if (get_uint32(header) != kMagic) throw InputError(path + ": not a .glb (no \"glTF\" magic)");
+    if (get_uint32(header) != kGlbMagic) throw InputError(path + ": not a .glb (no \"glTF\" magic)");
     if (get_uint32(header + 4) != 2) throw InputError(path + ": .glb version " + std::to_string(get_uint32(header + 4)) + "; zhf reads version 2");
     if (get_uint32(header + 8) != size)
       throw InputError(path + ": the header says " + std::to_string(get_uint32(header + 8)) + " bytes, the file has " + std::to_string(size));
@@ -430,7 +430,7 @@ class GlbWriter : public SceneWriter {
       throw InputError(std::to_string(splats) + " splats of SH degree " + std::to_string(degree) + " do not fit a .glb (4 GiB); at most " + std::to_string(most));
     // The JSON's room, with the widest position bounds a float prints as.
     json_bytes_ = (json(std::array<float, 6>{}, true).size() + 3) / 4 * 4;
-    bin_at_ = kHeaderBytes + kChunkHeaderBytes + json_bytes_ + kChunkHeaderBytes;
+    bin_at_ = kGlbHeaderBytes + kChunkHeaderBytes + json_bytes_ + kChunkHeaderBytes;
   }
 
   void write(std::uint64_t count, const double* records) override {
@@ -481,8 +481,8 @@ class GlbWriter : public SceneWriter {
   void finish() override {
     std::string text = json(bounds_, false);
     text.resize(json_bytes_, ' ');
-    std::vector<unsigned char> head(kHeaderBytes + kChunkHeaderBytes);
-    put_uint32(&head[0], kMagic);
+    std::vector<unsigned char> head(kGlbHeaderBytes + kChunkHeaderBytes);
+    put_uint32(&head[0], kGlbMagic);
     put_uint32(&head[4], 2);
     put_uint32(&head[8], std::uint32_t(bin_at_ + bin_bytes_));
     put_uint32(&head[12], std::uint32_t(json_bytes_));

@@ -17,7 +17,7 @@ namespace zhf {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kPi = runtime::kPi;
+using runtime::kPi;
 constexpr double kAxis = runtime::tolerance::kZonalFit;
 
 // Coefficients of a zonal function about axis with the given y_l^0 weights.

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "test_support.h"
+#include "zhf/runtime/sh_eval.h"
 #include "zhf/runtime/tolerances.h"
 #include "zhf/sh/random.h"
 
@@ -16,7 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 constexpr double kTolerance = runtime::tolerance::kProductAgainstIntegration;
-constexpr double kPi = 3.14159265358979323846;
+using runtime::kPi;
 
 TEST(ProductCli, ClosedFormsChannelsBroadcastAndOrders) {
   const test::TempDir dir;

@@ -98,9 +98,8 @@ std::vector<double> run_cpp(const std::string& dir, const std::string& header, c
   const std::vector<std::uint8_t> bytes = as_floats(stream);
   io::write_file_atomically(dir + "/inputs.bin", std::string(bytes.begin(), bytes.end()));
   std::vector<std::string> compile = compiler;
-  for (const std::string& arg : {std::string("-std=c++17"), std::string("-O1"), std::string("-ffp-contract=off"), "-I" + dir, dir + "/harness.cc",
-                                 std::string("-o"), dir + "/harness"})
-    compile.push_back(arg);
+  compile.insert(compile.end(), kHarnessFlags.begin(), kHarnessFlags.end());
+  for (const std::string& arg : {"-I" + dir, dir + "/harness.cc", std::string("-o"), dir + "/harness"}) compile.push_back(arg);
   if (!io::run_process(compile, dir + "/compile.log").ok()) throw RunFailure("compile failed: " + io::log_excerpt(dir + "/compile.log", 3));
   if (!io::run_process({dir + "/harness", dir + "/inputs.bin", dir + "/outputs.bin"}, dir + "/run.log").ok())
     throw RunFailure("the harness failed to run: " + io::log_excerpt(dir + "/run.log", 3));

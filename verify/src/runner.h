@@ -35,6 +35,10 @@ struct RunOutputs {
 
 // The C++ compiler's argv from --compiler (split at spaces); empty: $CXX, else c++.
 std::vector<std::string> compiler_argv(const std::string& option);
+// What the C++ harnesses are compiled with: IEEE float results without contraction. -O0: the same
+// bytes as -O1 (x86-64 and aarch64 compute float in float either way) and an order-8 harness
+// compiles in 5 s instead of 25; the harnesses run for a fraction of a second.
+inline const std::vector<std::string> kHarnessFlags = {"-std=c++17", "-O0", "-ffp-contract=off"};
 
 // A compile or run failure, one line (the runner's log excerpt included).
 struct RunFailure : std::runtime_error {

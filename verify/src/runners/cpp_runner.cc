@@ -1,5 +1,5 @@
 // C++: a harness per order that includes the emitted header, compiled with the host compiler
-// (-O1 -ffp-contract=off, so float results are IEEE without contraction) as a separate process,
+// (kHarnessFlags: float results are IEEE without contraction) as a separate process,
 // run in float and double on the inputs. Lanes modes also include runtime/lanes.h and the order's
 // lanes tables.
 #include <sstream>
@@ -117,8 +117,8 @@ class CppRunner : public Runner {
     const std::string include = r.kernel_file.substr(0, r.kernel_file.find_last_of('/'));
     io::write_file_atomically(dir + "/harness.cc", harness(r.order, r.modes, header));
     std::vector<std::string> compile = r.compiler;
-    for (const std::string& arg : {std::string("-std=c++17"), std::string("-O1"), std::string("-ffp-contract=off"), "-I" + include,
-                                   "-I" + r.runtime_include, dir + "/harness.cc", std::string("-o"), dir + "/harness"})
+    compile.insert(compile.end(), kHarnessFlags.begin(), kHarnessFlags.end());
+    for (const std::string& arg : {"-I" + include, "-I" + r.runtime_include, dir + "/harness.cc", std::string("-o"), dir + "/harness"})
       compile.push_back(arg);
     if (!io::run_process(compile, dir + "/compile.log").ok())
       throw RunFailure("compile failed: " + io::log_excerpt(dir + "/compile.log", 3));
