@@ -22,6 +22,7 @@
 #include "zhf/io/signals.h"
 #include "zhf/pipeline/project.h"
 #include "zhf/runtime/limits.h"
+#include "zhf/runtime/sh_eval.h"
 #include "zhf/runtime/tolerances.h"
 #include "zhf/verify/needlets.h"
 
@@ -457,9 +458,9 @@ int run_needlet_prt(const NeedletOptions& o) {
     // pixel holding the direction.
     auto image = std::make_shared<io::HdrImage>(io::read_hdr(o.sky));
     sky = [image](const frames::Point& w) {
-      const double theta = std::acos(std::clamp(w[2], -1.0, 1.0)), phi = std::atan2(w[1], w[0]) + (w[1] < 0 ? 2 * M_PI : 0.0);
-      const int row = std::min(image->height - 1, static_cast<int>(theta / M_PI * image->height));
-      const int column = std::min(image->width - 1, static_cast<int>(phi / (2 * M_PI) * image->width));
+      const double theta = std::acos(std::clamp(w[2], -1.0, 1.0)), phi = std::atan2(w[1], w[0]) + (w[1] < 0 ? 2 * runtime::kPi : 0.0);
+      const int row = std::min(image->height - 1, static_cast<int>(theta / runtime::kPi * image->height));
+      const int column = std::min(image->width - 1, static_cast<int>(phi / (2 * runtime::kPi) * image->width));
       const float* rgb = &image->rgb[3 * (static_cast<std::size_t>(row) * image->width + column)];
       return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
     };

@@ -14,6 +14,8 @@ Each rule names its home; a finding prints file:line and the rule, and the exit 
 - Threads: the pool in runtime/parallel.h and the interrupt watchdog in io/src/signals.cc only (tests may
   start their own, e.g. to send signals).
 - Random draws: no std::*_distribution (implementation-defined); sh/random.h draws from raw bits.
+- Pi: runtime::kPi and kPiLong (runtime/sh_eval.h); no other digits of pi and no M_PI outside the
+  tests.
 - JSON values: runtime::json::Value lives in the readers only (runtime/json.h and the files that
   read JSON); nothing keeps one in a data type or builds one.
 """
@@ -29,6 +31,7 @@ TABLE_IO = "runtime/include/zhf/runtime/table_io.h"
 PARALLEL = "runtime/include/zhf/runtime/parallel.h"
 WATCHDOG = "io/src/signals.cc"
 RANDOM = "sh/include/zhf/sh/random.h"
+SH_EVAL = "runtime/include/zhf/runtime/sh_eval.h"
 
 
 def sources():
@@ -58,6 +61,7 @@ TABLE_NAME = re.compile(r"(order_\" \+ [^+]+ \+ \"\.json|order_\{\w+\}\.json)")
 THREAD = re.compile(r"std::thread\b(?!::hardware_concurrency)")
 DISTRIBUTION = re.compile(r"std::\w+_distribution\b")
 INPUT_MARK = "// an input, not a tolerance"
+PI = re.compile(r"3\.14159|\bM_PI\b")
 JSON_VALUE = re.compile(r"json::Value\b")
 JSON_READERS = ("runtime/include/zhf/runtime/", "io/", "codegen/", "frames/src/", "python/src/", "cli/",
                 "tests/", "fuzz/", "verify/src/", "splat/src/", "bench/src/")
@@ -83,6 +87,8 @@ def check(path, findings):
             findings.append(f"{where}: threads started outside {PARALLEL}")
         if cpp and DISTRIBUTION.search(line):
             findings.append(f"{where}: {DISTRIBUTION.search(line).group(0)} is implementation-defined; use {RANDOM}")
+        if cpp and not test and path != SH_EVAL and PI.search(line):
+            findings.append(f"{where}: pi written out; use runtime::kPi or kPiLong ({SH_EVAL})")
         if cpp and JSON_VALUE.search(line) and not path.startswith(JSON_READERS):
             findings.append(f"{where}: a runtime::json::Value outside a reader")
 
@@ -98,7 +104,7 @@ def main():
     if findings:
         print(f"check_one_place: {len(findings)} finding(s)", file=sys.stderr)
         return 1
-    print("check_one_place: limits, tolerances, table paths, threads, random draws and JSON values each in one place")
+    print("check_one_place: limits, tolerances, table paths, threads, random draws, JSON values and pi each in one place")
     return 0
 
 

@@ -25,6 +25,7 @@ std::vector<int> band_sums(Graph& g, const runtime::Matrix& inverse, bool transp
 }
 
 using runtime::kInvSqrt4Pi;
+using runtime::kPi;
 constexpr double kSqrt3Over4Pi = 0.48860251190291992159;  // band 1: c (y, z, x)
 using runtime::kBand1Axis;
 
@@ -446,8 +447,6 @@ class Builder {
   }
 
  private:
-  static constexpr double kPi = 3.14159265358979323846;
-
   // A function named <stem>[_rgb|_rgba]_orderN.
   Function make(KernelKind kind, const std::string& stem, int channels, const std::string& doc, std::vector<Param> params) const {
     Function f;

@@ -25,7 +25,7 @@ void gauss_legendre(int n, std::vector<double>& nodes, std::vector<double>& weig
   weights.clear();
   // Nodes are cos of the roots of P_n(cos theta); P_n'(z) from Q_n^1 (see legendre.h).
   const std::vector<double> thetas = legendre_roots_theta(n, 0);
-  const double to_p = std::sqrt(4 * 3.14159265358979323846 / (2 * n + 1));  // P_n = to_p Q_n^0
+  const double to_p = std::sqrt(4 * runtime::kPi / (2 * n + 1));  // P_n = to_p Q_n^0
   for (auto it = thetas.rbegin(); it != thetas.rend(); ++it) {
     const double z = std::cos(*it);
     const double dp = to_p * legendre_q_derivative(n, 0, z);
@@ -41,17 +41,16 @@ BandMatrices quadrature_rotation(const RotationMatrix& r, int order) {
   std::vector<double> nodes, weights;
   gauss_legendre(order, nodes, weights);
   const int phi_count = 2 * order;
-  const double pi = 3.14159265358979323846;
   std::vector<double> y_at(runtime::coefficient_count(order)), y_back(runtime::coefficient_count(order));
   for (size_t k = 0; k < nodes.size(); ++k) {
     const double sin_theta = std::sqrt(std::max(0.0, 1 - nodes[k] * nodes[k]));
     for (int j = 0; j < phi_count; ++j) {
-      const double phi = 2 * pi * j / phi_count;
+      const double phi = 2 * runtime::kPi * j / phi_count;
       const Eigen::Vector3d w(sin_theta * std::cos(phi), sin_theta * std::sin(phi), nodes[k]);
       const Eigen::Vector3d back = r.transpose() * w;
       runtime::eval_sh(order, w.data(), y_at.data());
       runtime::eval_sh(order, back.data(), y_back.data());
-      const double weight = weights[k] * 2 * pi / phi_count;
+      const double weight = weights[k] * 2 * runtime::kPi / phi_count;
       for (int l = 0; l < order; ++l) {
         for (int a = -l; a <= l; ++a) {
           const double wa = weight * y_at[runtime::index(l, a)];

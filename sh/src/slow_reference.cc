@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "zhf/runtime/sh_eval.h"
+
 namespace zhf::sh::slow {
 namespace {
 
@@ -51,9 +53,8 @@ long double recurrence_legendre(int l, int m, long double theta) {
 
 long double normalisation(int l, int m) {
   const int am = std::abs(m);
-  const long double pi = 3.141592653589793238462643383279502884L;
   const long double log_ratio = std::lgamma((long double)(l - am + 1)) - std::lgamma((long double)(l + am + 1));
-  long double k = std::sqrt((2 * l + 1) / (4 * pi) * std::exp(log_ratio));
+  long double k = std::sqrt((2 * l + 1) / (4 * runtime::kPiLong) * std::exp(log_ratio));
   if (m != 0) k *= std::sqrt(2.0L);
   return k;
 }

@@ -111,7 +111,7 @@ inline double real_gaunt(int a, int b, int c) {
   int n[3];
   for (int k = 0; k < 3; ++k) n[k] = gaunt_detail::real_to_complex(m[k], t[k]);
   const long double w000 = gaunt_detail::wigner_3j(l[0], l[1], l[2], 0, 0, 0);
-  const long double scale = std::sqrt((2.0L * l[0] + 1) * (2.0L * l[1] + 1) * (2.0L * l[2] + 1) / (4 * 3.14159265358979323846264338327950288L)) * w000;
+  const long double scale = std::sqrt((2.0L * l[0] + 1) * (2.0L * l[1] + 1) * (2.0L * l[2] + 1) / (4 * kPiLong)) * w000;
   std::complex<long double> sum = 0;
   for (int i = 0; i < n[0]; ++i)
     for (int j = 0; j < n[1]; ++j)

@@ -24,6 +24,7 @@ namespace zhf::runtime {
 inline constexpr double kInvSqrt4Pi = 0.28209479177387814347;  // y_0^0
 inline constexpr double kSqrt2 = 1.41421356237309504880;
 inline constexpr double kPi = 3.14159265358979323846;
+inline constexpr long double kPiLong = 3.141592653589793238462643383279502884L;  // the long-double references
 
 // Coefficient indexing: band l, m in [-l, l], flat index l(l+1)+m.
 constexpr int index(int l, int m) { return l * (l + 1) + m; }
