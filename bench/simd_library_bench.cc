@@ -10,7 +10,8 @@
 //            AVX2 intrinsics (avx2_fma.h's rotate_bands01) against the same steps in Highway
 //            and in xsimd, each called through a function pointer as Rotator calls it.
 // Each variant is checked against the first (max |difference| printed) and timed as the best of
-// `runs`, the variants interleaved within each run so that they share the machine's state.
+// `runs`, the variants interleaved within each run so that they share the machine's state, all of
+// them writing the same output buffer.
 // Built by bench/CMakeLists.txt where Debian's libhwy-dev and libxsimd-dev are installed:
 //   bash bench/simd_libraries.sh        (installs them, builds, runs; output as in
 //                                        bench/results/simd_libraries.txt)
@@ -145,24 +146,27 @@ double seconds_of(const std::function<void()>& work) {
 
 struct Variant {
   const char* name;
-  std::function<void()> work;
-  const std::vector<float>* output;
+  std::function<void()> work;  // writes the shared output
   double best = 1e30;
 };
 
 // Runs the variants interleaved `runs` times; prints each one's best per item and its ratio to the
-// first, and its largest difference from the first's output.
-void time_variants(const char* title, std::vector<Variant>& variants, int runs, double items) {
+// first, and its output's largest difference from the first's. They all write one output buffer:
+// with a buffer each, the distance between a variant's loads and stores modulo 4 KiB (which the
+// CPU's store forwarding checks first) differed, and order 2 moved by up to 1.6x with it.
+void time_variants(const char* title, std::vector<Variant>& variants, int runs, double items, std::vector<float>& out) {
   for (int run = 0; run < runs; ++run)
     for (Variant& v : variants) v.best = std::min(v.best, seconds_of(v.work));
   std::printf("%s\n", title);
-  const Variant& first = variants.front();
+  std::vector<float> first;
   for (const Variant& v : variants) {
+    std::fill(out.begin(), out.end(), 0.0f);
+    v.work();
+    if (first.empty()) first = out;
     double difference = 0;
-    for (std::size_t i = 0; i < v.output->size(); ++i)
-      difference = std::max(difference, double(std::fabs((*v.output)[i] - (*first.output)[i])));
-    std::printf("  %-22s %8.2f ns  %5.2fx  max |difference| %.1e\n", v.name, v.best / items * 1e9, v.best / first.best,
-                difference);
+    for (std::size_t i = 0; i < out.size(); ++i) difference = std::max(difference, double(std::fabs(out[i] - first[i])));
+    std::printf("  %-22s %8.2f ns  %5.2fx  max |difference| %.1e\n", v.name, v.best / items * 1e9,
+                v.best / variants.front().best, difference);
   }
 }
 
@@ -184,23 +188,19 @@ void run_kernels(int runs) {
   std::vector<float> in(n * count);
   zhf::sh::Normal<float> normal;
   for (float& x : in) x = normal(rng);
-  std::vector<float> packs(n * count), xs(n * count), hw(n * count), attribute(n * count), soa(n * count);
+  std::vector<float> out(n * count);
+  float* const o = out.data();
   std::vector<Variant> variants = {
       {"zhf Pack (GCC vectors)",
-       [&] { zhf::bench::rotate_steps<N, zhf::runtime::Pack<float>>(count, count, r.data(), in.data(), packs.data()); },
-       &packs},
-      {"xsimd batch",
-       [&] { zhf::bench::rotate_steps<N, XsimdLanes>(count, count, r.data(), in.data(), xs.data()); }, &xs},
-      {"Highway Vec",
-       [&] { zhf::bench::rotate_steps<N, HighwayLanes>(count, count, r.data(), in.data(), hw.data()); }, &hw},
-      {"Pack, target attribute",
-       [&] { rotate_steps_target_attribute(N, count, count, r.data(), in.data(), attribute.data()); }, &attribute},
-      {"rotate_soa (shipped)",
-       [&] { zhf::runtime::rotate_soa<N>(count, count, r.data(), in.data(), soa.data()); }, &soa},
+       [&] { zhf::bench::rotate_steps<N, zhf::runtime::Pack<float>>(count, count, r.data(), in.data(), o); }},
+      {"xsimd batch", [&] { zhf::bench::rotate_steps<N, XsimdLanes>(count, count, r.data(), in.data(), o); }},
+      {"Highway Vec", [&] { zhf::bench::rotate_steps<N, HighwayLanes>(count, count, r.data(), in.data(), o); }},
+      {"Pack, target attribute", [&] { rotate_steps_target_attribute(N, count, count, r.data(), in.data(), o); }},
+      {"rotate_soa (shipped)", [&] { zhf::runtime::rotate_soa<N>(count, count, r.data(), in.data(), o); }},
   };
   char title[96];
   std::snprintf(title, sizeof title, "kernels N=%d: per rotation, %zu rotations, 8 per step", N, count);
-  time_variants(title, variants, runs, double(count));
+  time_variants(title, variants, runs, double(count), out);
 }
 
 void run_bands01(int runs) {
@@ -216,18 +216,18 @@ void run_bands01(int runs) {
   using Bands01 = void (*)(const float*, const float*, float*);
   // Through a pointer the compiler cannot see through, as Rotator calls a kernel.
   volatile Bands01 intrinsics = &zhf::runtime::avx2::rotate_bands01, highway = &bands01_highway, xs = &bands01_xsimd;
-  std::vector<float> out_intrinsics(4 * count), out_highway(4 * count), out_xsimd(4 * count);
-  auto over_all = [&](Bands01 f, std::vector<float>& out) {
+  std::vector<float> out(4 * count);
+  auto over_all = [&](Bands01 f) {
     return [&, f] {
       for (std::size_t v = 0; v < count; ++v) f(&r[9 * v], &in[4 * v], &out[4 * v]);
     };
   };
   std::vector<Variant> variants = {
-      {"AVX2 intrinsics", over_all(intrinsics, out_intrinsics), &out_intrinsics},
-      {"Highway", over_all(highway, out_highway), &out_highway},
-      {"xsimd", over_all(xs, out_xsimd), &out_xsimd},
+      {"AVX2 intrinsics", over_all(intrinsics)},
+      {"Highway", over_all(highway)},
+      {"xsimd", over_all(xs)},
   };
-  time_variants("bands01 (order 2, one vector per call): per call", variants, runs * 20, double(count));
+  time_variants("bands01 (order 2, one vector per call): per call", variants, runs * 20, double(count), out);
 }
 
 }  // namespace
