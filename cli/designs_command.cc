@@ -36,11 +36,12 @@ std::string known_counts(int t) {
 int run_designs(const DesignsOptions& o) {
   frames::DesignSearch s;
   s.t = static_cast<int>(integer_option("--t", o.t, 1, runtime::kMaxDesignStrength));
-  if (o.symmetric + o.tetrahedral + o.threefold > 1) throw UsageError("--symmetric, --tetrahedral and --threefold: choose one");
+  if (o.tetrahedral && (o.symmetric || o.threefold)) throw UsageError("--tetrahedral: not with --symmetric or --threefold");
   const int best = frames::best_known_count(s.t);
   const frames::DesignChoice choice = frames::default_design(s.t);
   s.points = static_cast<int>(integer_option("--count", o.count, 0, runtime::kMaxDesignPoints));
-  s.symmetry = o.symmetric     ? frames::Symmetry::kAntipodal
+  s.symmetry = o.symmetric && o.threefold ? frames::Symmetry::kAntipodalThreefold
+               : o.symmetric ? frames::Symmetry::kAntipodal
                : o.tetrahedral ? frames::Symmetry::kTetrahedral
                : o.threefold   ? frames::Symmetry::kThreefold
                                : s.points ? frames::Symmetry::kFree : choice.symmetry;
@@ -49,12 +50,13 @@ int run_designs(const DesignsOptions& o) {
     s.points = s.symmetry == choice.symmetry                 ? choice.points
                : s.symmetry == frames::Symmetry::kTetrahedral ? frames::tetrahedral_count(s.t)
                : s.symmetry == frames::Symmetry::kThreefold   ? frames::threefold_count(s.t)
+               : s.symmetry == frames::Symmetry::kAntipodalThreefold ? frames::antipodal_threefold_count(s.t)
                                                               : frames::symmetric_count(s.t);
   }
   if (s.points < 2) throw UsageError("--count: a design needs at least 2 points");
   const int orbit = frames::orbit_size(s.symmetry);
   if (s.points % orbit)
-    throw UsageError("--count: " + std::string(o.symmetric ? "a symmetric design has an even count" : "a design of whole orbits has a multiple of " + std::to_string(orbit) + " points") +
+    throw UsageError("--count: " + std::string(s.symmetry == frames::Symmetry::kAntipodal ? "a symmetric design has an even count" : "a design of whole orbits has a multiple of " + std::to_string(orbit) + " points") +
                      " (got " + std::to_string(s.points) + ")");
   s.starts = static_cast<int>(integer_option("--starts", o.starts, 1, runtime::kMaxDesignStarts));
   s.seed = seed_option("--seed", o.seed);
@@ -80,9 +82,9 @@ int run_designs(const DesignsOptions& o) {
     j["format"] = frames::kDesignFormat;
     j["t"] = s.t;
     j["count"] = d.points.size();
-    j["symmetric"] = s.symmetry == frames::Symmetry::kAntipodal;
+    j["symmetric"] = s.symmetry == frames::Symmetry::kAntipodal || s.symmetry == frames::Symmetry::kAntipodalThreefold;
     j["tetrahedral"] = s.symmetry == frames::Symmetry::kTetrahedral;
-    j["threefold"] = s.symmetry == frames::Symmetry::kThreefold;
+    j["threefold"] = s.symmetry == frames::Symmetry::kThreefold || s.symmetry == frames::Symmetry::kAntipodalThreefold;
     j["residual"] = d.residual;
     j["best_known_count"] = best > 0 ? nlohmann::ordered_json(best) : nlohmann::ordered_json(nullptr);
     j["search"] = {{"seed", s.seed}, {"start", d.start}};
@@ -104,9 +106,9 @@ void add_designs_command(CLI::App& app, Action& action) {
   c->add_option("--t", d->t, "Strength t (exact for every SH of degree <= t), 1.." + std::to_string(runtime::kMaxDesignStrength))->required();
   CLI::Option* count = c->add_option("--count", d->count,
                 "Point count (default: the smallest known for t <= 10, antipodal sets of the smallest known count for odd t "
-                "(Womersley's 192 and 234 at 19 and 21) to 31, whole orbits (tetrahedral or threefold) for even t >= 12 (the smallest known up to 20) "
-                "and odd t >= 33)");
-  c->add_flag("--symmetric", d->symmetric, "Antipodal pairs: x and -x (odd bands vanish; half the unknowns)");
+                "(Womersley's 192 and 234 at 19 and 21) to 21, whole orbits for even t >= 12 (tetrahedral or threefold; the smallest known up to 20) "
+                "and for odd t >= 23 (antipodal threefold; antipodal sets at t = 25, 37, 49, ..., where those need 2 points fewer))");
+  c->add_flag("--symmetric", d->symmetric, "Antipodal pairs: x and -x (odd bands vanish; half the unknowns); with --threefold, orbits of 6");
   c->add_flag("--tetrahedral", d->tetrahedral, "Whole orbits of the chiral tetrahedral group (12 rotations; count a multiple of 12): only its invariant harmonics remain");
   c->add_flag("--threefold", d->threefold, "Whole orbits of the turns about z by 120 degrees (count a multiple of 3): only the harmonics with 3 | m remain");
   keep_old_spelling(c, count, "--points", d->count);

@@ -30,9 +30,6 @@ constexpr int kOrbitIterations = 400;
 constexpr int kStallIterations = 25;
 // Dampings tried in one Levenberg-Marquardt step before the search gives up.
 constexpr int kDampingAttempts = 12;
-// Odd strengths search antipodal sets (fewer points) up to here; above, those take minutes where
-// sets of whole orbits take seconds.
-constexpr int kLargestAntipodalDefault = 31;
 constexpr double kStallFactor = 0.5;
 
 Point normalized(const Point& p) {
@@ -237,6 +234,9 @@ struct OrbitGroup {
   std::vector<runtime::Matrix3> rotations;
   std::vector<runtime::Matrix3> copies;
   std::vector<double> weights;  // per row of bands 1..t, in index order
+  // The rotations' second half is the first half negated: a design lists its points under the
+  // first half, then their negatives (the layout of antipodal designs).
+  bool negatives_last = false;
 };
 
 // The chiral tetrahedral group: the 12 rotations that map the cube's diagonals to each other, a
@@ -275,18 +275,42 @@ OrbitGroup threefold_group(int t) {
   return group;
 }
 
+// The threefold turns and x -> -x: orbits of 6 (the turns and their negatives; D_l(-R) =
+// (-1)^l D_l(R), the band matrices being homogeneous of degree l in R's entries). Over an orbit
+// y_l^m sums to 6 y_l^m at the generator when l is even and 3 divides m, and to 0 otherwise.
+OrbitGroup antipodal_threefold_group(int t) {
+  OrbitGroup group = threefold_group(t);
+  const std::size_t turns = group.rotations.size();
+  for (std::size_t k = 0; k < turns; ++k) {
+    runtime::Matrix3 negative = group.rotations[k];
+    for (double& x : negative) x = -x;
+    group.rotations.push_back(negative);
+  }
+  group.negatives_last = true;
+  std::size_t row = 0;
+  for (int l = 1; l <= t; ++l)
+    for (int m = -l; m <= l; ++m, ++row) group.weights[row] = l % 2 ? 0.0 : 2 * group.weights[row];
+  return group;
+}
+
 // Band l's invariants: the multiplicity of the trivial representation, (1/|G|) sum over the group
 // of the band's character. Tetrahedral: (2l + 1 + 3 (-1)^l + 8 c_l) / 12 with c_l = 1, 0, -1 for
 // l = 0, 1, 2 mod 3 (identity, three half turns, eight third turns). Threefold: 1 + 2 floor(l / 3)
 // (m = 0 and the pairs +-m with 3 | m).
 int tetrahedral_invariants(int l) { return (2 * l + 1 + (l % 2 ? -3 : 3) + 8 * (l % 3 == 0 ? 1 : l % 3 == 1 ? 0 : -1)) / 12; }
 int threefold_invariants(int l) { return 1 + 2 * (l / 3); }
+int antipodal_threefold_invariants(int l) { return l % 2 ? 0 : threefold_invariants(l); }
 
-// Whole orbits with two free parameters each, at least as many as the invariants of bands 1..t.
-int orbit_count(int t, int group_size, int (*invariants)(int)) {
+// Whole orbits with two free parameters each, at least as many as the invariants of bands 1..t;
+// one parameter fewer where the turns about z commute with the group (threefold, with or without
+// x -> -x): turning the whole set about z keeps it such a set, so the parameters must exceed the
+// invariants. (The threefold invariants' sum is odd at every t, so that count is the same
+// either way; with x -> -x an even sum needs one more orbit, and a search at the smaller count
+// found nothing at t = 25, 29, 33.)
+int orbit_count(int t, int group_size, int (*invariants)(int), bool turns_about_z) {
   int sum = 0;
   for (int l = 1; l <= t; ++l) sum += invariants(l);
-  return group_size * ((sum + 1) / 2);
+  return group_size * ((sum + (turns_about_z ? 2 : 1)) / 2);
 }
 
 // An orthonormal basis of each band's invariant subspace: the eigenvectors of eigenvalue 1 of the
@@ -399,8 +423,10 @@ Design run_orbit_start(int t, int count, int k, std::uint64_t seed, const OrbitG
   }
   Design d;
   d.t = t;
-  for (const Point& p : g)
-    for (const runtime::Matrix3& q : group.rotations) d.points.push_back(turned(q.data(), p));
+  const std::size_t halves = group.negatives_last ? 2 : 1, per_half = group.rotations.size() / halves;
+  for (std::size_t half = 0; half < halves; ++half)
+    for (const Point& p : g)
+      for (std::size_t q = half * per_half; q < (half + 1) * per_half; ++q) d.points.push_back(turned(group.rotations[q].data(), p));
   d.residual = design_residual(d.points, t);
   d.start = d.residual <= runtime::tolerance::kDesignResidual ? k : -1;
   return d;
@@ -427,8 +453,9 @@ int symmetric_count(int t) {
   return 2 * ((equations + 3 + 1) / 2);  // 2K - 3 unknowns (the set turns freely) >= equations
 }
 
-int tetrahedral_count(int t) { return orbit_count(t, 12, tetrahedral_invariants); }
-int threefold_count(int t) { return orbit_count(t, 3, threefold_invariants); }
+int tetrahedral_count(int t) { return orbit_count(t, 12, tetrahedral_invariants, false); }
+int threefold_count(int t) { return orbit_count(t, 3, threefold_invariants, true); }
+int antipodal_threefold_count(int t) { return orbit_count(t, 6, antipodal_threefold_invariants, true); }
 
 int orbit_size(Symmetry symmetry) {
   switch (symmetry) {
@@ -436,19 +463,24 @@ int orbit_size(Symmetry symmetry) {
     case Symmetry::kAntipodal: return 2;
     case Symmetry::kTetrahedral: return 12;
     case Symmetry::kThreefold: return 3;
+    case Symmetry::kAntipodalThreefold: return 6;
   }
   return 1;
 }
 
 DesignChoice default_design(int t) {
   if (t <= 10) return {best_known_count(t), Symmetry::kFree};
-  if (t % 2 == 0 || t > kLargestAntipodalDefault) {
+  if (t % 2 == 0) {
     // Tetrahedral sets are faster (a quarter of the unknowns); threefold ones reach the efficient
-    // count where tetrahedral ones miss it by 3 (odd t = 39, 43, 51, ...).
+    // count where tetrahedral ones miss it.
     if (threefold_count(t) < tetrahedral_count(t)) return {threefold_count(t), Symmetry::kThreefold};
     return {tetrahedral_count(t), Symmetry::kTetrahedral};
   }
   if (t <= 21) return {t == 19 || t == 21 ? symmetric_count(t) : best_known_count(t), Symmetry::kAntipodal};
+  // Odd t: antipodal threefold orbits (seconds) where they need no more points than an antipodal
+  // set (minutes); at t = 25, 37, 49, ... (every 12th) they need 2 more, and the antipodal set is
+  // searched.
+  if (antipodal_threefold_count(t) <= symmetric_count(t)) return {antipodal_threefold_count(t), Symmetry::kAntipodalThreefold};
   return {symmetric_count(t), Symmetry::kAntipodal};
 }
 
@@ -463,6 +495,7 @@ Design search_design(const DesignSearch& s) {
   std::optional<OrbitGroup> group;
   if (s.symmetry == Symmetry::kTetrahedral) group = tetrahedral_group(s.t);
   if (s.symmetry == Symmetry::kThreefold) group = threefold_group(s.t);
+  if (s.symmetry == Symmetry::kAntipodalThreefold) group = antipodal_threefold_group(s.t);
   std::optional<InvariantBasis> basis;
   if (group) basis.emplace(group->rotations, s.t, s.interrupted);
   Design best;

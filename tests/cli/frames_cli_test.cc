@@ -42,6 +42,13 @@ TEST(DesignsCli, ASymmetryWithoutACountPicksItsOwnCount) {
   const nlohmann::json j = nlohmann::json::parse(test::read_text(out));
   EXPECT_EQ(j.at("symmetric"), true);
   EXPECT_EQ(j.at("points").size(), 94u) << r.out;
+  // --symmetric with --threefold: orbits of 6 (t = 23: 276 points).
+  const test::RunResult both = test::run_zhf("designs --t 23 --symmetric --threefold --quiet --json '" + out + "'");
+  ASSERT_EQ(both.exit_code, 0) << both.err;
+  const nlohmann::json k = nlohmann::json::parse(test::read_text(out));
+  EXPECT_EQ(k.at("symmetric"), true);
+  EXPECT_EQ(k.at("threefold"), true);
+  EXPECT_EQ(k.at("points").size(), 276u) << both.out;
 }
 
 TEST(FrameCli, DesignsAreTightAndTablesReportTheirBands) {
@@ -94,7 +101,9 @@ TEST(FramesCli, BadInputGetsOneLineAndNoOutput) {
   for (const Case& c : {Case{"designs --t 0 --json '" + out + "'", 2, "--t"}, Case{"designs --t 101 --json '" + out + "'", 2, "--t"},
                         Case{"designs --t 3 --points 7 --symmetric --json '" + out + "'", 2, "even count"},
                         Case{"designs --t 13 --count 100 --threefold --json '" + out + "'", 2, "multiple of 3 points"},
-                        Case{"designs --t 13 --threefold --tetrahedral --json '" + out + "'", 2, "choose one"},
+                        Case{"designs --t 13 --threefold --tetrahedral --json '" + out + "'", 2, "not with --symmetric or --threefold"},
+                        Case{"designs --t 23 --symmetric --tetrahedral --json '" + out + "'", 2, "not with --symmetric or --threefold"},
+                        Case{"designs --t 23 --symmetric --threefold --count 280 --json '" + out + "'", 2, "multiple of 6 points"},
                         Case{"designs --t 12 --points 13 --starts 1 --json '" + out + "'", 1, "no 13-point 12-design"},
                         Case{"frame --points '" + zero + "' --bands 0..1 --json '" + out + "'", 3, "[1]: not a direction"},
                         Case{"frame --points '" + zero + "' --json '" + out + "'", 2, "--bands"},

@@ -160,18 +160,55 @@ TEST(Designs, ThreefoldSetsAreWholeOrbitsAndExact) {
   }
 }
 
-TEST(Designs, DefaultCountsNeverExceedTheEfficientCount) {
+// Antipodal threefold orbits (6 points each) at t = 23: 276 points, 2 below the antipodal count.
+// The set is its first half and that half's negatives, and the turn by 120 degrees about z maps it
+// to itself; one orbit fewer has fewer parameters than invariants (the whole set turns freely
+// about z) and finds nothing.
+TEST(Designs, AntipodalThreefoldSetsAreWholeOrbitsAndExact) {
+  DesignSearch s;
+  s.t = 23;
+  s.points = antipodal_threefold_count(23);
+  EXPECT_EQ(s.points, 276);
+  EXPECT_LT(s.points, symmetric_count(23));
+  s.symmetry = Symmetry::kAntipodalThreefold;
+  s.starts = 16;
+  const Design one = search_on_one_and_two_threads(s);
+  ASSERT_GE(one.start, 0);
+  const std::size_t half = one.points.size() / 2;
+  for (std::size_t i = 0; i < half; ++i)
+    for (int k = 0; k < 3; ++k) ASSERT_EQ(one.points[i + half][k], -one.points[i][k]) << "point " << i;
+  const double c = -0.5, sn = std::sqrt(3.0) / 2;
+  for (const Point& p : one.points) {
+    const Point turned{c * p[0] - sn * p[1], sn * p[0] + c * p[1], p[2]};
+    double nearest = 1;
+    for (const Point& q : one.points) nearest = std::min(nearest, std::hypot(q[0] - turned[0], q[1] - turned[1], q[2] - turned[2]));
+    EXPECT_LE(nearest, runtime::tolerance::kExactToRounding);
+  }
+  s.points -= 6;
+  s.starts = 4;
+  EXPECT_LT(search_design(s).start, 0);
+}
+
+// The default never takes more points than the smallest known count (t <= 21), zhf's antipodal
+// construction (its count, symmetric_count, is reached from t = 19 on; below that the smallest
+// known counts are smaller than antipodal searches reach) or the efficient count, at every t.
+TEST(Designs, DefaultCountsNeverExceedTheAntipodalTheBestKnownOrTheEfficientCount) {
   for (int t = 1; t <= runtime::kMaxDesignStrength; ++t) {
     const DesignChoice choice = default_design(t);
     EXPECT_EQ(choice.points % orbit_size(choice.symmetry), 0) << "t " << t;
     if (t <= 21) {
       EXPECT_LE(choice.points, best_known_count(t)) << "t " << t;
     }
+    if (t >= 19) {
+      EXPECT_LE(choice.points, symmetric_count(t)) << "t " << t;
+    }
     if (t > 10) {
       EXPECT_LE(choice.points, efficient_count(t)) << "t " << t;
     }
   }
-  EXPECT_EQ(default_design(39).symmetry, Symmetry::kThreefold);  // 801 points, tetrahedral 804
+  EXPECT_EQ(default_design(39).symmetry, Symmetry::kAntipodalThreefold);  // 780 points, antipodal 782, threefold 801
+  EXPECT_EQ(default_design(39).points, 780);
+  EXPECT_EQ(default_design(49).symmetry, Symmetry::kAntipodal);  // 1228 points, antipodal threefold 1230
   EXPECT_EQ(default_design(40).symmetry, Symmetry::kTetrahedral);
 }
 
@@ -191,6 +228,9 @@ TEST(Designs, RefusesWhatItCannotSearch) {
   s.symmetry = Symmetry::kThreefold;
   s.points = 10;
   EXPECT_THROW(search_design(s), std::invalid_argument);  // not whole orbits of 3
+  s.symmetry = Symmetry::kAntipodalThreefold;
+  s.points = 9;
+  EXPECT_THROW(search_design(s), std::invalid_argument);  // not whole orbits of 6
 }
 
 TEST(Frames, DesignsMakeTightFramesUpToHalfTheirStrength) {

@@ -3,9 +3,9 @@
 // design energy E = sum_{1<=l<=t} sum_m (sum_i y_l^m(x_i))^2 with nlopt's L-BFGS from spiral starts,
 // then polished by Levenberg-Marquardt on the residual vector itself to the rounding floor.
 // Antipodal sets (x and -x) need only the even bands: half the points, a third fewer equations.
-// Sets of whole orbits of a rotation group (the 12 rotations of the chiral tetrahedral group, or
-// the 3 turns about z by 120 degrees) leave only the group's invariant harmonics, about
-// (t+1)^2 / |G| of them: Levenberg-Marquardt on the orbits' generators alone, from random
+// Sets of whole orbits of a group (the 12 rotations of the chiral tetrahedral group, the 3 turns
+// about z by 120 degrees, or those turns and x -> -x) leave only the group's invariant harmonics,
+// about (t+1)^2 / |G| of them: Levenberg-Marquardt on the orbits' generators alone, from random
 // directions, on the residual's coordinates in an orthonormal basis of those harmonics.
 //
 // Accuracy: a design is accepted when its residual, max_{l,m} |sum_i y_l^m(x_i)| / M, is at most
@@ -47,16 +47,22 @@ int tetrahedral_count(int t);
 // The same for the 3 turns about z (orbits of 3): at most the efficient count for every t >= 11,
 // 3 below the tetrahedral count at odd t = 39, 43, 51, ...
 int threefold_count(int t);
+// The same for orbits of 6: the three turns and x -> -x (only the even bands' harmonics with
+// 3 | m remain). At most the antipodal count at every odd t from 11.
+int antipodal_threefold_count(int t);
 
 // The symmetry a search keeps: free points, antipodal pairs (x and -x: odd bands vanish, half the
-// unknowns), or whole orbits of the tetrahedral or the threefold group.
-enum class Symmetry { kFree, kAntipodal, kTetrahedral, kThreefold };
-int orbit_size(Symmetry symmetry);  // 1, 2, 12, 3: the count is a multiple of it
+// unknowns), or whole orbits of the tetrahedral group, the threefold turns, or the threefold turns
+// and x -> -x.
+enum class Symmetry { kFree, kAntipodal, kTetrahedral, kThreefold, kAntipodalThreefold };
+int orbit_size(Symmetry symmetry);  // 1, 2, 12, 3, 6: the count is a multiple of it
 
 // What zhf designs searches by default: the smallest known count for t <= 10; antipodal sets for
-// odd t = 11..31 (the smallest known count up to 21, Womersley's at 19 and 21, the symmetric count
-// above); for even t >= 12 and odd t >= 33 whole orbits, tetrahedral unless the threefold count
-// is smaller (the smallest known count at even t up to 20; never above the efficient count).
+// odd t = 11..21 (the smallest known count, Womersley's at 19 and 21); whole orbits for even
+// t >= 12, tetrahedral unless the threefold count is smaller (the smallest known count at even t up
+// to 20), and for odd t >= 23 antipodal threefold orbits, or antipodal sets where those need fewer
+// points (t = 25, 37, ..., 97: 2 fewer). Never above the smallest known count (t <= 21), the
+// antipodal count (t >= 19) or the efficient count (t >= 11).
 struct DesignChoice {
   int points = 0;
   Symmetry symmetry = Symmetry::kFree;
