@@ -11,8 +11,8 @@ Each rule names its home; a finding prints file:line and the rule, and the exit 
   uses one as an input, such as a tiny test angle, says "// an input, not a tolerance"); in the tests,
   the bound of EXPECT_NEAR / ASSERT_NEAR is a name, never a literal.
 - Lobe table paths: "order_N.json" is built by runtime::table_path (runtime/table_io.h) only.
-- Threads: the pool in runtime/parallel.h and the interrupt watchdog in io/src/signals.cc only (tests may
-  start their own, e.g. to send signals).
+- Threads (std::thread, std::async): the pool in runtime/parallel.h and the interrupt watchdog in
+  io/src/signals.cc only (tests may start their own, e.g. to send signals).
 - Random draws: no std::*_distribution (implementation-defined); sh/random.h draws from raw bits.
 - Pi: runtime::kPi and kPiLong (runtime/sh_eval.h); no other digits of pi and no M_PI outside the
   tests.
@@ -58,7 +58,7 @@ LIMIT_DEFINITION = re.compile(r"constexpr\s+[\w:]+\s+k(Max|Min)[A-Z]\w*\s*=")
 SCIENTIFIC = re.compile(r"(?<![\w.])\d+(\.\d+)?[eE]-\d+[fFlL]?\b")
 NEAR_LITERAL = re.compile(r"(EXPECT|ASSERT)_NEAR\(.*,\s*-?[\d.]+([eE]-?\d+)?\)\s*(<<|;)")
 TABLE_NAME = re.compile(r"(order_\" \+ [^+]+ \+ \"\.json|order_\{\w+\}\.json)")
-THREAD = re.compile(r"std::thread\b(?!::hardware_concurrency)")
+THREAD = re.compile(r"std::thread\b(?!::hardware_concurrency)|std::async\b")
 DISTRIBUTION = re.compile(r"std::\w+_distribution\b")
 INPUT_MARK = "// an input, not a tolerance"
 PI = re.compile(r"3\.14159|\bM_PI\b")

@@ -24,6 +24,7 @@
 #include "zhf/io/signals.h"
 #include "zhf/runtime/finite.h"
 #include "zhf/runtime/orthogonal.h"
+#include "zhf/runtime/parallel.h"
 #include "zhf/runtime/rotator.h"
 
 namespace zhf::splat {
@@ -80,7 +81,7 @@ void transform_binary(std::istream& file, io::PendingFile& pending, const ply::H
   bool other_holds_output = false;
   for (std::uint64_t done = 0; done < header.vertices;) {
     const std::uint64_t next = done + count;
-    std::future<std::uint64_t> io = std::async(std::launch::async | std::launch::deferred, [&, next, other_holds_output] {
+    std::future<std::uint64_t> io = runtime::start_beside([&, next, other_holds_output] {
       if (other_holds_output) pending.write(reinterpret_cast<const char*>(other.data()), other.size());
       return next < header.vertices ? read_chunk(other, next) : std::uint64_t(0);
     });

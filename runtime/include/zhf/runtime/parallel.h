@@ -1,5 +1,6 @@
 // zhf's one thread pool: every batch, search and design start that runs on several threads goes
-// through parallel_chunks (contiguous ranges) or parallel_for (indices taken one at a time).
+// through parallel_chunks (contiguous ranges) or parallel_for (indices taken one at a time), and
+// work that overlaps the caller's (file reads and writes beside a batch) through start_beside.
 // Both run on the calling thread among the workers, and carry on with the threads they could start
 // when the system refuses more (a process limit).
 #pragma once
@@ -7,8 +8,10 @@
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
+#include <future>
 #include <system_error>
 #include <thread>
+#include <utility>
 #include <vector>
 
 namespace zhf::runtime {
@@ -60,6 +63,13 @@ void parallel_chunks(std::size_t count, int threads, Work&& work) {
   work(std::size_t(0), std::min(count, chunk));
   work(started, count);
   for (std::thread& t : pool) t.join();
+}
+
+// Starts work() on a thread of its own while the caller goes on, and returns its future; when no
+// thread can be started, work() runs on the calling thread at the future's get().
+template <class Work>
+auto start_beside(Work&& work) -> std::future<decltype(work())> {
+  return std::async(std::launch::async | std::launch::deferred, std::forward<Work>(work));
 }
 
 }  // namespace zhf::runtime
