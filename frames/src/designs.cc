@@ -31,6 +31,10 @@ constexpr int kStallIterations = 25;
 // Dampings tried in one Levenberg-Marquardt step before the search gives up.
 constexpr int kDampingAttempts = 12;
 constexpr double kStallFactor = 0.5;
+// Antipodal sets up to here: L-BFGS on the design energy from spiral starts, then polished (the
+// smallest known counts at odd t = 11..21 come from it). Above, Levenberg-Marquardt on the pairs
+// from random directions, as orbits of x -> -x, which is many times faster there.
+constexpr int kLargestAntipodalEnergySearch = 21;
 
 Point normalized(const Point& p) {
   const double n = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
@@ -275,6 +279,17 @@ OrbitGroup threefold_group(int t) {
   return group;
 }
 
+// x -> -x alone: orbits of 2, the even bands' harmonics (weights 2), all of them invariant.
+OrbitGroup antipodal_group(int t) {
+  OrbitGroup group;
+  group.rotations = {runtime::kIdentity, {-1, 0, 0, 0, -1, 0, 0, 0, -1}};
+  group.copies = {runtime::kIdentity};
+  for (int l = 1; l <= t; ++l)
+    for (int m = -l; m <= l; ++m) group.weights.push_back(l % 2 ? 0.0 : 2.0);
+  group.negatives_last = true;
+  return group;
+}
+
 // The threefold turns and x -> -x: orbits of 6 (the turns and their negatives; D_l(-R) =
 // (-1)^l D_l(R), the band matrices being homogeneous of degree l in R's entries). Over an orbit
 // y_l^m sums to 6 y_l^m at the generator when l is even and 3 divides m, and to 0 otherwise.
@@ -468,6 +483,17 @@ int orbit_size(Symmetry symmetry) {
   return 1;
 }
 
+const char* symmetry_name(Symmetry symmetry) {
+  switch (symmetry) {
+    case Symmetry::kFree: return "free";
+    case Symmetry::kAntipodal: return "antipodal";
+    case Symmetry::kTetrahedral: return "tetrahedral";
+    case Symmetry::kThreefold: return "threefold";
+    case Symmetry::kAntipodalThreefold: return "antipodal threefold";
+  }
+  return "";
+}
+
 DesignChoice default_design(int t) {
   if (t <= 10) return {best_known_count(t), Symmetry::kFree};
   if (t % 2 == 0) {
@@ -496,6 +522,7 @@ Design search_design(const DesignSearch& s) {
   if (s.symmetry == Symmetry::kTetrahedral) group = tetrahedral_group(s.t);
   if (s.symmetry == Symmetry::kThreefold) group = threefold_group(s.t);
   if (s.symmetry == Symmetry::kAntipodalThreefold) group = antipodal_threefold_group(s.t);
+  if (s.symmetry == Symmetry::kAntipodal && s.t > kLargestAntipodalEnergySearch) group = antipodal_group(s.t);
   std::optional<InvariantBasis> basis;
   if (group) basis.emplace(group->rotations, s.t, s.interrupted);
   Design best;

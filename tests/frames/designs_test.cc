@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -210,6 +211,27 @@ TEST(Designs, DefaultCountsNeverExceedTheAntipodalTheBestKnownOrTheEfficientCoun
   EXPECT_EQ(default_design(39).points, 780);
   EXPECT_EQ(default_design(49).symmetry, Symmetry::kAntipodal);  // 1228 points, antipodal threefold 1230
   EXPECT_EQ(default_design(40).symmetry, Symmetry::kTetrahedral);
+}
+
+// docs/frames.md's table of the default count for every t, held to the code.
+TEST(Designs, TheDocumentedCountsAreTheDefaults) {
+  std::istringstream doc(test::read_text(test::source_path("docs/frames.md")));
+  const std::string header = "| t | M (zhf) | symmetry | antipodal M | best known M (t <= 21) or efficient count |";
+  std::string line;
+  while (std::getline(doc, line) && line != header) {
+  }
+  ASSERT_EQ(line, header) << "docs/frames.md has no table of counts";
+  std::getline(doc, line);  // | --- | ...
+  int t = 0;
+  while (std::getline(doc, line) && !line.empty()) {
+    ++t;
+    const DesignChoice choice = default_design(t);
+    const int best = best_known_count(t);
+    const std::string expected = "| " + std::to_string(t) + " | " + std::to_string(choice.points) + " | " + symmetry_name(choice.symmetry) +
+                                 " | " + std::to_string(symmetric_count(t)) + " | " + std::to_string(best > 0 ? best : efficient_count(t)) + " |";
+    EXPECT_EQ(line, expected) << "t " << t;
+  }
+  EXPECT_EQ(t, runtime::kMaxDesignStrength);
 }
 
 TEST(Designs, RefusesWhatItCannotSearch) {

@@ -56,6 +56,8 @@ int antipodal_threefold_count(int t);
 // and x -> -x.
 enum class Symmetry { kFree, kAntipodal, kTetrahedral, kThreefold, kAntipodalThreefold };
 int orbit_size(Symmetry symmetry);  // 1, 2, 12, 3, 6: the count is a multiple of it
+// "free", "antipodal", "tetrahedral", "threefold", "antipodal threefold".
+const char* symmetry_name(Symmetry symmetry);
 
 // What zhf designs searches by default: the smallest known count for t <= 10; antipodal sets for
 // odd t = 11..21 (the smallest known count, Womersley's at 19 and 21); whole orbits for even
