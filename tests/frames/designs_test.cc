@@ -142,6 +142,17 @@ TEST(Designs, TetrahedralSetsReachTheSmallestKnownCountsAtEvenStrengths) {
   EXPECT_THROW(search_design(s), std::invalid_argument);  // not whole orbits
 }
 
+// The turn by 120 degrees about z maps the set to itself (up to the rounding of its sine).
+void expect_threefold(const std::vector<Point>& points) {
+  const double c = -0.5, sn = std::sqrt(3.0) / 2;
+  for (const Point& p : points) {
+    const Point turned{c * p[0] - sn * p[1], sn * p[0] + c * p[1], p[2]};
+    double nearest = 1;
+    for (const Point& q : points) nearest = std::min(nearest, std::hypot(q[0] - turned[0], q[1] - turned[1], q[2] - turned[2]));
+    EXPECT_LE(nearest, runtime::tolerance::kExactToRounding);
+  }
+}
+
 TEST(Designs, ThreefoldSetsAreWholeOrbitsAndExact) {
   DesignSearch s;
   s.t = 17;
@@ -151,14 +162,7 @@ TEST(Designs, ThreefoldSetsAreWholeOrbitsAndExact) {
   s.starts = 16;
   const Design one = search_on_one_and_two_threads(s);
   ASSERT_GE(one.start, 0);
-  // The turn by 120 degrees about z maps the set to itself (up to the rounding of its sine).
-  const double c = -0.5, sn = std::sqrt(3.0) / 2;
-  for (const Point& p : one.points) {
-    const Point turned{c * p[0] - sn * p[1], sn * p[0] + c * p[1], p[2]};
-    double nearest = 1;
-    for (const Point& q : one.points) nearest = std::min(nearest, std::hypot(q[0] - turned[0], q[1] - turned[1], q[2] - turned[2]));
-    EXPECT_LE(nearest, runtime::tolerance::kExactToRounding);
-  }
+  expect_threefold(one.points);
 }
 
 // Antipodal threefold orbits (6 points each) at t = 23: 276 points, 2 below the antipodal count.
@@ -178,13 +182,7 @@ TEST(Designs, AntipodalThreefoldSetsAreWholeOrbitsAndExact) {
   const std::size_t half = one.points.size() / 2;
   for (std::size_t i = 0; i < half; ++i)
     for (int k = 0; k < 3; ++k) ASSERT_EQ(one.points[i + half][k], -one.points[i][k]) << "point " << i;
-  const double c = -0.5, sn = std::sqrt(3.0) / 2;
-  for (const Point& p : one.points) {
-    const Point turned{c * p[0] - sn * p[1], sn * p[0] + c * p[1], p[2]};
-    double nearest = 1;
-    for (const Point& q : one.points) nearest = std::min(nearest, std::hypot(q[0] - turned[0], q[1] - turned[1], q[2] - turned[2]));
-    EXPECT_LE(nearest, runtime::tolerance::kExactToRounding);
-  }
+  expect_threefold(one.points);
   s.points -= 6;
   s.starts = 4;
   EXPECT_LT(search_design(s).start, 0);
