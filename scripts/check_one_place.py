@@ -10,7 +10,8 @@ Each rule names its home; a finding prints file:line and the rule, and the exit 
   exponent (1e-6, 2.5e-7) stands in runtime/tolerances.h or runtime/limits.h only (a line that
   uses one as an input, such as a tiny test angle, says "// an input, not a tolerance"); in the tests,
   the bound of EXPECT_NEAR / ASSERT_NEAR is a name, never a literal.
-- Lobe table paths: "order_N.json" is built by runtime::table_path (runtime/table_io.h) only.
+- Lobe table paths: "order_N.json" is built by runtime::table_path (runtime/table_io.h) only; design
+  paths, "t_T.json", by frames::design_path (frames/designs.h) only.
 - Threads (std::thread, std::async): the pool in runtime/parallel.h and the interrupt watchdog in
   io/src/signals.cc only (tests may start their own, e.g. to send signals).
 - Random draws: no std::*_distribution (implementation-defined); sh/random.h draws from raw bits.
@@ -28,6 +29,7 @@ SKIP_DIRS = {"generated", "build", ".git", "node_modules", "fuzz_corpus", "data"
 LIMITS = "runtime/include/zhf/runtime/limits.h"
 TOLERANCES = "runtime/include/zhf/runtime/tolerances.h"
 TABLE_IO = "runtime/include/zhf/runtime/table_io.h"
+DESIGNS = "frames/include/zhf/frames/designs.h"
 PARALLEL = "runtime/include/zhf/runtime/parallel.h"
 WATCHDOG = "io/src/signals.cc"
 RANDOM = "sh/include/zhf/sh/random.h"
@@ -58,6 +60,7 @@ LIMIT_DEFINITION = re.compile(r"constexpr\s+[\w:]+\s+k(Max|Min)[A-Z]\w*\s*=")
 SCIENTIFIC = re.compile(r"(?<![\w.])\d+(\.\d+)?[eE]-\d+[fFlL]?\b")
 NEAR_LITERAL = re.compile(r"(EXPECT|ASSERT)_NEAR\(.*,\s*-?[\d.]+([eE]-?\d+)?\)\s*(<<|;)")
 TABLE_NAME = re.compile(r"(order_\" \+ [^+]+ \+ \"\.json|order_\{\w+\}\.json)")
+DESIGN_NAME = re.compile(r"t_\" \+ [^+]+ \+ \"\.json|t_\{\w+\}\.json")
 THREAD = re.compile(r"std::thread\b(?!::hardware_concurrency)|std::async\b")
 DISTRIBUTION = re.compile(r"std::\w+_distribution\b")
 INPUT_MARK = "// an input, not a tolerance"
@@ -83,6 +86,8 @@ def check(path, findings):
             findings.append(f"{where}: a NEAR bound that is a literal, not a named tolerance")
         if path != TABLE_IO and TABLE_NAME.search(line):
             findings.append(f"{where}: a lobe table path built outside runtime::table_path ({TABLE_IO})")
+        if path != DESIGNS and DESIGN_NAME.search(line):
+            findings.append(f"{where}: a design path built outside frames::design_path ({DESIGNS})")
         if cpp and not test and path not in (PARALLEL, WATCHDOG) and THREAD.search(line):
             findings.append(f"{where}: threads started outside {PARALLEL}")
         if cpp and DISTRIBUTION.search(line):
@@ -104,7 +109,7 @@ def main():
     if findings:
         print(f"check_one_place: {len(findings)} finding(s)", file=sys.stderr)
         return 1
-    print("check_one_place: limits, tolerances, table paths, threads, random draws, JSON values and pi each in one place")
+    print("check_one_place: limits, tolerances, table and design paths, threads, random draws, JSON values and pi each in one place")
     return 0
 
 

@@ -42,7 +42,7 @@ Cubature gauss_product_cubature(int degree) {
 
 Cubature design_cubature(const std::string& folder, int degree) {
   for (int t = std::max(degree, 1); t <= runtime::kMaxDesignStrength; ++t) {
-    const std::string path = folder + "/t_" + std::to_string(t) + ".json";
+    const std::string path = design_path(folder, t);
     if (!is_file(path)) continue;
     Cubature c;
     c.degree = t;

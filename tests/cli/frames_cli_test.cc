@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "test_support.h"
+#include "zhf/frames/designs.h"
 #include "zhf/runtime/tolerances.h"
 
 namespace zhf {
@@ -26,7 +27,7 @@ TEST(DesignsCli, SameFileWhateverTheThreadsAndAsCheckedIn) {
     ASSERT_EQ(a.exit_code, 0) << a.err;
     ASSERT_EQ(b.exit_code, 0) << b.err;
     EXPECT_EQ(test::read_text(one), test::read_text(two)) << "t " << t;
-    EXPECT_EQ(test::read_text(one), test::read_text(test::source_path("generated/designs/t_" + std::to_string(t) + ".json")))
+    EXPECT_EQ(test::read_text(one), test::read_text(frames::design_path(test::source_path("generated/designs"), t)))
         << "t " << t << ": the checked-in design is stale (bash scripts/make_designs.sh)";
   }
 }

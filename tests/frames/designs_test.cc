@@ -255,7 +255,7 @@ TEST(Designs, RefusesWhatItCannotSearch) {
 
 TEST(Frames, DesignsMakeTightFramesUpToHalfTheirStrength) {
   for (int t : {2, 4, 7, 10, 15}) {
-    const std::vector<Point> d = read_points(test::source_path("generated/designs/t_" + std::to_string(t) + ".json"));
+    const std::vector<Point> d = read_points(design_path(test::source_path("generated/designs"), t));
     const FrameBounds tight = frame_bounds(d, 0, t / 2);
     EXPECT_TRUE(tight.tight()) << "t " << t << ": A " << tight.lower << ", B " << tight.upper;
     EXPECT_NEAR(tight.lower, d.size() / (4 * double(kPi)), 1e-12 * tight.upper) << "t " << t;

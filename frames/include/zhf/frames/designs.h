@@ -98,5 +98,7 @@ Design search_design(const DesignSearch& search);
 // to runtime::kMaxTableBytes. Throws runtime::InputError naming the file and entry.
 std::vector<Point> read_points(const std::string& path);
 inline constexpr const char* kDesignFormat = "zhf-design-1";
+// A design of strength t in a folder of designs (generated/designs): folder/t_T.json.
+inline std::string design_path(const std::string& folder, int t) { return folder + "/t_" + std::to_string(t) + ".json"; }
 
 }  // namespace zhf::frames
