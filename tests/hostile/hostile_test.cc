@@ -455,16 +455,16 @@ TEST(Hostile, InterruptsStopChildrenAndLeaveThePreviousOutputs) {
       exit == 130 && snapshot(box.dir()) == before && leftovers(box).empty();
 }
 
-// One start of a large antipodal design search runs for a minute without polling (tetrahedral
-// ones poll every step): the watchdog ends it a grace period after the signal, its temporary
-// output gone and the previous file as it was.
+// One start of a free design search on many points (L-BFGS on the energy of 514 points, t = 31)
+// runs for about a minute without polling (orbit searches poll every step): the watchdog ends it a
+// grace period after the signal, its temporary output gone and the previous file as it was.
 TEST(Hostile, WorkThatCannotPollIsEndedByTheWatchdog) {
   Sandbox box;
   box.write("design.json", "previous design\n");
   const Snapshot before = snapshot(box.dir());
   const test::TempDir errors_dir;
   const std::string errors = errors_dir.string() + "/stderr.txt";
-  const int exit = interrupted_exit(box, {"designs", "--t", "31", "--starts", "1", "--quiet", "--out", box.path("design.json")},
+  const int exit = interrupted_exit(box, {"designs", "--t", "31", "--count", "514", "--starts", "1", "--quiet", "--out", box.path("design.json")},
                                     SIGTERM, 1500, errors);
   EXPECT_EQ(exit, 143);
   // The watchdog's own line: the search did not poll, so the watchdog ended it (not the search's end).
@@ -481,7 +481,7 @@ TEST(Hostile, SignalsToEveryThreadStillEndTheRun) {
   Sandbox box;
   box.write("design.json", "previous design\n");
   const Snapshot before = snapshot(box.dir());
-  io::Process zhf = start_zhf({"designs", "--t", "31", "--starts", "1", "--quiet", "--out", box.path("design.json")}, "",
+  io::Process zhf = start_zhf({"designs", "--t", "31", "--count", "514", "--starts", "1", "--quiet", "--out", box.path("design.json")}, "",
                               {"TMPDIR=" + box.tmp()});
   std::this_thread::sleep_for(std::chrono::milliseconds(1500));
   std::vector<int> threads;
