@@ -45,14 +45,8 @@ int run_designs(const DesignsOptions& o) {
                : o.tetrahedral ? frames::Symmetry::kTetrahedral
                : o.threefold   ? frames::Symmetry::kThreefold
                                : s.points ? frames::Symmetry::kFree : choice.symmetry;
-  if (s.points == 0) {
-    // Each symmetry its own count: the default's where the default has that symmetry.
-    s.points = s.symmetry == choice.symmetry                 ? choice.points
-               : s.symmetry == frames::Symmetry::kTetrahedral ? frames::tetrahedral_count(s.t)
-               : s.symmetry == frames::Symmetry::kThreefold   ? frames::threefold_count(s.t)
-               : s.symmetry == frames::Symmetry::kAntipodalThreefold ? frames::antipodal_threefold_count(s.t)
-                                                              : frames::symmetric_count(s.t);
-  }
+  // Each symmetry its own count: the default's where the default has that symmetry.
+  if (s.points == 0) s.points = frames::symmetry_count(s.symmetry, s.t);
   if (s.points < 2) throw UsageError("--count: a design needs at least 2 points");
   const int orbit = frames::orbit_size(s.symmetry);
   if (s.points % orbit)

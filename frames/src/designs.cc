@@ -511,6 +511,19 @@ DesignChoice default_design(int t) {
   return {symmetric_count(t), Symmetry::kAntipodal};
 }
 
+int symmetry_count(Symmetry symmetry, int t) {
+  const DesignChoice choice = default_design(t);
+  if (symmetry == choice.symmetry) return choice.points;
+  switch (symmetry) {
+    case Symmetry::kFree: return efficient_count(t);
+    case Symmetry::kAntipodal: return symmetric_count(t);
+    case Symmetry::kTetrahedral: return tetrahedral_count(t);
+    case Symmetry::kThreefold: return threefold_count(t);
+    case Symmetry::kAntipodalThreefold: return antipodal_threefold_count(t);
+  }
+  return efficient_count(t);
+}
+
 Design search_design(const DesignSearch& s) {
   if (s.t < 1 || s.t > runtime::kMaxDesignStrength)
     throw std::invalid_argument("t " + std::to_string(s.t) + " is outside 1.." + std::to_string(runtime::kMaxDesignStrength));

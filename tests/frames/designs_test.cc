@@ -209,6 +209,14 @@ TEST(Designs, DefaultCountsNeverExceedTheAntipodalTheBestKnownOrTheEfficientCoun
   EXPECT_EQ(default_design(39).points, 780);
   EXPECT_EQ(default_design(49).symmetry, Symmetry::kAntipodal);  // 1228 points, antipodal threefold 1230
   EXPECT_EQ(default_design(40).symmetry, Symmetry::kTetrahedral);
+  // A symmetry asked for without a count: the default's count where the symmetry is the default's,
+  // otherwise its own.
+  for (int t = 1; t <= runtime::kMaxDesignStrength; ++t)
+    EXPECT_EQ(symmetry_count(default_design(t).symmetry, t), default_design(t).points) << "t " << t;
+  EXPECT_EQ(symmetry_count(Symmetry::kAntipodal, 12), 94);  // an antipodal 12-design is a 13-design
+  EXPECT_EQ(symmetry_count(Symmetry::kAntipodalThreefold, 25), 330);
+  EXPECT_EQ(symmetry_count(Symmetry::kTetrahedral, 31), tetrahedral_count(31));
+  EXPECT_EQ(symmetry_count(Symmetry::kThreefold, 39), 801);
 }
 
 // docs/frames.md's table of the default count for every t, held to the code.

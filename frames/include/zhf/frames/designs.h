@@ -70,6 +70,10 @@ struct DesignChoice {
   Symmetry symmetry = Symmetry::kFree;
 };
 DesignChoice default_design(int t);
+// The count a search of this symmetry takes at t when none is given: the default's where the
+// default has this symmetry, otherwise the symmetry's own (its invariants' count; the antipodal
+// count for antipodal sets; the efficient count for free sets).
+int symmetry_count(Symmetry symmetry, int t);
 
 struct DesignSearch {
   int t = 0;
