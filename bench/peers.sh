@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# zhf against its peers as users get it: the peer harness (../shared/peers, or $PEERS) built twice
+# and run back to back on this machine, pinned to one core:
+#   default build   everything -O3 without -march; zhf's row is zhf::dispatch (the project's Release
+#                   libzhf_dispatch.a, its path picked at run time) through zhf_dispatch_adapter.cc.txt;
+#   x86-64-v3 build everything -O3 -march=x86-64-v3; zhf's rows header-only, through
+#                   zhf_kernels_adapter.cc.txt and zhf_table_adapter.cc.txt.
+# The harness is copied to a private scratch folder and its adapters replaced there (its own copy
+# is never changed). Writes bench/peers/default_build.txt and default_build_then_x86_64_v3.txt,
+# then prints their comparison (bench/peers_compare.py). Refuses to write them from a modified tree
+# (RESULTS=dir writes elsewhere). Arguments: the orders (default 2,3,4,5,6,7,8,16,32,64).
+# Environment: PEERS, RESULTS, REPS (7), K (1024).
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/../scripts/setup.sh"
+cd "$ZHF_ROOT"
+orders=${1:-2,3,4,5,6,7,8,16,32,64}
+peers=${PEERS:-$ZHF_ROOT/../shared/peers}
+results=${RESULTS:-bench/peers}
+reps=${REPS:-7}
+k=${K:-1024}
+[ -f "$peers/build.sh" ] && [ -f "$peers/run.sh" ] || { echo "peers.sh: no peer harness at $peers (set PEERS)" >&2; exit 1; }
+[[ $orders =~ ^[0-9]+(,[0-9]+)*$ ]] || { echo "peers.sh: orders: '$orders' is not a comma-separated list of integers" >&2; exit 2; }
+if [ -z "${RESULTS:-}" ] && ! git diff --quiet HEAD --; then
+  echo "peers.sh: the tree has changes; commit them, or set RESULTS to write elsewhere" >&2
+  exit 1
+fi
+mkdir -p "$results"
+cmake --build "$ZHF_BUILD" -j "$ZHF_JOBS" --target zhf_dispatch
+
+scratch=$(mktemp -d)
+trap 'rm -rf "$scratch"' EXIT
+trap 'exit 130' INT
+trap 'exit 143' TERM
+
+# copy NAME: the harness in $scratch/NAME/harness, to be built into $scratch/NAME/out.
+copy() {
+  mkdir -p "$scratch/$1"
+  cp -r "$peers" "$scratch/$1/harness"
+}
+
+# The default build: the dispatch adapter in place of the table adapter, compiled against the
+# library's header and linked with it (two edits to the copy's build.sh, each checked).
+copy default
+cp bench/peers/zhf_dispatch_adapter.cc.txt "$scratch/default/harness/src/m_zhf_table.cc"
+build="$scratch/default/harness/build.sh"
+table_rule='rule zhf_table.o "$S/m_zhf_table.cc" '"'"'$(NATIVE)'"'"' "$ZHF_INC"'
+link_rule='-lhealpix_cxx -pthread'
+grep -qF "$table_rule" "$build" && grep -qF "$link_rule" "$build" ||
+  { echo "peers.sh: $peers/build.sh has changed; update the two edits in bench/peers.sh" >&2; exit 1; }
+library="$ZHF_BUILD/dispatch/libzhf_dispatch.a"
+sed -i -e "s|$(printf '%s' "$table_rule" | sed 's/[][\.*^$|]/\\&/g')|& \"-I$ZHF_ROOT/dispatch/include\"|" \
+  -e "s|$link_rule|$library &|" "$build"
+grep -qF "$library" "$build" && grep -qF -- "-I$ZHF_ROOT/dispatch/include" "$build" ||
+  { echo "peers.sh: could not edit the copy of build.sh" >&2; exit 1; }
+
+copy v3
+cp bench/peers/zhf_table_adapter.cc.txt "$scratch/v3/harness/src/m_zhf_table.cc"
+cp bench/peers/zhf_kernels_adapter.cc.txt "$scratch/v3/harness/src/m_zhf.cc"
+
+export ZHF_SRC=$ZHF_ROOT
+OUT="$scratch/default/out" NATIVE_FLAGS="-O3 -std=c++17 -DNDEBUG" bash "$scratch/default/harness/build.sh"
+OUT="$scratch/v3/out" NATIVE_FLAGS="-O3 -march=x86-64-v3 -std=c++17 -DNDEBUG" bash "$scratch/v3/harness/build.sh"
+
+# run NAME FILE: one run into $results/FILE, through a temporary file beside it.
+run() {
+  local target="$results/$2" tmp
+  tmp=$(mktemp "$target.XXXXXX")
+  if ! OUT="$scratch/$1/out" bash "$scratch/$1/harness/run.sh" --orders "$orders" --K "$k" --reps "$reps" > "$tmp"; then
+    rm -f "$tmp"
+    echo "peers.sh: the $1 run failed" >&2
+    exit 1
+  fi
+  mv "$tmp" "$target"
+}
+run default default_build.txt
+run v3 default_build_then_x86_64_v3.txt
+python3 bench/peers_compare.py "$results/default_build.txt" "$results/default_build_then_x86_64_v3.txt"
