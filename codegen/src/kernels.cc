@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 
+#include "band_lobes.h"
+#include "band_quadratic.h"
+#include "band_zxzxz.h"
+#include "kernel_cost.h"
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/runtime/tolerances.h"
@@ -12,155 +15,12 @@
 namespace zhf::codegen {
 namespace {
 
-// Band l's sparse stage on inputs base.. base + 2l: out_i = sum_k A[k][i] x_k (transpose: the
-// lobe weights z = A^T f) or sum_k A[i][k] x_k (coefficients from lobe samples).
-std::vector<int> band_sums(Graph& g, const runtime::Matrix& inverse, bool transpose, int base) {
-  std::vector<int> sums;
-  for (int i = 0; i < inverse.rows; ++i) {
-    std::vector<std::pair<double, int>> terms;
-    for (int k = 0; k < inverse.rows; ++k) terms.push_back({transpose ? inverse(k, i) : inverse(i, k), g.input(0, base + k)});
-    sums.push_back(g.linear(terms));
-  }
-  return sums;
-}
-
+using runtime::kBand1Axis;
 using runtime::kInvSqrt4Pi;
 using runtime::kPi;
-constexpr double kSqrt3Over4Pi = 0.48860251190291992159;  // band 1: c (y, z, x)
-using runtime::kBand1Axis;
 
-struct Vec3 {
-  int c[3];
-};
-
-// Scaled Legendre recurrences for the homogeneous band-l polynomials (runtime/sh_eval.h, whose
-// coefficients they are built from):
-//   q_m^m = 1, q_{m+1}^m = z, q_l^m = z q_{l-1}^m - c_{l,m}(r2) q_{l-2}^m,
-// with Q_l^m = sigma_{l,m} q_l^m; sigma depends on l, m only, so it moves to the output.
-struct Legendre {
-  using K = runtime::LegendreCoefficients<>;
-  std::vector<std::vector<double>> sigma;  // [l][m]
-  explicit Legendre(int order) : sigma(order, std::vector<double>(order, 0.0)) {
-    double q_mm = kInvSqrt4Pi;
-    for (int m = 0; m < order; ++m) {
-      if (m > 0) q_mm *= K::diagonal(m);
-      sigma[m][m] = q_mm;
-      if (m + 1 < order) sigma[m + 1][m] = K::subdiagonal(m) * q_mm;
-      for (int l = m + 2; l < order; ++l) sigma[l][m] = K::a(l, m) * sigma[l - 1][m];
-    }
-  }
-  // c_{l,m}(r2) = b r2 sigma_{l-2} / sigma_{l-1}.
-  double c(int l, int m, double r2) const { return K::b(l, m) * r2 * sigma[l - 2][m] / sigma[l - 1][m]; }
-  // y_l^{+-m} = output_scale * q_l^m * (C_m or S_m).
-  double output_scale(int l, int m) const { return (m == 0 ? 1.0 : runtime::kSqrt2) * sigma[l][std::abs(m)]; }
-};
-
-// H_{l,m}(v) / output_scale for bands in [first_band, order) at v (given r2 = |v|^2);
-// entry [index(l, m)], -1 where not computed.
-std::vector<int> homogeneous_sh(Graph& g, const Vec3& v, double r2, int order, const std::vector<bool>& bands,
-                                const Legendre& legendre) {
-  std::vector<int> out(runtime::coefficient_count(order), -1);
-  const int x = v.c[0], y = v.c[1], z = v.c[2];
-  int top = -1;
-  for (int l = 0; l < order; ++l)
-    if (bands[l]) top = l;
-  int c_m = g.constant(1), s_m = g.constant(0);
-  for (int m = 0; m <= top; ++m) {
-    if (m == 1) {
-      c_m = x;
-      s_m = y;
-    } else if (m == 2) {
-      c_m = g.mul(g.sub(x, y), g.add(x, y));  // x^2 - y^2
-      const int xy = g.mul(x, y);
-      s_m = g.add(xy, xy);                    // 2xy
-    } else if (m > 2) {
-      const int c_next = g.sub(g.mul(x, c_m), g.mul(y, s_m));
-      s_m = g.add(g.mul(x, s_m), g.mul(y, c_m));
-      c_m = c_next;
-    }
-    int q_prev = -1, q = g.constant(1);
-    for (int l = m; l <= top; ++l) {
-      if (l == m + 1) {
-        q_prev = q;
-        q = z;
-      } else if (l > m + 1) {
-        const int next = g.sub(g.mul(z, q), g.scale(legendre.c(l, m, r2), q_prev));
-        q_prev = q;
-        q = next;
-      }
-      if (!bands[l]) continue;
-      if (m == 0) {
-        out[runtime::index(l, 0)] = q;
-      } else {
-        out[runtime::index(l, m)] = g.mul(q, c_m);
-        out[runtime::index(l, -m)] = g.mul(q, s_m);
-      }
-    }
-  }
-  return out;
-}
-
-// Lobe direction rescaled so R u costs additions only where the components allow.
-void scale_lobe(const double w[3], double u[3]) {
-  double largest = 0, smallest = INFINITY;
-  for (int k = 0; k < 3; ++k) {
-    const double a = std::abs(w[k]);
-    if (a == 0) continue;
-    largest = std::max(largest, a);
-    smallest = std::min(smallest, a);
-  }
-  // All nonzero components equal in magnitude: scale them to exactly +-1; otherwise make
-  // the largest one +-1 (one column of R then needs no multiply).
-  const bool equal = largest - smallest <= runtime::tolerance::kExactEntry * largest;
-  for (int k = 0; k < 3; ++k) {
-    if (w[k] == 0) {
-      u[k] = 0;
-    } else if (equal) {
-      u[k] = w[k] > 0 ? 1.0 : -1.0;
-    } else {
-      u[k] = w[k] / largest;
-    }
-  }
-}
-
-double norm2(const double u[3]) { return u[0] * u[0] + u[1] * u[1] + u[2] * u[2]; }
-
-// v = M u where M is R (transpose = false) or R^T, R's nine nodes row-major.
-Vec3 rotate(Graph& g, const std::vector<int>& r, const double u[3], bool transpose) {
-  Vec3 v;
-  for (int i = 0; i < 3; ++i) {
-    std::vector<std::pair<double, int>> terms;
-    for (int j = 0; j < 3; ++j) terms.push_back({u[j], r[transpose ? 3 * j + i : 3 * i + j]});
-    v.c[i] = g.linear(terms);
-  }
-  return v;
-}
-
-// Param 0 (R) projected onto the rotations by one Newton step toward its polar factor,
-// Q = R (3 I - R^T R) / 2. A float R is orthonormal to about eps_f only, and the lobe fit
-// amplifies its symmetric part by the band's condition number (1.3e-6 at order 7 with every
-// later step exact); after the step, done in the wide type, what remains is O(eps_f^2).
-std::vector<int> orthonormalized_rotation(Graph& g) {
-  std::vector<int> gram(9);  // R^T R
-  for (int i = 0; i < 3; ++i)
-    for (int j = i; j < 3; ++j) {
-      std::vector<std::pair<double, int>> terms;
-      for (int k = 0; k < 3; ++k) terms.push_back({1.0, g.mul(g.input(0, 3 * k + i), g.input(0, 3 * k + j))});
-      gram[3 * i + j] = gram[3 * j + i] = g.linear(terms);
-    }
-  std::vector<int> step(9);  // (3 I - R^T R) / 2
-  for (int i = 0; i < 9; ++i)
-    step[i] = i % 4 == 0 ? g.sub(g.constant(1.5), g.scale(0.5, gram[i])) : g.scale(-0.5, gram[i]);
-  std::vector<int> q(9);
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      std::vector<std::pair<double, int>> terms;
-      for (int k = 0; k < 3; ++k) terms.push_back({1.0, g.mul(g.input(0, 3 * i + k), step[3 * k + j])});
-      q[3 * i + j] = g.linear(terms);
-    }
-  return q;
-}
-
+// Builds each emitted function of one table on the expression graph, each band >= 2 by its method
+// (band_lobes.h, band_zxzxz.h, band_quadratic.h).
 class Builder {
  public:
   Builder(const runtime::LobeTable& table, const std::vector<Lobe>& lobes, const std::vector<int>& zero_bands,
@@ -440,7 +300,7 @@ class Builder {
     }
     const std::vector<int> r = lobe_rotation(g);
     for (const Lobe& lobe : lobes_) {
-      const Vec3 v = rotate(g, r, lobe.scaled, /*transpose=*/false);
+      const Vec3 v = rotated_lobe(g, r, lobe.scaled, /*transpose=*/false);
       nodes.insert(nodes.end(), v.c, v.c + 3);
     }
     return g.count(nodes);
@@ -578,79 +438,11 @@ class Builder {
     std::vector<std::vector<int>> h;
     for (size_t d = 0; d < lobes_.size(); ++d) {
       g.set_wide(wide_rotation_);
-      const Vec3 v = rotate(g, r, lobes_[d].scaled, transpose);
+      const Vec3 v = rotated_lobe(g, r, lobes_[d].scaled, transpose);
       g.set_wide(wide_lobes_);
       h.push_back(homogeneous_sh(g, v, norm2(lobes_[d].scaled), order_, bands_of_lobe[d], legendre_));
     }
     return h;
-  }
-
-  // cos and sin of m t for m <= the top band marked, t each zyz Euler angle of R (kernels.h says
-  // how they are found without the angles; runtime::zyz_multiples does the same steps in double);
-  // empty when no band is marked.
-  struct EulerTurns {
-    std::vector<int> cos_a, sin_a, cos_b, sin_b, cos_g, sin_g;
-  };
-  EulerTurns euler_turns(Graph& g, const std::vector<bool>& bands) const {
-    EulerTurns t;
-    int top = 0;
-    for (int l = 0; l < order_; ++l)
-      if (bands[l]) top = l;
-    if (top == 0) return t;
-    auto r = [&](int i, int j) { return g.input(0, 3 * i + j); };
-    // (cos a, sin a) sin b = (R_02, R_12); below kGimbalLockSine2 any a works: a = 0.
-    const int column2 = g.add(g.mul(r(0, 2), r(0, 2)), g.mul(r(1, 2), r(1, 2)));
-    const int unlocked = g.sub(column2, g.constant(runtime::tolerance::kGimbalLockSine2));
-    const int inverse = g.rsqrt(g.select_positive(unlocked, column2, g.constant(1)));
-    const int cos_a = g.select_positive(unlocked, g.mul(r(0, 2), inverse), g.constant(1));
-    const int sin_a = g.select_positive(unlocked, g.mul(r(1, 2), inverse), g.constant(0));
-    const int sin_b = g.mul(column2, inverse);
-    // Rz(-a) R = Ry(b) Rz(g), whose middle row is (sin g, cos g, 0).
-    const int sin_g = g.sub(g.mul(cos_a, r(1, 0)), g.mul(sin_a, r(0, 0)));
-    const int cos_g = g.sub(g.mul(cos_a, r(1, 1)), g.mul(sin_a, r(0, 1)));
-    multiples(g, cos_a, sin_a, top, t.cos_a, t.sin_a);
-    multiples(g, r(2, 2), sin_b, top, t.cos_b, t.sin_b);
-    multiples(g, cos_g, sin_g, top, t.cos_g, t.sin_g);
-    return t;
-  }
-  // c[m] = cos(m t), s[m] = sin(m t), m <= top: even m by doubling m/2, (c - s)(c + s) and 2cs; odd
-  // m by adding t to m - 1. Error ~m eps however close t is to 0 or pi; the cheaper Chebyshev
-  // recurrence x_m = 2 cos t x_{m-1} - x_{m-2} amplifies cos t's rounding by m^2 there, past float's
-  // tolerance at order 5.
-  static void multiples(Graph& g, int cos_t, int sin_t, int top, std::vector<int>& c, std::vector<int>& s) {
-    c = {g.constant(1), cos_t};
-    s = {g.constant(0), sin_t};
-    for (int m = 2; m <= top; ++m) {
-      if (m % 2 == 0) {
-        const int ch = c[m / 2], sh = s[m / 2], cs = g.mul(ch, sh);
-        c.push_back(g.mul(g.sub(ch, sh), g.add(ch, sh)));
-        s.push_back(g.add(cs, cs));
-      } else {
-        c.push_back(g.sub(g.mul(c[m - 1], cos_t), g.mul(s[m - 1], sin_t)));
-        s.push_back(g.add(g.mul(s[m - 1], cos_t), g.mul(c[m - 1], sin_t)));
-      }
-    }
-  }
-  // Band l (v[m + l]) turned about z: g(phi) = f(phi - t) sends the (m, -m) weights (x, y) to
-  // (x cos mt - y sin mt, x sin mt + y cos mt).
-  static std::vector<int> turn(Graph& g, int l, const std::vector<int>& c, const std::vector<int>& s, std::vector<int> v) {
-    for (int m = 1; m <= l; ++m) {
-      const int x = v[l + m], y = v[l - m];
-      v[l + m] = g.sub(g.mul(c[m], x), g.mul(s[m], y));
-      v[l - m] = g.add(g.mul(s[m], x), g.mul(c[m], y));
-    }
-    return v;
-  }
-  // X_l v or X_l^T v, X_l = D_l(Rx(+90 deg)), whose exact zeros and units the graph folds away.
-  std::vector<int> quarter_turn(Graph& g, int l, const std::vector<int>& v, bool transpose) const {
-    const Eigen::MatrixXd& x = quarter_turn_[l];
-    std::vector<int> out(2 * l + 1);
-    for (int i = 0; i < 2 * l + 1; ++i) {
-      std::vector<std::pair<double, int>> terms;
-      for (int j = 0; j < 2 * l + 1; ++j) terms.push_back({transpose ? x(j, i) : x(i, j), v[j]});
-      out[i] = g.linear(terms);
-    }
-    return out;
   }
 
   // The live bands >= 2 the rotations take by this method.
@@ -661,41 +453,7 @@ class Builder {
   }
   // Band l (v[m + l]) rotated by its method, zxzxz or quadratic.
   std::vector<int> band_by_formula(Graph& g, int l, const EulerTurns& t, const std::vector<int>& v) const {
-    return methods_[l] == BandMethod::kQuadratic ? quadratic_band(g, v) : zxzxz_band(g, l, t, v);
-  }
-  // Band 2 (v[m + 2]) as a quadratic form: sum_m f_m y_2^m(u) = (K/2) u^T M u on the unit sphere
-  // (K = sqrt(15 / 4 pi)), M symmetric and traceless (u^T u = 1 absorbs the trace), with
-  //   M_xy = f_-2, M_yz = f_-1, M_xz = f_1, M_xx = f_2 - f_0/sqrt3, M_yy = -f_2 - f_0/sqrt3, M_zz = 2 f_0/sqrt3
-  // (y_2^-2 = K xy, y_2^-1 = K yz, y_2^1 = K xz, y_2^2 = K (x^2 - y^2)/2, y_2^0 = K (3z^2 - 1)/(2 sqrt3)).
-  // g(u) = f(R^T u) has M' = R M R^T: M'_ij = r_i . (M r_j), r_i the rows of R. Five entries
-  // suffice, all from M r_1 and M r_2: M'_xy, M'_yy, M'_yz, M'_xz, M'_zz, with M'_xx = -M'_yy - M'_zz
-  // (R orthogonal keeps the trace 0), so f'_2 = (M'_xx - M'_yy)/2 = -M'_yy - M'_zz/2 and
-  // f'_0 = (sqrt3/2) M'_zz: 36 multiplies and no square root. zxzxz's band 2 costs less only
-  // where higher bands already pay for the Euler angles.
-  static std::vector<int> quadratic_band(Graph& g, const std::vector<int>& v) {
-    const double inverse_sqrt3 = 0.57735026918962576451, half_sqrt3 = 0.86602540378443864676;
-    const int t = g.scale(inverse_sqrt3, v[2]);
-    const int m[3][3] = {{g.sub(v[4], t), v[0], v[3]}, {v[0], g.linear({{-1.0, v[4]}, {-1.0, t}}), v[1]}, {v[3], v[1], g.add(t, t)}};
-    auto r = [&](int i, int j) { return g.input(0, 3 * i + j); };
-    auto m_times_row = [&](int j) {
-      Vec3 p;
-      for (int a = 0; a < 3; ++a) p.c[a] = g.linear({{1.0, g.mul(m[a][0], r(j, 0))}, {1.0, g.mul(m[a][1], r(j, 1))}, {1.0, g.mul(m[a][2], r(j, 2))}});
-      return p;
-    };
-    auto entry = [&](int i, const Vec3& p) {
-      return g.linear({{1.0, g.mul(r(i, 0), p.c[0])}, {1.0, g.mul(r(i, 1), p.c[1])}, {1.0, g.mul(r(i, 2), p.c[2])}});
-    };
-    const Vec3 p1 = m_times_row(1), p2 = m_times_row(2);
-    const int yy = entry(1, p1), zz = entry(2, p2);
-    return {entry(0, p1), entry(1, p2), g.scale(half_sqrt3, zz), entry(0, p2), g.linear({{-1.0, yy}, {-0.5, zz}})};
-  }
-  // Band l (v[m + l]) rotated by zxzxz: Z(a) X^T Z(b) X Z(g) v.
-  std::vector<int> zxzxz_band(Graph& g, int l, const EulerTurns& t, std::vector<int> v) const {
-    v = turn(g, l, t.cos_g, t.sin_g, v);
-    v = quarter_turn(g, l, v, /*transpose=*/false);
-    v = turn(g, l, t.cos_b, t.sin_b, v);
-    v = quarter_turn(g, l, v, /*transpose=*/true);
-    return turn(g, l, t.cos_a, t.sin_a, v);
+    return methods_[l] == BandMethod::kQuadratic ? quadratic_band(g, v) : zxzxz_band(g, l, t, quarter_turn_[l], v);
   }
   const runtime::LobeTable& table_;
   const std::vector<Lobe>& lobes_;
@@ -718,61 +476,6 @@ std::vector<int> Function::output_nodes() const {
   return nodes;
 }
 
-const char* kernel_kind_name(KernelKind kind) {
-  switch (kind) {
-    case KernelKind::kShEval: return "sh_eval";
-    case KernelKind::kLobeWeights: return "lobe_weights";
-    case KernelKind::kFromSamples: return "coefficients_from_samples";
-    case KernelKind::kRotate: return "rotate";
-    case KernelKind::kSignalTailored: return "rotate_signal_tailored";
-    case KernelKind::kBatch: return "rotate_batch";
-    case KernelKind::kRotationMatrices: return "rotation_matrices";
-    case KernelKind::kApplyMatrices: return "apply_rotation_matrices";
-    case KernelKind::kZonal: return "rotate_zonal";
-    case KernelKind::kProduct: return "product";
-    case KernelKind::kSquare: return "square";
-    case KernelKind::kShade: return "shade";
-    case KernelKind::kShadeLobes: return "shade_lobes";
-  }
-  return "?";
-}
-
-bool parse_kernel_kind(const std::string& name, KernelKind& kind) {
-  for (int k = 0; k <= static_cast<int>(KernelKind::kShadeLobes); ++k)
-    if (name == kernel_kind_name(static_cast<KernelKind>(k))) {
-      kind = static_cast<KernelKind>(k);
-      return true;
-    }
-  return false;
-}
-
-runtime::LobeStage automatic_lobe_stage(const runtime::LobeTable& table) {
-  using namespace runtime::tolerance;
-  return float_lobe_error_model(table.order, table.worst_condition()) > kFloatRotation ? runtime::LobeStage::kDouble
-                                                                                       : runtime::LobeStage::kFloat;
-}
-
-bool parse_lobe_stage_choice(const std::string& name, std::optional<runtime::LobeStage>& stage) {
-  runtime::LobeStage parsed = runtime::LobeStage::kFloat;
-  if (name == "auto") {
-    stage.reset();
-  } else if (runtime::parse_lobe_stage(name, parsed)) {
-    stage = parsed;
-  } else {
-    return false;
-  }
-  return true;
-}
-
-std::string lobe_stage_choice_name(const std::optional<runtime::LobeStage>& stage) {
-  return stage ? runtime::lobe_stage_name(*stage) : "auto";
-}
-
-runtime::LobeStage lobe_stage_for(const runtime::LobeTable& table, const ModuleOptions& options) {
-  if (table.order <= 2) return runtime::LobeStage::kFloat;  // no lobes
-  return options.lobe_stage ? *options.lobe_stage : automatic_lobe_stage(table);
-}
-
 std::vector<int> odd_m_indices(int count) {
   std::vector<int> odd;
   for (int i = 0; i < count; ++i)
@@ -790,93 +493,6 @@ runtime::LobeStage Module::rotation_lobe_stage() const {
   return runtime::LobeStage::kFloat;
 }
 
-const char* band_method_name(BandMethod method) {
-  switch (method) {
-    case BandMethod::kLobes: return "zhf";
-    case BandMethod::kZxzxz: return "zxzxz";
-    case BandMethod::kQuadratic: return "quadratic";
-  }
-  return "?";
-}
-
-bool parse_band_method_choice(const std::string& name, std::optional<BandMethod>& method) {
-  if (name == "auto") {
-    method.reset();
-    return true;
-  }
-  for (BandMethod m : {BandMethod::kLobes, BandMethod::kZxzxz, BandMethod::kQuadratic})
-    if (name == band_method_name(m)) {
-      method = m;
-      return true;
-    }
-  return false;
-}
-
-std::vector<std::string> band_method_choices() {
-  return {"auto", band_method_name(BandMethod::kLobes), band_method_name(BandMethod::kZxzxz),
-          band_method_name(BandMethod::kQuadratic)};
-}
-
-std::string band_method_choice_name(const std::optional<BandMethod>& method) {
-  return method ? band_method_name(*method) : "auto";
-}
-
-namespace {
-
-int total(const OpCount& c) { return c.multiplies + c.adds + c.others; }
-
-// Every assignment of methods to bands 2..N-1 up to kMaxExhaustiveMethodBands of them, else
-// lobes below a band and zxzxz from it on; band 2 also tries the quadratic form. The one whose
-// rotate_orderN has the fewest operations (then multiplies; then the earlier, with more bands
-// by lobes). reason says what was compared.
-std::vector<BandMethod> cheapest_band_methods(const Module& module, const ModuleOptions& options,
-                                              const sh::BandMatrices& quarter_turn, std::string& reason) {
-  const int n = module.order, free_bands = std::max(n - 2, 0);
-  std::vector<std::vector<BandMethod>> candidates;
-  if (free_bands <= runtime::kMaxExhaustiveMethodBands) {
-    for (int mask = 0; mask < (1 << free_bands); ++mask) {
-      std::vector<BandMethod> m(n, BandMethod::kLobes);
-      for (int l = 2; l < n; ++l)
-        if (mask >> (l - 2) & 1) m[l] = BandMethod::kZxzxz;
-      candidates.push_back(m);
-    }
-  } else {
-    for (int from = n; from >= 2; --from) {
-      std::vector<BandMethod> m(n, BandMethod::kLobes);
-      for (int l = from; l < n; ++l) m[l] = BandMethod::kZxzxz;
-      candidates.push_back(m);
-    }
-  }
-  for (size_t i = 0, plain = candidates.size(); i < plain && n > 2; ++i)
-    if (candidates[i][2] == BandMethod::kLobes) {
-      candidates.push_back(candidates[i]);
-      candidates.back()[2] = BandMethod::kQuadratic;
-    }
-  std::vector<BandMethod> best;
-  OpCount best_count;
-  OpCount all_lobes, all_zxzxz;
-  for (const std::vector<BandMethod>& m : candidates) {
-    const Builder builder(module.table, module.lobes, options.zero_bands, module.lobe_stage, options.condon_shortley, m,
-                          quarter_turn);
-    const Function f = builder.rotation(1, false);
-    const OpCount c = f.graph.count(f.output_nodes());
-    const long by_lobes = std::count(m.begin() + std::min(n, 2), m.end(), BandMethod::kLobes);
-    if (by_lobes == free_bands) all_lobes = c;
-    if (std::count(m.begin() + std::min(n, 2), m.end(), BandMethod::kZxzxz) == free_bands) all_zxzxz = c;
-    if (best.empty() || total(c) < total(best_count) || (total(c) == total(best_count) && c.multiplies < best_count.multiplies)) {
-      best = m;
-      best_count = c;
-    }
-  }
-  auto describe = [](const OpCount& c) {
-    return std::to_string(c.multiplies) + " multiplies, " + std::to_string(c.adds) + " adds" +
-           (c.others ? ", " + std::to_string(c.others) + " others" : "");
-  };
-  reason = "fewest operations in rotate_order" + std::to_string(n) + " among " + std::to_string(candidates.size()) +
-           " assignments: " + describe(best_count) + " (every band by lobes: " + describe(all_lobes) +
-           "; every band by zxzxz: " + describe(all_zxzxz) + ")";
-  return best;
-}
 
 std::vector<Lobe> lobes_of(const runtime::LobeTable& table) {
   std::vector<Lobe> lobes;
@@ -890,7 +506,21 @@ std::vector<Lobe> lobes_of(const runtime::LobeTable& table) {
   return lobes;
 }
 
-}  // namespace
+OpCount rotation_op_count(const Module& module, const ModuleOptions& options, const std::vector<BandMethod>& methods,
+                          const sh::BandMatrices& quarter_turn) {
+  const Builder builder(module.table, module.lobes, options.zero_bands, module.lobe_stage, options.condon_shortley, methods,
+                        quarter_turn);
+  const Function f = builder.rotation(1, false);
+  return f.graph.count(f.output_nodes());
+}
+
+OpCount lobe_dependent_op_count(const runtime::LobeTable& table) {
+  const std::vector<Lobe> lobes = lobes_of(table);
+  const sh::BandMatrices no_quarter_turns;  // every band by lobes
+  const Builder builder(table, lobes, {}, lobe_stage_for(table, ModuleOptions{}), /*condon_shortley=*/false,
+                        std::vector<BandMethod>(std::max(table.order, 1), BandMethod::kLobes), no_quarter_turns);
+  return builder.lobe_dependent_count();
+}
 
 Module build_module(const runtime::LobeTable& table, const ModuleOptions& options) {
   Module module;
@@ -938,13 +568,6 @@ Module build_module(const runtime::LobeTable& table, const ModuleOptions& option
   return module;
 }
 
-double lanes_float_error_model(const runtime::LobeTable& table) {
-  double worst = 0;
-  for (const runtime::TableBand& band : table.bands)
-    worst = std::max(worst, runtime::band_amplification(runtime::band_matrix(table, band.l)));
-  return runtime::tolerance::kFloatEpsilon * (table.order - 1) * worst;
-}
-
 Module build_lanes_module(const runtime::LobeTable& table) {
   using namespace runtime::tolerance;
   Module module;
@@ -957,29 +580,4 @@ Module build_lanes_module(const runtime::LobeTable& table) {
                                                                             : runtime::LobeStage::kDouble;
   return module;
 }
-
-int lobe_weight_multiplies(const runtime::Matrix& inverse) {
-  Graph g;
-  return g.count(band_sums(g, inverse, /*transpose=*/true, 0)).multiplies;
-}
-
-int lobe_rotation_multiplies(const runtime::LobeTable& table) {
-  ModuleOptions options;
-  options.sh_eval = options.lobe_multiplies = options.batch = options.products = options.shading = false;
-  options.standard_channels = {1};
-  options.tailored_channels = {};
-  options.band_method = BandMethod::kLobes;
-  const Module module = build_module(table, options);
-  const Function& rotate = module.functions.at(0);
-  return rotate.graph.count(rotate.output_nodes()).multiplies;
-}
-
-int lobe_dependent_multiplies(const runtime::LobeTable& table) {
-  const std::vector<Lobe> lobes = lobes_of(table);
-  const sh::BandMatrices no_quarter_turns;  // every band by lobes
-  const Builder builder(table, lobes, {}, lobe_stage_for(table, ModuleOptions{}), /*condon_shortley=*/false,
-                        std::vector<BandMethod>(std::max(table.order, 1), BandMethod::kLobes), no_quarter_turns);
-  return builder.lobe_dependent_count().multiplies;
-}
-
 }  // namespace zhf::codegen

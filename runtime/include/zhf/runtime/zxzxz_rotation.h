@@ -48,7 +48,7 @@ namespace zhf::runtime {
 // cos(m t) and sin(m t) for m < order of the zyz Euler angles of r, without forming them
 // (see above): c_a[m], s_a[m], and so on. Even m by doubling m/2, odd m by adding t to m - 1:
 // error ~m eps at every angle. The emitted kernels build the same steps into their graph
-// (codegen/src/kernels.cc, euler_turns), in the kernel's type.
+// (codegen/src/band_zxzxz.cc, euler_turns), in the kernel's type.
 inline void zyz_multiples(const double r[9], int order, double* c_a, double* s_a, double* c_b, double* s_b, double* c_g,
                           double* s_g) {
   const double column2 = r[2] * r[2] + r[5] * r[5];
