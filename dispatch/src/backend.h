@@ -40,6 +40,9 @@ class Backend {
 // The fastest backend of an order 1..kMaxZxzxzOrder on path I (isa_any.cc, one unit per path).
 template <Isa I, class T>
 std::unique_ptr<Backend<T>> make_backend(int order);
+// runtime::all_finite compiled for path I (isa_any.cc).
+template <Isa I, class T>
+bool all_finite_on(const T* p, std::size_t count);
 // The generated kernels' fastest path of order N on path I (isa_order.cc, one unit per path and
 // order, so the large orders compile in parallel).
 template <Isa I, int N, class T>

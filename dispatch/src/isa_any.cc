@@ -12,6 +12,16 @@ std::unique_ptr<zhf_dispatch_api::Backend<double>> zhf_dispatch_api::make_backen
   return zhf::dispatch_unit::any_order<double>(order);
 }
 
+template <>
+bool zhf_dispatch_api::all_finite_on<zhf::dispatch_unit::kIsa, float>(const float* p, std::size_t count) {
+  return zhf::runtime::all_finite(p, count);
+}
+
+template <>
+bool zhf_dispatch_api::all_finite_on<zhf::dispatch_unit::kIsa, double>(const double* p, std::size_t count) {
+  return zhf::runtime::all_finite(p, count);
+}
+
 namespace zhf::dispatch_unit {
 
 template <class T>

@@ -30,6 +30,7 @@
 
 #define zhf ZHF_DISPATCH_NAMESPACE
 #include "zhf/runtime/dense_rotation.h"
+#include "zhf/runtime/finite.h"
 #include "zhf/runtime/orthogonal.h"
 #include "zhf/runtime/parallel.h"
 #include "zhf/runtime/rotator.h"

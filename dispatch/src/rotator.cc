@@ -2,25 +2,37 @@
 
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 #include "backend.h"
+#include "zhf/dispatch/checks.h"
 #include "zhf/runtime/limits.h"
 
 namespace zhf::dispatch {
 namespace {
 
-// The factory of each built path (ZHF_DISPATCH_PATHS), chosen by value.
-template <class T, Isa... Paths>
-std::unique_ptr<detail::Backend<T>> make_on(Isa isa, int order) {
-  using Factory = std::unique_ptr<detail::Backend<T>> (*)(int);
-  const std::pair<Isa, Factory> factories[] = {{Paths, &detail::make_backend<Paths, T>}...};
-  for (const auto& [path, make] : factories)
-    if (path == isa) return make(order);
-  throw std::invalid_argument(std::string("zhf::dispatch: path ") + isa_name(isa) + " is not built");
+// call(path) for the built path (ZHF_DISPATCH_PATHS) equal to isa, path an
+// std::integral_constant<Isa, ...>.
+template <Isa First, Isa... Rest, class Call>
+auto on_path(Isa isa, const Call& call) {
+  if (isa == First) return call(std::integral_constant<Isa, First>{});
+  if constexpr (sizeof...(Rest) > 0) {
+    return on_path<Rest...>(isa, call);
+  } else {
+    throw std::invalid_argument(std::string("zhf::dispatch: path ") + isa_name(isa) + " is not built");
+  }
+}
+
+template <class T>
+bool all_finite_active(const T* p, std::size_t count) {
+  return on_path<ZHF_DISPATCH_PATHS>(active_isa(), [&](auto path) { return detail::all_finite_on<path.value, T>(p, count); });
 }
 
 }  // namespace
+
+bool all_finite(const float* p, std::size_t count) { return all_finite_active(p, count); }
+bool all_finite(const double* p, std::size_t count) { return all_finite_active(p, count); }
 
 template <class T>
 Rotator<T> Rotator<T>::make(int order) {
@@ -29,7 +41,7 @@ Rotator<T> Rotator<T>::make(int order) {
                                 std::to_string(runtime::kMaxZxzxzOrder));
   Rotator r;
   r.isa_ = active_isa();
-  r.backend_ = make_on<T, ZHF_DISPATCH_PATHS>(r.isa_, order);
+  r.backend_ = on_path<ZHF_DISPATCH_PATHS>(r.isa_, [&](auto path) { return detail::make_backend<path.value, T>(order); });
   return r;
 }
 

@@ -17,12 +17,12 @@
 #include <type_traits>
 #include <vector>
 
+#include "zhf/dispatch/checks.h"
 #include "zhf/dispatch/rotator.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/io/lobe_table_writer.h"
 #include "zhf/runtime/conventions.h"
-#include "zhf/runtime/finite.h"
 #include "zhf/runtime/table_io.h"
 #include "zhf/runtime/orthogonal.h"
 #include "zhf/runtime/rotation.h"
@@ -113,7 +113,7 @@ void rotate_checked(const T* in, T* out, std::size_t count, std::size_t n, int t
   rt::parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
     for (std::size_t b = begin; b < end; b += kCheckedBlock) {
       const std::size_t e = std::min(end, b + kCheckedBlock);
-      if (!rt::all_finite(in + b * n, (e - b) * n)) {
+      if (!zd::all_finite(in + b * n, (e - b) * n)) {
         std::size_t seen = first_bad_block.load();
         while (b < seen && !first_bad_block.compare_exchange_weak(seen, b)) {
         }

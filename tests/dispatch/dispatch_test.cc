@@ -1,10 +1,11 @@
 // zhf::dispatch: each instruction-set path this CPU runs, forced in turn, against the recurrence
 // in long double at every generated order and at runtime orders beyond them, float and double,
 // on the extreme rotations and random ones; reflections, shared transforms and the bulk layouts
-// against the single-vector path; a path the CPU lacks or the library does not have refused in
-// one line, by the call and through ZHF_ISA in the CLI.
+// against the single-vector path; the finite check of every path; a path the CPU lacks or the
+// library does not have refused in one line, by the call and through ZHF_ISA in the CLI.
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "test_support.h"
+#include "zhf/dispatch/checks.h"
 #include "zhf/dispatch/rotator.h"
 #include "zhf/runtime/limits.h"
 #include "zhf/runtime/sh_eval.h"
@@ -174,6 +176,35 @@ TEST_F(DispatchTest, BatchReflectionSharedAndBulkCallsAgreeWithOneVectorOnEveryP
       check_entry_points<float>(dispatch::isa_name(isa), order);
       check_entry_points<double>(dispatch::isa_name(isa), order);
     }
+  }
+}
+
+// A NaN or an infinity at each place of runs of every length up to a few vector widths (the
+// vectorised body and its tail), and their finite runs, on every path.
+template <class T>
+void check_all_finite(const char* isa) {
+  const char* type = std::is_same_v<T, float> ? "float" : "double";
+  for (std::size_t count = 0; count <= 70; ++count) {
+    std::vector<T> values(count);
+    for (std::size_t i = 0; i < count; ++i) values[i] = T(i) - T(30.5);
+    ASSERT_TRUE(dispatch::all_finite(values.data(), count)) << isa << ", " << type << ", " << count << " finite values";
+    for (std::size_t at = 0; at < count; ++at)
+      for (T bad : {std::numeric_limits<T>::quiet_NaN(), std::numeric_limits<T>::infinity(), -std::numeric_limits<T>::infinity()}) {
+        const T kept = values[at];
+        values[at] = bad;
+        ASSERT_FALSE(dispatch::all_finite(values.data(), count)) << isa << ", " << type << ", " << bad << " at " << at << " of " << count;
+        values[at] = kept;
+      }
+  }
+  const T largest[] = {std::numeric_limits<T>::max(), -std::numeric_limits<T>::max(), std::numeric_limits<T>::denorm_min()};
+  EXPECT_TRUE(dispatch::all_finite(largest, 3)) << isa << ", " << type << ": the largest and the smallest finite values";
+}
+
+TEST_F(DispatchTest, AllFiniteFindsEveryNonFiniteValueOnEveryPath) {
+  for (Isa isa : dispatch::supported_isas()) {
+    dispatch::use_isa(dispatch::isa_name(isa));
+    check_all_finite<float>(dispatch::isa_name(isa));
+    check_all_finite<double>(dispatch::isa_name(isa));
   }
 }
 
