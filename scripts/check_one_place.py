@@ -17,6 +17,9 @@ Each rule names its home; a finding prints file:line and the rule, and the exit 
 - Random draws: no std::*_distribution (implementation-defined); sh/random.h draws from raw bits.
 - Pi: runtime::kPi and kPiLong (runtime/sh_eval.h); no other digits of pi and no M_PI outside the
   tests.
+- Enum names: an enumeration's names are written once, in its runtime::EnumName table
+  (runtime/enum_names.h), which gives its names, parsing and choices; no switch returns a name
+  per case.
 - JSON values: runtime::json::Value lives in the readers only (runtime/json.h and the files that
   read JSON); nothing keeps one in a data type or builds one.
 """
@@ -65,6 +68,7 @@ THREAD = re.compile(r"std::thread\b(?!::hardware_concurrency)|std::async\b")
 DISTRIBUTION = re.compile(r"std::\w+_distribution\b")
 INPUT_MARK = "// an input, not a tolerance"
 PI = re.compile(r"3\.14159|\bM_PI\b")
+NAME_SWITCH = re.compile(r'case [\w:]+:\s*return "[a-z][\w -]*";')
 JSON_VALUE = re.compile(r"json::Value\b")
 JSON_READERS = ("runtime/include/zhf/runtime/", "io/", "codegen/", "frames/src/", "python/src/", "cli/",
                 "tests/", "fuzz/", "verify/src/", "splat/src/", "bench/src/")
@@ -94,6 +98,8 @@ def check(path, findings):
             findings.append(f"{where}: {DISTRIBUTION.search(line).group(0)} is implementation-defined; use {RANDOM}")
         if cpp and not test and path != SH_EVAL and PI.search(line):
             findings.append(f"{where}: pi written out; use runtime::kPi or kPiLong ({SH_EVAL})")
+        if cpp and not test and NAME_SWITCH.search(line):
+            findings.append(f"{where}: a name returned per case; write the names in a runtime::EnumName table")
         if cpp and JSON_VALUE.search(line) and not path.startswith(JSON_READERS):
             findings.append(f"{where}: a runtime::json::Value outside a reader")
 
@@ -109,7 +115,7 @@ def main():
     if findings:
         print(f"check_one_place: {len(findings)} finding(s)", file=sys.stderr)
         return 1
-    print("check_one_place: limits, tolerances, table and design paths, threads, random draws, JSON values and pi each in one place")
+    print("check_one_place: limits, tolerances, table and design paths, threads, random draws, enum names, JSON values and pi each in one place")
     return 0
 
 

@@ -325,7 +325,7 @@ std::vector<std::string> lobe_derivation(const Module& module, const EmitOptions
       lines.push_back("Lobe stage in the kernel's type (zhf emit --lobe-stage): " + float_model + ".");
       break;
     case runtime::LobeStage::kDoubleRotation:
-      lines.push_back("Lobe stage double-rotation (zhf emit --lobe-stage): the lobes are rotated in double, their SH");
+      lines.push_back(std::string("Lobe stage ") + runtime::lobe_stage_name(stage) + " (zhf emit --lobe-stage): the lobes are rotated in double, their SH");
       lines.push_back("and the sums over lobes in the kernel's type; " + float_model + ".");
       break;
     case runtime::LobeStage::kDouble:

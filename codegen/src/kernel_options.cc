@@ -4,40 +4,40 @@
 #include <vector>
 
 #include "zhf/codegen/kernels.h"
+#include "zhf/runtime/enum_names.h"
 
 namespace zhf::codegen {
+namespace {
 
-const char* kernel_kind_name(KernelKind kind) {
-  switch (kind) {
-    case KernelKind::kShEval: return "sh_eval";
-    case KernelKind::kLobeWeights: return "lobe_weights";
-    case KernelKind::kFromSamples: return "coefficients_from_samples";
-    case KernelKind::kRotate: return "rotate";
-    case KernelKind::kSignalTailored: return "rotate_signal_tailored";
-    case KernelKind::kBatch: return "rotate_batch";
-    case KernelKind::kRotationMatrices: return "rotation_matrices";
-    case KernelKind::kApplyMatrices: return "apply_rotation_matrices";
-    case KernelKind::kZonal: return "rotate_zonal";
-    case KernelKind::kProduct: return "product";
-    case KernelKind::kSquare: return "square";
-    case KernelKind::kShade: return "shade";
-    case KernelKind::kShadeLobes: return "shade_lobes";
-  }
-  return "?";
-}
+constexpr runtime::EnumName<KernelKind> kKernelKindNames[] = {
+    {KernelKind::kShEval, "sh_eval"},
+    {KernelKind::kLobeWeights, "lobe_weights"},
+    {KernelKind::kFromSamples, "coefficients_from_samples"},
+    {KernelKind::kRotate, "rotate"},
+    {KernelKind::kSignalTailored, "rotate_signal_tailored"},
+    {KernelKind::kBatch, "rotate_batch"},
+    {KernelKind::kRotationMatrices, "rotation_matrices"},
+    {KernelKind::kApplyMatrices, "apply_rotation_matrices"},
+    {KernelKind::kZonal, "rotate_zonal"},
+    {KernelKind::kProduct, "product"},
+    {KernelKind::kSquare, "square"},
+    {KernelKind::kShade, "shade"},
+    {KernelKind::kShadeLobes, "shade_lobes"},
+};
 
-bool parse_kernel_kind(const std::string& name, KernelKind& kind) {
-  for (int k = 0; k <= static_cast<int>(KernelKind::kShadeLobes); ++k)
-    if (name == kernel_kind_name(static_cast<KernelKind>(k))) {
-      kind = static_cast<KernelKind>(k);
-      return true;
-    }
-  return false;
-}
+constexpr runtime::EnumName<BandMethod> kBandMethodNames[] = {
+    {BandMethod::kLobes, "zhf"}, {BandMethod::kZxzxz, "zxzxz"}, {BandMethod::kQuadratic, "quadratic"}};
+
+constexpr const char* kAutomatic = "auto";
+
+}  // namespace
+
+const char* kernel_kind_name(KernelKind kind) { return runtime::enum_name(kKernelKindNames, kind); }
+bool parse_kernel_kind(const std::string& name, KernelKind& kind) { return runtime::parse_enum(kKernelKindNames, name, kind); }
 
 bool parse_lobe_stage_choice(const std::string& name, std::optional<runtime::LobeStage>& stage) {
   runtime::LobeStage parsed = runtime::LobeStage::kFloat;
-  if (name == "auto") {
+  if (name == kAutomatic) {
     stage.reset();
   } else if (runtime::parse_lobe_stage(name, parsed)) {
     stage = parsed;
@@ -48,43 +48,34 @@ bool parse_lobe_stage_choice(const std::string& name, std::optional<runtime::Lob
 }
 
 std::string lobe_stage_choice_name(const std::optional<runtime::LobeStage>& stage) {
-  return stage ? runtime::lobe_stage_name(*stage) : "auto";
+  return stage ? runtime::lobe_stage_name(*stage) : kAutomatic;
 }
+
+std::vector<std::string> lobe_stage_choices() { return runtime::enum_names(runtime::kLobeStageNames, {kAutomatic}); }
 
 runtime::LobeStage lobe_stage_for(const runtime::LobeTable& table, const ModuleOptions& options) {
   if (table.order <= 2) return runtime::LobeStage::kFloat;  // no lobes
   return options.lobe_stage ? *options.lobe_stage : automatic_lobe_stage(table);
 }
 
-
-const char* band_method_name(BandMethod method) {
-  switch (method) {
-    case BandMethod::kLobes: return "zhf";
-    case BandMethod::kZxzxz: return "zxzxz";
-    case BandMethod::kQuadratic: return "quadratic";
-  }
-  return "?";
-}
+const char* band_method_name(BandMethod method) { return runtime::enum_name(kBandMethodNames, method); }
 
 bool parse_band_method_choice(const std::string& name, std::optional<BandMethod>& method) {
-  if (name == "auto") {
+  BandMethod parsed = BandMethod::kLobes;
+  if (name == kAutomatic) {
     method.reset();
-    return true;
+  } else if (runtime::parse_enum(kBandMethodNames, name, parsed)) {
+    method = parsed;
+  } else {
+    return false;
   }
-  for (BandMethod m : {BandMethod::kLobes, BandMethod::kZxzxz, BandMethod::kQuadratic})
-    if (name == band_method_name(m)) {
-      method = m;
-      return true;
-    }
-  return false;
+  return true;
 }
 
-std::vector<std::string> band_method_choices() {
-  return {"auto", band_method_name(BandMethod::kLobes), band_method_name(BandMethod::kZxzxz),
-          band_method_name(BandMethod::kQuadratic)};
-}
+std::vector<std::string> band_method_choices() { return runtime::enum_names(kBandMethodNames, {kAutomatic}); }
 
 std::string band_method_choice_name(const std::optional<BandMethod>& method) {
-  return method ? band_method_name(*method) : "auto";
+  return method ? band_method_name(*method) : kAutomatic;
 }
+
 }  // namespace zhf::codegen

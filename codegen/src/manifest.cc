@@ -6,30 +6,18 @@
 #include <set>
 
 #include "zhf/io/files.h"
+#include "zhf/runtime/enum_names.h"
 #include "zhf/runtime/limits.h"
 
 namespace zhf::codegen {
 namespace {
 
-const char* file_kind_name(FileKind kind) {
-  switch (kind) {
-    case FileKind::kKernels: return "kernels";
-    case FileKind::kLanesTables: return "lanes-tables";
-    case FileKind::kDispatch: return "dispatch";
-    case FileKind::kLobeTable: return "lobe-table";
-  }
-  return "?";
-}
-
-const char* precision_name(FilePrecision precision) {
-  switch (precision) {
-    case FilePrecision::kTemplate: return "template";
-    case FilePrecision::kFloat: return "float";
-    case FilePrecision::kDouble: return "double";
-  }
-  return "?";
-}
-
+constexpr runtime::EnumName<FileKind> kFileKindNames[] = {{FileKind::kKernels, "kernels"},
+                                                           {FileKind::kLanesTables, "lanes-tables"},
+                                                           {FileKind::kDispatch, "dispatch"},
+                                                           {FileKind::kLobeTable, "lobe-table"}};
+constexpr runtime::EnumName<FilePrecision> kPrecisionNames[] = {
+    {FilePrecision::kTemplate, "template"}, {FilePrecision::kFloat, "float"}, {FilePrecision::kDouble, "double"}};
 
 }  // namespace
 
@@ -68,11 +56,11 @@ nlohmann::ordered_json manifest_json(const Manifest& manifest) {
                            {"multiplies", fn.ops.multiplies},
                            {"adds", fn.ops.adds},
                            {"others", fn.ops.others}});
-    nlohmann::ordered_json entry = {{"path", f.path}, {"kind", file_kind_name(f.kind)}};
+    nlohmann::ordered_json entry = {{"path", f.path}, {"kind", runtime::enum_name(kFileKindNames, f.kind)}};
     if (f.kind != FileKind::kLobeTable) entry["language"] = language_name(f.language);
     entry["order"] = f.order;
     if (f.kind != FileKind::kLobeTable) {
-      entry["precision"] = precision_name(f.precision);
+      entry["precision"] = runtime::enum_name(kPrecisionNames, f.precision);
       entry["lobe_stage"] = runtime::lobe_stage_name(f.lobe_stage);
       entry["zero_bands"] = f.zero_bands;
       entry["functions"] = functions;
@@ -102,11 +90,7 @@ Manifest parse_manifest(const runtime::json::Value& root, const std::string& sou
     // A relative path inside the tree: no way out of it.
     if (file.path.empty() || file.path[0] == '/' || file.path.find("..") != std::string::npos || !runtime::is_printable_text(file.path))
       path.fail("must be a relative path inside the tree");
-    const std::string& kind = f.member("kind").one_of({"kernels", "lanes-tables", "dispatch", "lobe-table"});
-    file.kind = kind == "kernels"        ? FileKind::kKernels
-                : kind == "lanes-tables" ? FileKind::kLanesTables
-                : kind == "dispatch"     ? FileKind::kDispatch
-                                         : FileKind::kLobeTable;
+    runtime::parse_enum(kFileKindNames, f.member("kind").one_of(runtime::enum_names(kFileKindNames)), file.kind);
     if (file.kind == FileKind::kLobeTable) {
       f.allow_only({"path", "kind", "order", "fnv1a64"});
       file.order = f.member("order").integer(runtime::kMinTableOrder, runtime::kMaxTableOrder);
@@ -118,9 +102,8 @@ Manifest parse_manifest(const runtime::json::Value& root, const std::string& sou
     const Field language = f.member("language");
     if (!parse_language(language.string(), file.language)) language.fail("'" + runtime::excerpt(language.string()) + "' is not a language zhf emits");
     file.order = f.member("order").integer(file.kind == FileKind::kDispatch ? 0 : runtime::kMinGeneratedOrder, runtime::kMaxEmitOrder);
-    const std::string& precision = f.member("precision").one_of({"template", "float", "double"});
-    file.precision = precision == "template" ? FilePrecision::kTemplate : precision == "float" ? FilePrecision::kFloat : FilePrecision::kDouble;
-    runtime::parse_lobe_stage(f.member("lobe_stage").one_of({"float", "double-rotation", "double"}), file.lobe_stage);
+    runtime::parse_enum(kPrecisionNames, f.member("precision").one_of(runtime::enum_names(kPrecisionNames)), file.precision);
+    runtime::parse_lobe_stage(f.member("lobe_stage").one_of(runtime::enum_names(runtime::kLobeStageNames)), file.lobe_stage);
     for (const Field& band : f.member("zero_bands").items(0, runtime::kMaxEmitOrder))
       file.zero_bands.push_back(band.integer(0, std::max(0, file.order - 1)));
     for (const Field& fn : f.member("functions").items(0, runtime::kMaxManifestFunctions)) {

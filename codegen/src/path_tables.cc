@@ -7,6 +7,7 @@
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/runtime/band_rows.h"
+#include "zhf/runtime/enum_names.h"
 #include "zhf/runtime/errors.h"
 #include "zhf/runtime/json.h"
 #include "zhf/runtime/limits.h"
@@ -17,16 +18,15 @@ namespace {
 namespace fs = std::filesystem;
 using runtime::json::Field;
 
-constexpr RotationPath kPaths[] = {RotationPath::kScalar, RotationPath::kLanes, RotationPath::kBandRows,
-                                   RotationPath::kBands01};
+constexpr runtime::EnumName<RotationPath> kPathNames[] = {{RotationPath::kScalar, "scalar"},
+                                                           {RotationPath::kLanes, "lanes"},
+                                                           {RotationPath::kBandRows, "band_rows"},
+                                                           {RotationPath::kBands01, "bands01"}};
 
 RotationPath parse_path(const Field& f) {
-  std::vector<std::string_view> names;
-  for (RotationPath p : kPaths) names.push_back(rotation_path_name(p));
-  const std::string& name = f.one_of(names);
-  for (RotationPath p : kPaths)
-    if (name == rotation_path_name(p)) return p;
-  return RotationPath::kScalar;
+  RotationPath path = RotationPath::kScalar;
+  runtime::parse_enum(kPathNames, f.one_of(runtime::enum_names(kPathNames)), path);
+  return path;
 }
 
 // Whether a build for isa has path p for order in the type named.
@@ -52,8 +52,8 @@ PathTimes parse_times(const Field& f, const std::string& isa, bool is_float, int
                  (is_float ? "float" : "double") + ", order " + std::to_string(order));
   const Field ns = f.member("ns");
   ns.expect(runtime::json::Value::Kind::kObject);
-  for (RotationPath p : kPaths)
-    if (const auto t = ns.find(rotation_path_name(p))) {
+  for (const auto& [p, name] : kPathNames)
+    if (const auto t = ns.find(name)) {
       if (!path_exists(p, isa, is_float, order, lanes_orders)) t->fail("a path that does not exist here");
       const double ns_per_rotation = t->number();
       if (!(ns_per_rotation > 0)) t->fail("must be above 0");
@@ -99,15 +99,7 @@ PathTable read_table(const std::string& file, const std::string& isa, const std:
 
 }  // namespace
 
-const char* rotation_path_name(RotationPath path) {
-  switch (path) {
-    case RotationPath::kScalar: return "scalar";
-    case RotationPath::kLanes: return "lanes";
-    case RotationPath::kBandRows: return "band_rows";
-    case RotationPath::kBands01: return "bands01";
-  }
-  return "scalar";
-}
+const char* rotation_path_name(RotationPath path) { return runtime::enum_name(kPathNames, path); }
 
 const std::vector<std::string>& path_table_isas() {
   static const std::vector<std::string> isas = {"avx512", "avx2", "sse2", "neon"};

@@ -98,7 +98,7 @@ Scene parse_scene(const runtime::json::Value& root, const std::string& source) {
       if (scene.precision == Precision::kDouble && !make_backend(t)->has_double())
         precision->fail(std::string("double, but target ") + language_name(t) + " has no double type");
   }
-  if (const auto stage = top.find("lobe_stage")) parse_lobe_stage_choice(stage->one_of({"auto", "float", "double-rotation", "double"}), scene.lobe_stage);
+  if (const auto stage = top.find("lobe_stage")) parse_lobe_stage_choice(stage->one_of(lobe_stage_choices()), scene.lobe_stage);
   if (const auto method = top.find("method")) parse_band_method_choice(method->one_of(band_method_choices()), scene.method);
   std::map<int, std::string> first_of_order;
   const std::vector<Field> signals = top.member("signals").items(1, runtime::kMaxSceneSignals);

@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "zhf/runtime/enum_names.h"
 #include "zhf/runtime/errors.h"
 
 namespace zhf::dispatch {
@@ -11,7 +12,8 @@ namespace {
 
 // The paths this library was built with, fastest first (dispatch/CMakeLists.txt sets the list).
 constexpr Isa kBuilt[] = {ZHF_DISPATCH_PATHS};
-constexpr Isa kAll[] = {Isa::kGeneric, Isa::kSse2, Isa::kAvx2, Isa::kAvx512, Isa::kNeon};
+constexpr runtime::EnumName<Isa> kIsaNames[] = {
+    {Isa::kGeneric, "generic"}, {Isa::kSse2, "sse2"}, {Isa::kAvx2, "avx2"}, {Isa::kAvx512, "avx512"}, {Isa::kNeon, "neon"}};
 
 bool cpu_runs(Isa isa) {
   switch (isa) {
@@ -41,14 +43,13 @@ std::string names(const std::vector<Isa>& isas) {
 // The path called name, refused in one line naming what (the variable or the call) when the
 // library lacks it or this CPU does not run it.
 Isa checked(const std::string& name, const std::string& what) {
-  for (Isa isa : kAll) {
-    if (name != isa_name(isa)) continue;
+  Isa isa = Isa::kGeneric;
+  if (runtime::parse_enum(kIsaNames, name, isa))
     for (Isa built : kBuilt) {
       if (built != isa) continue;
       if (!cpu_runs(isa)) throw std::invalid_argument(what + ": this CPU does not run " + name + " (it runs " + names(supported_isas()) + ")");
       return isa;
     }
-  }
   std::vector<Isa> built(std::begin(kBuilt), std::end(kBuilt));
   throw std::invalid_argument(what + ": '" + runtime::excerpt(name) + "' is not one of this build's paths (" + names(built) + ")");
 }
@@ -58,16 +59,7 @@ std::atomic<int> forced{kNotForced};
 
 }  // namespace
 
-const char* isa_name(Isa isa) {
-  switch (isa) {
-    case Isa::kSse2: return "sse2";
-    case Isa::kAvx2: return "avx2";
-    case Isa::kAvx512: return "avx512";
-    case Isa::kNeon: return "neon";
-    case Isa::kGeneric: break;
-  }
-  return "generic";
-}
+const char* isa_name(Isa isa) { return runtime::enum_name(kIsaNames, isa); }
 
 std::vector<Isa> supported_isas() {
   std::vector<Isa> out;

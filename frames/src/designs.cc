@@ -10,6 +10,7 @@
 #include <nlopt.hpp>
 
 #include "zhf/runtime/band_recurrence.h"
+#include "zhf/runtime/enum_names.h"
 #include "zhf/runtime/errors.h"
 #include "zhf/runtime/json.h"
 #include "zhf/runtime/limits.h"
@@ -485,14 +486,12 @@ int orbit_size(Symmetry symmetry) {
 }
 
 const char* symmetry_name(Symmetry symmetry) {
-  switch (symmetry) {
-    case Symmetry::kFree: return "free";
-    case Symmetry::kAntipodal: return "antipodal";
-    case Symmetry::kTetrahedral: return "tetrahedral";
-    case Symmetry::kThreefold: return "threefold";
-    case Symmetry::kAntipodalThreefold: return "antipodal threefold";
-  }
-  return "";
+  static constexpr runtime::EnumName<Symmetry> kNames[] = {{Symmetry::kFree, "free"},
+                                                           {Symmetry::kAntipodal, "antipodal"},
+                                                           {Symmetry::kTetrahedral, "tetrahedral"},
+                                                           {Symmetry::kThreefold, "threefold"},
+                                                           {Symmetry::kAntipodalThreefold, "antipodal threefold"}};
+  return runtime::enum_name(kNames, symmetry);
 }
 
 DesignChoice default_design(int t) {

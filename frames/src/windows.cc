@@ -8,16 +8,15 @@
 #include <vector>
 
 #include "zhf/frames/needlets.h"
+#include "zhf/runtime/enum_names.h"
 #include "zhf/runtime/limits.h"
 #include "zhf/runtime/tolerances.h"
 
 namespace zhf::frames {
 namespace {
 
-constexpr struct {
-  WindowKind kind;
-  const char* name;
-} kWindowNames[] = {{WindowKind::kStandard, "standard"}, {WindowKind::kSpline, "spline"}, {WindowKind::kMexican, "mexican"}};
+constexpr runtime::EnumName<WindowKind> kWindowNames[] = {
+    {WindowKind::kStandard, "standard"}, {WindowKind::kSpline, "spline"}, {WindowKind::kMexican, "mexican"}};
 
 void check(const Window& w) {
   check_dilation(w.dilation);
@@ -59,20 +58,8 @@ void support(const Window& w, double& low, double& high) {
 
 }  // namespace
 
-bool parse_window_kind(const std::string& name, WindowKind& kind) {
-  for (const auto& k : kWindowNames)
-    if (name == k.name) {
-      kind = k.kind;
-      return true;
-    }
-  return false;
-}
-
-const char* window_kind_name(WindowKind kind) {
-  for (const auto& k : kWindowNames)
-    if (kind == k.kind) return k.name;
-  return "?";
-}
+bool parse_window_kind(const std::string& name, WindowKind& kind) { return runtime::parse_enum(kWindowNames, name, kind); }
+const char* window_kind_name(WindowKind kind) { return runtime::enum_name(kWindowNames, kind); }
 
 double spline_step(double u) {
   const double s = 2 * u;

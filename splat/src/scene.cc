@@ -22,6 +22,7 @@
 #include "zhf/io/numbers.h"
 #include "zhf/io/ply.h"
 #include "zhf/io/signals.h"
+#include "zhf/runtime/enum_names.h"
 #include "zhf/runtime/finite.h"
 #include "zhf/runtime/orthogonal.h"
 #include "zhf/runtime/parallel.h"
@@ -275,10 +276,9 @@ const char* file_format_name(FileFormat format) { return named(format).name; }
 const char* file_format_extension(FileFormat format) { return named(format).extension; }
 
 std::string file_format_names() {
-  std::string names;
-  for (std::size_t i = 0; i < std::size(kFormatNames); ++i)
-    names += (i == 0 ? "" : i + 1 == std::size(kFormatNames) ? " or " : ", ") + std::string(kFormatNames[i].name);
-  return names;
+  std::vector<std::string> names;
+  for (const FormatName& f : kFormatNames) names.push_back(f.name);
+  return runtime::name_list(names);
 }
 
 bool file_format_of(const std::string& path, FileFormat& format) {

@@ -133,7 +133,7 @@ EmittedFile emit_lanes_tables(const Module& module, const EmitOptions& options) 
                 lanes_float_error_model(table), runtime::tolerance::kLanesFloatMargin,
                 runtime::tolerance::kLanesLobesInDoubleMargin);
   derivation.push_back(model);
-  derivation.push_back("(double-rotation) against the " + runtime::format_number(runtime::tolerance::kFloatRotation) + " target, the lobe stage is " +
+  derivation.push_back(std::string("(") + runtime::lobe_stage_name(runtime::LobeStage::kDoubleRotation) + ") against the " + runtime::format_number(runtime::tolerance::kFloatRotation) + " target, the lobe stage is " +
                        runtime::lobe_stage_name(module.lobe_stage) + ".");
   out << commented(derivation);
   out << "template <int N>\nstruct LanesTables;\ntemplate <>\nstruct LanesTables<" << n << "> {\n";

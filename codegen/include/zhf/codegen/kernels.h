@@ -145,6 +145,8 @@ std::string band_method_choice_name(const std::optional<BandMethod>& method);
 // The lobe stage `auto` picks for a table's rotation kernels: float where eps_f (N-1) k_max meets
 // the float target, else double (R projected, the whole lobe stage in double).
 runtime::LobeStage automatic_lobe_stage(const runtime::LobeTable& table);
+// The names a lobe-stage choice takes: "auto" (none), then each stage's.
+std::vector<std::string> lobe_stage_choices();
 // "auto" (none: automatic_lobe_stage) or a stage's name (runtime/lobe_stage.h); false otherwise.
 bool parse_lobe_stage_choice(const std::string& name, std::optional<runtime::LobeStage>& stage);
 std::string lobe_stage_choice_name(const std::optional<runtime::LobeStage>& stage);

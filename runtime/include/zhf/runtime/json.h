@@ -24,6 +24,7 @@
 #include <utility>
 #include <vector>
 
+#include "zhf/runtime/enum_names.h"
 #include "zhf/runtime/errors.h"
 
 namespace zhf::runtime::json {
@@ -107,17 +108,11 @@ inline std::string compact_text(const Value& v) {
   return out;
 }
 
-inline const char* kind_name(Value::Kind kind) {
-  switch (kind) {
-    case Value::Kind::kNull: return "null";
-    case Value::Kind::kBool: return "a boolean";
-    case Value::Kind::kNumber: return "a number";
-    case Value::Kind::kString: return "a string";
-    case Value::Kind::kArray: return "an array";
-    case Value::Kind::kObject: return "an object";
-  }
-  return "?";
-}
+inline constexpr EnumName<Value::Kind> kKindNames[] = {
+    {Value::Kind::kNull, "null"},       {Value::Kind::kBool, "a boolean"}, {Value::Kind::kNumber, "a number"},
+    {Value::Kind::kString, "a string"}, {Value::Kind::kArray, "an array"}, {Value::Kind::kObject, "an object"}};
+
+inline const char* kind_name(Value::Kind kind) { return enum_name(kKindNames, kind); }
 
 namespace detail {
 

@@ -6,6 +6,8 @@
 
 #include <string_view>
 
+#include "zhf/runtime/enum_names.h"
+
 namespace zhf::runtime {
 
 enum class LobeStage : int {
@@ -14,22 +16,10 @@ enum class LobeStage : int {
   kDouble = 2,          // R projected onto the rotations, and the whole lobe stage in double
 };
 
-inline const char* lobe_stage_name(LobeStage stage) {
-  switch (stage) {
-    case LobeStage::kFloat: return "float";
-    case LobeStage::kDoubleRotation: return "double-rotation";
-    case LobeStage::kDouble: return "double";
-  }
-  return "?";
-}
+inline constexpr EnumName<LobeStage> kLobeStageNames[] = {
+    {LobeStage::kFloat, "float"}, {LobeStage::kDoubleRotation, "double-rotation"}, {LobeStage::kDouble, "double"}};
 
-inline bool parse_lobe_stage(std::string_view name, LobeStage& stage) {
-  for (LobeStage s : {LobeStage::kFloat, LobeStage::kDoubleRotation, LobeStage::kDouble})
-    if (name == lobe_stage_name(s)) {
-      stage = s;
-      return true;
-    }
-  return false;
-}
+inline const char* lobe_stage_name(LobeStage stage) { return enum_name(kLobeStageNames, stage); }
+inline bool parse_lobe_stage(std::string_view name, LobeStage& stage) { return parse_enum(kLobeStageNames, name, stage); }
 
 }  // namespace zhf::runtime
