@@ -1,6 +1,6 @@
 """zhf's HEALPix path against healpy on the same maps: projection (zhf project --healpix) against
 the known coefficients and against healpy's map2alm, power spectra against anafast, a masked map,
-and maps written by zhf (zhf needlets synthesize --healpix-out) read by healpy. Prints a Markdown
+and maps written by zhf (zhf needlets synthesize --out) read by healpy. Prints a Markdown
 table (docs/frames.md).
 
     /usr/bin/python3 bench/healpix_crosscheck.py ZHF [--nside 64] [--order 33] [--seed 1]
@@ -114,7 +114,7 @@ def main():
         written = []
         for ordering in ("ring", "nested"):
             out = work / f"out_{ordering}.fits"
-            run(a.zhf, "needlets", "synthesize", "--in", str(beta), "--healpix-out", str(out), "--nside", str(nside), "--ordering", ordering)
+            run(a.zhf, "needlets", "synthesize", "--in", str(beta), "--out", str(out), "--nside", str(nside), "--ordering", ordering)
             back = hp.read_map(str(out), nest=None, dtype=np.float64)
             if ordering == "nested":
                 back = hp.reorder(back, n2r=True)

@@ -17,7 +17,7 @@ trap 'rm -rf "$work"' EXIT
 cases=("2 1" "2 2" "2 3" "3 1" "2.4 1")
 for c in "${cases[@]}"; do
   read -r b j <<<"$c"
-  "$zhf" needlets profile --B "$b" --j "$j" --out "$work/B${b}_j${j}.csv" >/dev/null
+  "$zhf" needlets profile --B "$b" --level "$j" --out "$work/B${b}_j${j}.csv" >/dev/null
 done
 cat >"$work/plot.gp" <<GP
 set terminal svg size 1200,640 font "sans,11" background "white"

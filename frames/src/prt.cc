@@ -138,6 +138,16 @@ double prt_transfer(PrtScene scene, PrtTransfer transfer, const Point& p, const 
   return brdf == 0 ? 0 : brdf * w[2] * prt_visibility(scene, p, w);
 }
 
+Radiance equirectangular_sky(int width, int height, std::shared_ptr<const std::vector<float>> rgb) {
+  return [width, height, rgb](const Point& w) {
+    const double theta = std::acos(std::clamp(w[2], -1.0, 1.0)), phi = std::atan2(w[1], w[0]) + (w[1] < 0 ? 2 * runtime::kPi : 0.0);
+    const int row = std::min(height - 1, static_cast<int>(theta / runtime::kPi * height));
+    const int column = std::min(width - 1, static_cast<int>(phi / (2 * runtime::kPi) * width));
+    const float* pixel = &(*rgb)[3 * (static_cast<std::size_t>(row) * width + column)];
+    return 0.2126 * pixel[0] + 0.7152 * pixel[1] + 0.0722 * pixel[2];
+  };
+}
+
 double sun_and_sky(const Point& w) {
   static const double n = std::sqrt(0.5 * 0.5 + 0.3 * 0.3 + 0.8 * 0.8);
   const double cosine = (0.5 * w[0] + 0.3 * w[1] + 0.8 * w[2]) / n;

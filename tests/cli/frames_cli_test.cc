@@ -148,9 +148,13 @@ TEST(NeedletPrtCli, ReportsErrorsPerCoefficientCountAndRefusesBadOptions) {
     EXPECT_EQ(bad.exit_code, 2) << message << ": " << bad.err;
     EXPECT_NE(bad.err.find(message), std::string::npos) << bad.err;
   }
-  const test::RunResult missing = test::run_zhf({"needlets", "prt", "--order", "5", "--sky", (dir / "none.hdr").string(), "--out", out + "2"});
-  EXPECT_EQ(missing.exit_code, 3) << missing.err;
-  EXPECT_FALSE(std::filesystem::exists(out + "2"));
+  // The sky image, in both spellings (--sky is the old one).
+  for (const char* option : {"--image", "--sky"}) {
+    const test::RunResult missing = test::run_zhf({"needlets", "prt", "--order", "5", option, (dir / "none.hdr").string(), "--out", out + "2"});
+    EXPECT_EQ(missing.exit_code, 3) << option << ": " << missing.err;
+    EXPECT_NE(missing.err.find("none.hdr"), std::string::npos) << option << ": " << missing.err;
+    EXPECT_FALSE(std::filesystem::exists(out + "2")) << option;
+  }
 }
 
 }  // namespace

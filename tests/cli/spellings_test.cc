@@ -2,6 +2,10 @@
 // a band limit of bands 0..N-1, --count a number of things. Every earlier spelling still works and
 // writes the same bytes; giving both spellings of one option is a usage error that names them.
 #include <filesystem>
+#include <map>
+#include <regex>
+#include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -49,7 +53,8 @@ TEST(Spellings, OldAndNewSpellingsDoTheSame) {
       // The emitted banner records the command line, which differs.
       {"needlets emit bands", {"needlets", "emit", "--lang", "glsl", "--size", "16", "--gauss", "--out", "{OUT}"}, "--lmax", "3",
        "--order", "4", false},
-      {"needlets profile", {"needlets", "profile", "--j", "1"}, "--csv", "{OUT}", "--out", "{OUT}"},
+      {"needlets profile", {"needlets", "profile", "--level", "1"}, "--csv", "{OUT}", "--out", "{OUT}"},
+      {"needlets profile level", {"needlets", "profile", "--out", "{OUT}"}, "--j", "2", "--level", "2"},
       {"bench", {"bench", "--quick", "--orders", "2", "--quiet"}, "--json", "{OUT}", "--out", "{OUT}", false},
   };
   for (const Renamed& c : cases) {
@@ -76,6 +81,99 @@ TEST(Spellings, OldAndNewSpellingsDoTheSame) {
     EXPECT_NE(r.err.find("give one of them"), std::string::npos) << c.what << ": " << r.err;
     EXPECT_FALSE(fs::exists(new_out + ".both")) << c.what;
   }
+}
+
+// Every command and subcommand ("needlets prt") -> the options its --help lists.
+std::map<std::string, std::set<std::string>> options_of_every_command() {
+  const std::regex subcommand(R"(^  ([a-z][a-z0-9-]*)\s{2,})"), option(R"(^\s+(?:-\w,)?(--[a-z0-9-]+))");
+  std::map<std::string, std::set<std::string>> options;
+  std::vector<std::string> pending = {""};
+  while (!pending.empty()) {
+    const std::string command = pending.back();
+    pending.pop_back();
+    const test::RunResult r = test::run_zhf(command.empty() ? "--help" : command + " --help");
+    EXPECT_EQ(r.exit_code, 0) << "zhf " << command << " --help: " << r.err;
+    std::istringstream lines(r.out);
+    bool in_subcommands = false;
+    for (std::string line; std::getline(lines, line);) {
+      if (line.rfind("Subcommands:", 0) == 0 || line.rfind("Options:", 0) == 0) in_subcommands = line[0] == 'S';
+      std::smatch m;
+      if (in_subcommands && std::regex_search(line, m, subcommand)) {
+        pending.push_back(command.empty() ? m[1].str() : command + " " + m[1].str());
+      } else if (!command.empty() && !in_subcommands && std::regex_search(line, m, option)) {
+        options[command].insert(m[1].str());
+      }
+    }
+  }
+  return options;
+}
+
+// The cells of the rows of docs/usage.md's table whose header row starts with `first`.
+std::vector<std::vector<std::string>> usage_table(const std::string& first) {
+  std::istringstream lines(test::read_text(test::source_path("docs/usage.md")));
+  std::vector<std::vector<std::string>> rows;
+  bool in_table = false;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("| " + first + " |", 0) == 0) {
+      in_table = true;
+      continue;
+    }
+    if (!in_table || line.rfind("| ---", 0) == 0) continue;
+    if (line.rfind("|", 0) != 0) break;
+    std::vector<std::string> cells;
+    std::istringstream cell_text(line.substr(1));
+    for (std::string cell; std::getline(cell_text, cell, '|');) cells.push_back(cell.substr(1, cell.size() - 2));
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+// "candidates, needlets window" -> {"candidates", "needlets window"}.
+std::set<std::string> commands_in(const std::string& cell) {
+  std::set<std::string> out;
+  std::istringstream items(cell);
+  for (std::string item; std::getline(items, item, ',');) out.insert(item.substr(item.find_first_not_of(' ')));
+  return out;
+}
+
+// The first option a cell spells: "`--out FILE`" -> "--out".
+std::string option_in(const std::string& cell) {
+  std::smatch m;
+  return std::regex_search(cell, m, std::regex("--[a-z0-9-]+")) ? m[0].str() : "";
+}
+
+// docs/usage.md's options tables against every command's --help: the commands with --threads,
+// --compiler and --level are the ones the table names; each earlier spelling is out of the help of
+// the commands it names, which list its current spelling; every option a help lists is written in
+// docs/usage.md.
+TEST(Spellings, TheOptionsTablesMatchEveryHelp) {
+  const std::map<std::string, std::set<std::string>> options = options_of_every_command();
+  ASSERT_TRUE(options.count("rotate") && options.count("needlets prt") && options.count("designs")) << options.size() << " commands";
+  for (const std::string what : {"threads", "a C++ compiler", "a needlet level"}) {
+    const auto rows = usage_table("concept");
+    const auto row = std::find_if(rows.begin(), rows.end(), [&](const auto& r) { return r.at(0) == what; });
+    ASSERT_NE(row, rows.end()) << "docs/usage.md: no row for " << what;
+    const std::string name = option_in(row->at(1));
+    std::set<std::string> having;
+    for (const auto& [command, listed] : options)
+      if (listed.count(name)) having.insert(command);
+    EXPECT_EQ(having, commands_in(row->at(2))) << what << " (" << name << "): the commands whose --help lists it";
+  }
+  const auto renamed = usage_table("earlier spelling");
+  ASSERT_GE(renamed.size(), 7u);
+  for (const auto& row : renamed) {
+    const std::string old_name = option_in(row.at(0)), current = option_in(row.at(1));
+    for (const std::string& command : commands_in(row.at(2))) {
+      ASSERT_TRUE(options.count(command)) << "docs/usage.md names '" << command << "', which has no --help";
+      EXPECT_EQ(options.at(command).count(old_name), 0u) << "zhf " << command << " --help lists the old " << old_name;
+      EXPECT_EQ(options.at(command).count(current), 1u) << "zhf " << command << " --help lacks " << current;
+    }
+  }
+  const std::string usage = test::read_text(test::source_path("docs/usage.md"));
+  for (const auto& [command, listed] : options)
+    for (const std::string& name : listed)
+      EXPECT_TRUE(std::regex_search(usage, std::regex(name + "(?![a-z0-9-])")))
+          << "zhf " << command << " " << name << " is not in docs/usage.md";
 }
 
 // Usage errors point at the help of the command that was given.

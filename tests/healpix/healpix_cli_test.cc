@@ -54,6 +54,7 @@ TEST(HealpixCli, MaskedNeedletsRoundTripToAMapFile) {
   write_map(map, nside, ring, HealpixOrdering::kRing);
   test::RunResult r = test::run_zhf({"needlets", "analyze", "--healpix", map, "--order", std::to_string(order), "--out", beta});
   ASSERT_EQ(r.exit_code, 0) << r.err;
+  // --healpix-out: the old spelling of --out.
   r = test::run_zhf({"needlets", "synthesize", "--in", beta, "--healpix-out", back, "--nside", std::to_string(nside), "--ordering", "nested"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const HealpixMap written = read_healpix_map(back);
@@ -141,9 +142,9 @@ TEST(HealpixCli, MalformedMapsAreRefusedInOneLineAndNothingIsWritten) {
            {{"needlets", "analyze", "--healpix", good, "--order", "18", "--out", out}, "--order: band 17 is above 4 Nside = 16"},
            {{"project", "--image", good, "--healpix", good, "--out", out}, "give exactly one"},
            {{"project", "--function", "cap", "--mask", good, "--out", out}, "--mask: only with --healpix"},
-           {{"needlets", "synthesize", "--in", beta, "--healpix-out", out, "--nside", "3", "--ordering", "nested"}, "--nside: 3 is not a power of two"},
-           {{"needlets", "synthesize", "--in", beta, "--healpix-out", out, "--nside", "8193"}, "--nside"},
-           {{"needlets", "synthesize", "--in", beta, "--healpix-out", out, "--nside", "4", "--ordering", "spiral"}, "--ordering: 'spiral'"},
+           {{"needlets", "synthesize", "--in", beta, "--out", out, "--nside", "3", "--ordering", "nested"}, "--nside: 3 is not a power of two"},
+           {{"needlets", "synthesize", "--in", beta, "--out", out, "--nside", "8193"}, "--nside"},
+           {{"needlets", "synthesize", "--in", beta, "--out", out, "--nside", "4", "--ordering", "spiral"}, "--ordering: 'spiral'"},
        }) {
     const test::RunResult r = test::run_zhf(args);
     EXPECT_EQ(r.exit_code, 2) << message << ": " << r.err;
@@ -152,7 +153,7 @@ TEST(HealpixCli, MalformedMapsAreRefusedInOneLineAndNothingIsWritten) {
   }
   // Coefficients that do not fit the frame they name.
   const std::string short_beta = file("short.json", R"({"format": "zhf-needlet-coefficients-1", "B": 2, "lmax": 4, "nodes": "design", "levels": [], "beta": [1, 2]})");
-  const test::RunResult r = test::run_zhf({"needlets", "synthesize", "--in", short_beta, "--healpix-out", out, "--nside", "4"});
+  const test::RunResult r = test::run_zhf({"needlets", "synthesize", "--in", short_beta, "--out", out, "--nside", "4"});
   EXPECT_EQ(r.exit_code, 3) << r.err;
   EXPECT_NE(r.err.find("short.json"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(out));

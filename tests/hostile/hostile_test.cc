@@ -572,7 +572,7 @@ TEST(Hostile, UnboundedWorkIsRefusedBeforeItStarts) {
   refused("verify --orders 2..2147483647", box, {"verify", "--orders", "2..2147483647"}, 2, "--orders: must be 2..12");
   refused("optimize --threads 1000", box, {"optimize", "--order", "4", "--threads", "1000"}, 2, "--threads: must be 0..256");
   refused("needlets --B 1", box, {"needlets", "window", "--B", "1", "--lmax", "4096"}, 2, "--B: must be in [1.05, 64]");
-  refused("needlets profile --B 64 --j 16", box, {"needlets", "profile", "--B", "64", "--j", "16"}, 2, "--j: level 16 of B = 64 reaches past band 1023");
+  refused("needlets profile --B 64 --level 16", box, {"needlets", "profile", "--B", "64", "--level", "16"}, 2, "--level: level 16 of B = 64 reaches past band 1023");
   refused("needlets --lmax 64", box, {"needlets", "tables", "--lmax", "64"}, 2, "--lmax: must be 1..63");
   refused("needlets --sizes 3..1048576", box, {"needlets", "tables", "--lmax", "8", "--sizes", "3..1048576"}, 2, "--sizes: at most 16 sizes");
   refused("analyze /dev/zero", box, {"analyze", "--coeffs", "/dev/zero"}, 3, "larger than the limit of 67108864 bytes");

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,10 @@ double prt_transfer(PrtScene scene, PrtTransfer transfer, const Point& p, const 
 // A clear sky with a sun: 0.25 + 0.75 w_z above the horizon, 0.15 below (ground), plus a sun of
 // peak 40 and width ~1/sqrt(300) rad towards (0.5, 0.3, 0.8) normalised.
 double sun_and_sky(const Point& w);
+// An equirectangular image as a sky: row 0 at +z, phi from +x towards +y, the luminance (Rec. 709
+// weights) of the pixel holding the direction. rgb: width x height pixels, row-major from the top
+// row, 3 floats a pixel.
+Radiance equirectangular_sky(int width, int height, std::shared_ptr<const std::vector<float>> rgb);
 
 struct PrtRow {
   int kept = 0;                        // coefficients per vertex
