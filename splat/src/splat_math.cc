@@ -1,5 +1,6 @@
 #include "splat_math.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "zhf/io/errors.h"
@@ -59,6 +60,9 @@ Layout layout_of(const ply::Header& header, const std::string& source) {
   return layout;
 }
 
+// Prepared for a whole scene: the band matrices are built once (they pay from a few vectors on).
+constexpr std::size_t kPreparedForScene = std::size_t(1) << 20;
+
 SplatMath::SplatMath(const Layout& layout, const Transform& t) : layout_(layout), t_(t) {
   const runtime::Matrix3& r = t.r;
   reflection_ = runtime::determinant(r.data()) < 0;
@@ -74,11 +78,11 @@ SplatMath::SplatMath(const Layout& layout, const Transform& t) : layout_(layout)
     // An axis map moves coefficients exactly; any other q through its band matrices, built on the
     // CPU's fastest path (zhf::dispatch) once for the whole scene.
     exact_ = runtime::exact_coefficient_map(q.data(), order);
-    if (!exact_) sh_.emplace(order, dispatch::Rotator<double>::make(order).band_matrices(q.data()));
+    if (!exact_) sh_ = dispatch::Rotator<double>::make(order).prepare(q.data(), kPreparedForScene);
   }
 }
 
-void SplatMath::apply(double* v) const {
+void SplatMath::apply_geometry(double* v) const {
   const runtime::Matrix3& r = t_.r;
   const auto& p = layout_.position;
   const double x = v[p[0]], y = v[p[1]], z = v[p[2]];
@@ -98,19 +102,35 @@ void SplatMath::apply(double* v) const {
   }
   if (layout_.log_scale[0] >= 0)
     for (int i : layout_.log_scale) v[i] += log_scale_;
-  if (exact_ || sh_) {
-    const int n2 = (layout_.degree + 1) * (layout_.degree + 1), per = n2 - 1;
-    double in[runtime::kMaxGeneratedOrder * runtime::kMaxGeneratedOrder], out[runtime::kMaxGeneratedOrder * runtime::kMaxGeneratedOrder];
-    for (int c = 0; c < 3; ++c) {
-      in[0] = v[layout_.dc[c]];
-      for (int j = 0; j < per; ++j) in[1 + j] = v[layout_.rest[c * per + j]];
-      if (exact_) {
-        exact_->apply(in, out);
-      } else {
-        sh_->apply(in, out);
+}
+
+void SplatMath::apply_many(double* values, std::size_t count, std::size_t stride) const {
+  for (std::size_t s = 0; s < count; ++s) apply_geometry(values + s * stride);
+  if (!exact_ && !sh_) return;
+  const int n2 = (layout_.degree + 1) * (layout_.degree + 1), per = n2 - 1;
+  // Each splat's three channels as three vectors of n2, kShBlock splats a call.
+  constexpr std::size_t kShBlock = 16, kVector = runtime::kMaxGeneratedOrder * runtime::kMaxGeneratedOrder;
+  double in[3 * kShBlock * kVector], out[3 * kShBlock * kVector];
+  for (std::size_t first = 0; first < count; first += kShBlock) {
+    const std::size_t part = std::min(kShBlock, count - first);
+    for (std::size_t s = 0; s < part; ++s)
+      for (int c = 0; c < 3; ++c) {
+        const double* v = values + (first + s) * stride;
+        double* f = in + (3 * s + c) * n2;
+        f[0] = v[layout_.dc[c]];
+        for (int j = 0; j < per; ++j) f[1 + j] = v[layout_.rest[c * per + j]];
       }
-      for (int j = 0; j < per; ++j) v[layout_.rest[c * per + j]] = out[1 + j];
+    if (exact_) {
+      for (std::size_t k = 0; k < 3 * part; ++k) exact_->apply(in + k * n2, out + k * n2);
+    } else {
+      sh_->apply(3 * part, in, out, 1);
     }
+    for (std::size_t s = 0; s < part; ++s)
+      for (int c = 0; c < 3; ++c) {
+        double* v = values + (first + s) * stride;
+        const double* g = out + (3 * s + c) * n2;
+        for (int j = 0; j < per; ++j) v[layout_.rest[c * per + j]] = g[1 + j];
+      }
   }
 }
 

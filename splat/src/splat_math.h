@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "zhf/dispatch/rotator.h"
 #include "zhf/io/ply.h"
-#include "zhf/runtime/dense_rotation.h"
 #include "zhf/runtime/orthogonal.h"
 #include "zhf/splat/scene.h"
 
@@ -32,7 +32,11 @@ Layout layout_of(const io::ply::Header& header, const std::string& source);
 class SplatMath {
  public:
   SplatMath(const Layout& layout, const Transform& t);
-  void apply(double* values) const;
+  // One splat's property values, transformed in place.
+  void apply(double* values) const { apply_many(values, 1, 0); }
+  // count splats' values, splat s at values + s * stride: the SH of several splats go through
+  // zhf::dispatch's path in one call (the rotation's product, the most of a splat's arithmetic).
+  void apply_many(double* values, std::size_t count, std::size_t stride) const;
 
  private:
   const Layout& layout_;
@@ -41,7 +45,8 @@ class SplatMath {
   std::array<double, 4> turn_{};
   double log_scale_ = 0;
   std::optional<runtime::CoefficientMap> exact_;
-  std::optional<runtime::DenseRotation<double>> sh_;
+  std::optional<dispatch::PreparedTransform<double>> sh_;
+  void apply_geometry(double* values) const;
 };
 
 }  // namespace zhf::splat
