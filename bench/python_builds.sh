@@ -5,14 +5,9 @@
 # python_builds_swapped.txt, through bench/record.sh; docs/performance.md quotes them. Arguments
 # go to the bench (default --reps 15).
 set -euo pipefail
-source "$(dirname "${BASH_SOURCE[0]}")/../scripts/setup.sh"
-v3=$ZHF_ROOT/build-x86-64-v3
-cmake -S "$ZHF_ROOT" -B "$v3" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS=-march=x86-64-v3 > /dev/null
-cmake --build "$ZHF_BUILD" -j "$ZHF_JOBS" --target _zhf
-cmake --build "$v3" -j "$ZHF_JOBS" --target _zhf
-cd "$ZHF_ROOT"
+source "$(dirname "${BASH_SOURCE[0]}")/both_builds.sh" _zhf
 [ $# -gt 0 ] || set -- --reps 15
-default=${ZHF_BUILD#$ZHF_ROOT/}/python
+default=${ZHF_BUILD#$ZHF_ROOT/}/python v3=${ZHF_BUILD_V3#$ZHF_ROOT/}/python
 bench() { bash bench/record.sh "$1" "Release -O3 -DNDEBUG: no -march against -march=x86-64-v3" /usr/bin/python3 bench/python_builds_bench.py "${@:2}"; }
-bench bench/results/python_builds.txt "$default" build-x86-64-v3/python "$@"
-bench bench/results/python_builds_swapped.txt build-x86-64-v3/python "$default" "$@"
+bench bench/results/python_builds.txt "$default" "$v3" "$@"
+bench bench/results/python_builds_swapped.txt "$v3" "$default" "$@"

@@ -5,18 +5,13 @@
 # on all cores, into bench/results/splat_builds.txt through bench/record.sh; docs/performance.md
 # quotes it. Argument: runs per order (default 15).
 set -euo pipefail
-source "$(dirname "${BASH_SOURCE[0]}")/../scripts/setup.sh"
-v3=$ZHF_ROOT/build-x86-64-v3
-cmake -S "$ZHF_ROOT" -B "$v3" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS=-march=x86-64-v3 > /dev/null
-cmake --build "$ZHF_BUILD" -j "$ZHF_JOBS" --target zhf
-cmake --build "$v3" -j "$ZHF_JOBS" --target zhf
-cd "$ZHF_ROOT"
+source "$(dirname "${BASH_SOURCE[0]}")/both_builds.sh" zhf
 runs=${1:-15}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 /usr/bin/python3 examples/make_splats.py "$work/scene.ply"
 default="$ZHF_BUILD/cli/zhf splat --in $work/scene.ply --out $work/default.ply --zyz '0.3 0.5 0.7'"
-other="$v3/cli/zhf splat --in $work/scene.ply --out $work/v3.ply --zyz '0.3 0.5 0.7'"
+other="$ZHF_BUILD_V3/cli/zhf splat --in $work/scene.ply --out $work/v3.ply --zyz '0.3 0.5 0.7'"
 both() {
   echo "## A: the default build, B: x86-64-v3"
   farm-bench -n "$runs" --timeout 900 --vs "$other" -- sh -c "exec $default"
