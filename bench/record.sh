@@ -18,7 +18,7 @@ tree=$(git diff --quiet HEAD -- && echo "clean tree" || echo "modified tree")
 tmp=$(mktemp "$out.XXXXXX")
 trap 'rm -f "$tmp"' EXIT
 {
-  shown="${pin[*]} $*"
+  shown="${pin[*]}${pin[*]:+ }$*"
   echo "# ${shown//$PWD\//}; $build"
   echo "# $(g++ --version | head -1); CPU: $cpu ($isa), $(nproc) cores; commit $(git rev-parse --short HEAD) ($tree); $(date -u +%F)"
   "${pin[@]}" "$@"
