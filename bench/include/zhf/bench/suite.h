@@ -12,6 +12,10 @@
 
 namespace zhf::bench {
 
+// The variant of the float kernels with the lobe stage in float whatever the error model says: a
+// knob that trades accuracy (the float error model instead of 1e-6), so never a row's winner.
+inline constexpr const char* kAllFloatVariant = "all float";
+
 struct SuiteOptions {
   bool quick = false;               // CI: small counts, few repeats; same methods and orders
   std::vector<int> orders;          // empty: 2..8, plus 10, 12, 16 for the general methods
