@@ -5,13 +5,15 @@
 
 #include "commands.h"
 #include "options.h"
+#include "zhf/codegen/limits.h"
 #include "zhf/codegen/scene.h"
 #include "zhf/io/coefficients.h"
 #include "zhf/io/files.h"
+#include "zhf/io/limits.h"
 #include "zhf/io/signals.h"
-#include "zhf/runtime/limits.h"
 #include "zhf/runtime/tolerances.h"
 #include "zhf/sh/analysis.h"
+#include "zhf/sh/limits.h"
 
 namespace zhf::cli {
 namespace {
@@ -32,7 +34,7 @@ int run_analyze(const AnalyzeOptions& options) {
     double tolerance;
     const std::string& json;
     const std::string& scene_out;
-  } o{options.coeffs, number_option("--tolerance", options.tolerance, runtime::kMinZonalTolerance, 1.0), options.json, options.scene_out};
+  } o{options.coeffs, number_option("--tolerance", options.tolerance, sh::kMinZonalTolerance, 1.0), options.json, options.scene_out};
   for (const std::string& out : {o.json, o.scene_out})
     if (!out.empty()) io::PendingFile check(out);  // refuse an unwritable output before the work
   const io::CoefficientFile file = io::read_coefficients(o.coeffs, options.channels);
@@ -116,9 +118,9 @@ int run_analyze(const AnalyzeOptions& options) {
     signal.variants = {zonal ? "zonal" : "standard"};
     for (int l : energy.zero_bands)
       if (l < signal.order) signal.zero_bands.push_back(l);
-    if (signal.order > runtime::kMaxEmitOrder)
+    if (signal.order > codegen::kMaxEmitOrder)
       throw UsageError("--scene-out: the data needs order " + std::to_string(signal.order) + ", zhf emits up to " +
-                       std::to_string(runtime::kMaxEmitOrder));
+                       std::to_string(codegen::kMaxEmitOrder));
     scene.signals.push_back(signal);
     scene_text = io::json_text(scene.to_json());
   }
@@ -140,9 +142,9 @@ void add_analyze_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<AnalyzeOptions>();
   CLI::App* c = app.add_subcommand("analyze", "Per-band energy, the order the data needs, known-zero bands, zonal axis");
   c->add_option("--coeffs", o->coeffs, "SH coefficient vectors: JSON array or text, one vector per line")->required();
-  c->add_option("--tolerance", o->tolerance, "Relative L2 error allowed, " + runtime::format_number(runtime::kMinZonalTolerance) + "..1 (default " + runtime::format_number(runtime::tolerance::kDefaultZonalFit) + "); also the zonal residual bound");
+  c->add_option("--tolerance", o->tolerance, "Relative L2 error allowed, " + runtime::format_number(sh::kMinZonalTolerance) + "..1 (default " + runtime::format_number(runtime::tolerance::kDefaultZonalFit) + "); also the zonal residual bound");
   c->add_option("--channels", o->channels, "Channels per vector (text: numbers per line split evenly; JSON: checked)")
-      ->check(CLI::Range(1, runtime::kMaxChannels));
+      ->check(CLI::Range(1, io::kMaxChannels));
   keep_old_spelling(c, c->add_option("--out", o->json, "Write the analysis as JSON here"), "--json", o->json);
   c->add_option("--scene-out", o->scene_out, "Write a scene spec (zhf-scene-1) for this data here");
   c->callback([o, &action] { action = [o] { return run_analyze(*o); }; });

@@ -4,11 +4,11 @@
 #include "commands.h"
 #include "options.h"
 #include "progress.h"
+#include "zhf/bench/limits.h"
 #include "zhf/bench/plots.h"
 #include "zhf/io/files.h"
 #include "zhf/io/signals.h"
 #include "zhf/pipeline/project.h"
-#include "zhf/runtime/limits.h"
 
 namespace zhf::cli {
 namespace {
@@ -37,7 +37,7 @@ int run_bench(const BenchOptions& o) {
   if (!o.from.empty()) return redraw(o);
   bench::SuiteOptions options;
   options.quick = o.quick;
-  if (!o.orders.empty()) options.orders = orders_option("--orders", o.orders, 2, runtime::kMaxBenchOrder);
+  if (!o.orders.empty()) options.orders = orders_option("--orders", o.orders, 2, bench::kMaxBenchOrder);
   options.source_dir = pipeline::project().root;
   // Refuse an unwritable output before minutes of measuring, not after.
   if (!o.json.empty()) io::PendingFile check(o.json);
@@ -76,7 +76,7 @@ void add_bench_command(CLI::App& app, Action& action) {
   c->add_flag("--quick", o->quick, "Small counts and few repeats (CI: checks every method runs and is accurate)");
   c->add_flag("--quiet", o->quiet, "No progress line");
   c->add_flag("--verbose", o->verbose, "Progress lines on stderr (one a second at most) also when it is not a terminal");
-  c->add_option("--orders", o->orders, "Orders, e.g. 3,5,8 or 2..8, each 2.." + std::to_string(runtime::kMaxBenchOrder) +
+  c->add_option("--orders", o->orders, "Orders, e.g. 3,5,8 or 2..8, each 2.." + std::to_string(bench::kMaxBenchOrder) +
                                           " (default 2..8 plus 10, 12, 16)");
   keep_old_spelling(c, c->add_option("--out", o->json, "Write every measurement as JSON here"), "--json", o->json);
   c->add_option("--plot", o->plot,

@@ -4,9 +4,9 @@
 #include "commands.h"
 #include "options.h"
 #include "zhf/candidates/candidates.h"
+#include "zhf/candidates/limits.h"
 #include "zhf/io/files.h"
 #include "zhf/io/signals.h"
-#include "zhf/runtime/limits.h"
 
 namespace zhf::cli {
 namespace {
@@ -19,9 +19,9 @@ struct CandidatesOptions {
 
 int run_candidates(const CandidatesOptions& options) {
   const int order =
-      static_cast<int>(integer_option("--order", options.order, runtime::kMinSearchOrder, runtime::kMaxSearchOrder));
-  if (!options.json_path.empty() && order > runtime::kMaxCandidatesJsonOrder)
-    throw UsageError("--out: a candidates file goes up to order " + std::to_string(runtime::kMaxCandidatesJsonOrder) + " (order " +
+      static_cast<int>(integer_option("--order", options.order, candidates::kMinSearchOrder, candidates::kMaxSearchOrder));
+  if (!options.json_path.empty() && order > candidates::kMaxCandidatesJsonOrder)
+    throw UsageError("--out: a candidates file goes up to order " + std::to_string(candidates::kMaxCandidatesJsonOrder) + " (order " +
                      std::to_string(order) + "'s would be too large to write)");
   const candidates::CandidateSet set = candidates::enumerate_candidates(order);
   std::printf("order %d: %zu theta values, %zu phi values, %zu candidate directions\n", set.order, set.thetas.size(),
@@ -40,11 +40,11 @@ int run_candidates(const CandidatesOptions& options) {
 void add_candidates_command(CLI::App& app, Action& action) {
   auto options = std::make_shared<CandidatesOptions>();
   CLI::App* command = app.add_subcommand("candidates", "Enumerate the candidate lobe directions of an order");
-  command->add_option("--order", options->order, "Order N (bands 0..N-1), " + std::to_string(runtime::kMinSearchOrder) + ".." +
-                                                      std::to_string(runtime::kMaxSearchOrder))->required();
+  command->add_option("--order", options->order, "Order N (bands 0..N-1), " + std::to_string(candidates::kMinSearchOrder) + ".." +
+                                                      std::to_string(candidates::kMaxSearchOrder))->required();
   keep_old_spelling(command,
                     command->add_option("--out", options->json_path, "Write the candidates as JSON to this file (orders up to " +
-                                                                       std::to_string(runtime::kMaxCandidatesJsonOrder) + ")"),
+                                                                       std::to_string(candidates::kMaxCandidatesJsonOrder) + ")"),
                     "--json", options->json_path);
   command->callback([options, &action] { action = [options] { return run_candidates(*options); }; });
 }

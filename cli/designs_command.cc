@@ -9,6 +9,7 @@
 #include "options.h"
 #include "progress.h"
 #include "zhf/frames/designs.h"
+#include "zhf/frames/limits.h"
 #include "zhf/io/files.h"
 #include "zhf/io/signals.h"
 #include "zhf/runtime/limits.h"
@@ -35,11 +36,11 @@ std::string known_counts(int t) {
 
 int run_designs(const DesignsOptions& o) {
   frames::DesignSearch s;
-  s.t = static_cast<int>(integer_option("--t", o.t, 1, runtime::kMaxDesignStrength));
+  s.t = static_cast<int>(integer_option("--t", o.t, 1, frames::kMaxDesignStrength));
   if (o.tetrahedral && (o.symmetric || o.threefold)) throw UsageError("--tetrahedral: not with --symmetric or --threefold");
   const int best = frames::best_known_count(s.t);
   const frames::DesignChoice choice = frames::default_design(s.t);
-  s.points = static_cast<int>(integer_option("--count", o.count, 0, runtime::kMaxDesignPoints));
+  s.points = static_cast<int>(integer_option("--count", o.count, 0, frames::kMaxDesignPoints));
   s.symmetry = o.symmetric && o.threefold ? frames::Symmetry::kAntipodalThreefold
                : o.symmetric ? frames::Symmetry::kAntipodal
                : o.tetrahedral ? frames::Symmetry::kTetrahedral
@@ -52,7 +53,7 @@ int run_designs(const DesignsOptions& o) {
   if (s.points % orbit)
     throw UsageError("--count: " + std::string(s.symmetry == frames::Symmetry::kAntipodal ? "a symmetric design has an even count" : "a design of whole orbits has a multiple of " + std::to_string(orbit) + " points") +
                      " (got " + std::to_string(s.points) + ")");
-  s.starts = static_cast<int>(integer_option("--starts", o.starts, 1, runtime::kMaxDesignStarts));
+  s.starts = static_cast<int>(integer_option("--starts", o.starts, 1, frames::kMaxDesignStarts));
   s.seed = seed_option("--seed", o.seed);
   s.threads = runtime::worker_count(static_cast<int>(integer_option("--threads", o.threads, 0, runtime::kMaxThreads)));
   s.interrupted = [] { return io::interrupt_requested().load(); };
@@ -97,7 +98,7 @@ int run_designs(const DesignsOptions& o) {
 void add_designs_command(CLI::App& app, Action& action) {
   auto d = std::make_shared<DesignsOptions>();
   CLI::App* c = app.add_subcommand("designs", "Find a spherical t-design: equal-weight points exact for every SH of degree <= t");
-  c->add_option("--t", d->t, "Strength t (exact for every SH of degree <= t), 1.." + std::to_string(runtime::kMaxDesignStrength))->required();
+  c->add_option("--t", d->t, "Strength t (exact for every SH of degree <= t), 1.." + std::to_string(frames::kMaxDesignStrength))->required();
   CLI::Option* count = c->add_option("--count", d->count,
                 "Point count (default: the smallest known for t <= 10, antipodal sets of the smallest known count for odd t "
                 "(Womersley's 192 and 234 at 19 and 21) to 21, whole orbits for even t >= 12 (tetrahedral or threefold; the smallest known up to 20) "
@@ -106,7 +107,7 @@ void add_designs_command(CLI::App& app, Action& action) {
   c->add_flag("--tetrahedral", d->tetrahedral, "Whole orbits of the chiral tetrahedral group (12 rotations; count a multiple of 12): only its invariant harmonics remain");
   c->add_flag("--threefold", d->threefold, "Whole orbits of the turns about z by 120 degrees (count a multiple of 3): only the harmonics with 3 | m remain");
   keep_old_spelling(c, count, "--points", d->count);
-  c->add_option("--starts", d->starts, "Starts to try, 1.." + std::to_string(runtime::kMaxDesignStarts) + " (default 64); the first that converges wins");
+  c->add_option("--starts", d->starts, "Starts to try, 1.." + std::to_string(frames::kMaxDesignStarts) + " (default 64); the first that converges wins");
   c->add_option("--seed", d->seed, "Random seed, 0..2^64-1 (default 1)");
   c->add_option("--threads", d->threads, "Threads, 0.." + std::to_string(runtime::kMaxThreads) + " (0: all cores); never changes the result");
   c->add_flag("--quiet", d->quiet, "No progress line");

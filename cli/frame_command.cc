@@ -9,9 +9,9 @@
 #include "options.h"
 #include "zhf/frames/designs.h"
 #include "zhf/frames/frame.h"
+#include "zhf/frames/limits.h"
 #include "zhf/io/files.h"
 #include "zhf/io/signals.h"
-#include "zhf/runtime/limits.h"
 #include "zhf/runtime/table_io.h"
 
 namespace zhf::cli {
@@ -34,7 +34,7 @@ int run_frame(const FrameOptions& o) {
   std::vector<Job> jobs;
   int lmin = 0, lmax = -1;
   if (!o.bands.empty()) {
-    const std::vector<int> bands = orders_option("--bands", o.bands, 0, runtime::kMaxFrameBand);
+    const std::vector<int> bands = orders_option("--bands", o.bands, 0, frames::kMaxFrameBand);
     lmin = bands.front();
     lmax = bands.back();
     if (lmax - lmin + 1 != static_cast<int>(bands.size())) throw UsageError("--bands: give a range L0..L1");
@@ -92,7 +92,7 @@ void add_frame_command(CLI::App& app, Action& action) {
   CLI::App* fc = app.add_subcommand("frame", "Frame bounds of the zonal lobes at a set of directions, for a band range");
   fc->add_option("--points", f->points, "Directions: a JSON array of [x, y, z] or a design file");
   fc->add_option("--table", f->table, "A lobe table's lobes (without --bands: each band on its own lobes)");
-  fc->add_option("--bands", f->bands, "Bands L0..L1 (0.." + std::to_string(runtime::kMaxFrameBand) + ")");
+  fc->add_option("--bands", f->bands, "Bands L0..L1 (0.." + std::to_string(frames::kMaxFrameBand) + ")");
   keep_old_spelling(fc, fc->add_option("--out", f->out, "Write the bounds here (zhf-frame-1)"), "--json", f->out);
   fc->callback([f, &action] { action = [f] { return run_frame(*f); }; });
 }

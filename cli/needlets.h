@@ -20,6 +20,8 @@ struct NeedletOptions {
   std::string window = "standard", mexican_order = "1", level;
   std::string healpix, mask, iterations = "3", in, nside, ordering = "ring";
   std::string scene = "sphere", transfer = "diffuse", image, side = "16", kept = "16,64,256,1024", csv, shading_csv;
+  std::string threads = "0";
+  bool quiet = false, verbose = false;
 };
 
 inline constexpr const char* kNeedletCoefficientsFormat = "zhf-needlet-coefficients-1";

@@ -7,15 +7,18 @@
 #include "commands.h"
 #include "needlets.h"
 #include "options.h"
+#include "zhf/codegen/limits.h"
+#include "zhf/frames/limits.h"
+#include "zhf/healpix/limits.h"
 #include "zhf/runtime/limits.h"
 #include "zhf/runtime/sh_eval.h"
 
 namespace zhf::cli {
 namespace {
 
-const std::string kDilationHelp = "Dilation B, in [" + runtime::format_number(runtime::kMinDilation) + ", " +
-                                  runtime::format_number(runtime::kMaxDilation) + "] (default 2)";
-const std::string kTableSizeRange = std::to_string(runtime::kMinNeedletTableSize) + ".." + std::to_string(runtime::kMaxNeedletTableSize);
+const std::string kDilationHelp = "Dilation B, in [" + runtime::format_number(frames::kMinDilation) + ", " +
+                                  runtime::format_number(frames::kMaxDilation) + "] (default 2)";
+const std::string kTableSizeRange = std::to_string(frames::kMinNeedletTableSize) + ".." + std::to_string(frames::kMaxNeedletTableSize);
 const std::string kTableSizeHelp = "Entries per kernel table, " + kTableSizeRange + " (default 1024)";
 
 // --order N (bands 0..N-1, N up to max_top_band + 1) and its old spelling --lmax L (bands 0..L).
@@ -34,18 +37,18 @@ void add_needlets_command(CLI::App& app, Action& action, const std::string& comm
   CLI::App* wc = nc->add_subcommand("window", "The windows b(l / B^j), every non-zero one for bands 0..lmax, their frame bounds and (--level) localisation");
   wc->add_option("--B", w->dilation, kDilationHelp);
   wc->add_option("--window", w->window, "standard (the C-infinity bump), spline (cubic B-spline step) or mexican (x^(2p) exp(-x^2)); default standard");
-  wc->add_option("--mexican-order", w->mexican_order, "p of the Mexican window, 1.." + std::to_string(runtime::kMaxMexicanOrder) + " (default 1)");
+  wc->add_option("--mexican-order", w->mexican_order, "p of the Mexican window, 1.." + std::to_string(frames::kMaxMexicanOrder) + " (default 1)");
   wc->add_option("--level", w->level, "Also print level J's kernel energy outside caps of radius k / B^J, k = 1, 2, 4, 8 (J in 0..12)");
-  add_band_limit(wc, *w, runtime::kMaxNeedletBand);
+  add_band_limit(wc, *w, frames::kMaxNeedletBand);
   keep_old_spelling(wc, wc->add_option("--out", w->out, "Write the windows here: {\"B\", \"lmax\", \"b\": [[j, l, value], ...]}"), "--json", w->out);
   wc->callback([w, &action] { action = [w] { return run_needlet_window(*w); }; });
   auto an = std::make_shared<NeedletOptions>();
   CLI::App* ac = nc->add_subcommand("analyze", "Needlet coefficients of a HEALPix map, optionally masked");
   ac->add_option("--healpix", an->healpix, "The map (FITS, RING or NESTED; healpy's layout)");
   ac->add_option("--mask", an->mask, "A mask of the same Nside, values in [0, 1], multiplied into the map (UNSEEN pixels need 0)");
-  ac->add_option("--iterations", an->iterations, "Jacobi steps of the map's SH projection, 0.." + std::to_string(runtime::kMaxHealpixIterations) + " (default 3)");
+  ac->add_option("--iterations", an->iterations, "Jacobi steps of the map's SH projection, 0.." + std::to_string(healpix::kMaxHealpixIterations) + " (default 3)");
   ac->add_option("--B", an->dilation, kDilationHelp);
-  add_band_limit(ac, *an, runtime::kMaxNeedletFrameBand);
+  add_band_limit(ac, *an, frames::kMaxNeedletFrameBand);
   ac->add_flag("--gauss", an->gauss, "Gauss product cubatures instead of the shipped designs");
   ac->add_option("--out", an->out, std::string("Write the coefficients here (") + kNeedletCoefficientsFormat + ")");
   ac->callback([an, &action] { action = [an] { return run_needlet_analyze(*an); }; });
@@ -53,7 +56,7 @@ void add_needlets_command(CLI::App& app, Action& action, const std::string& comm
   CLI::App* sc = nc->add_subcommand("synthesize", "A HEALPix map from needlet coefficients (zhf needlets analyze's file)");
   sc->add_option("--in", sy->in, std::string("The coefficients (") + kNeedletCoefficientsFormat + ")");
   keep_old_spelling(sc, sc->add_option("--out", sy->out, "Write the map here (FITS, double values)"), "--healpix-out", sy->out);
-  sc->add_option("--nside", sy->nside, "The map's Nside, 1.." + std::to_string(runtime::kMaxHealpixNside));
+  sc->add_option("--nside", sy->nside, "The map's Nside, 1.." + std::to_string(healpix::kMaxHealpixNside));
   sc->add_option("--ordering", sy->ordering, "ring (default) or nested");
   sc->callback([sy, &action] { action = [sy] { return run_needlet_synthesize(*sy); }; });
   auto pr_t = std::make_shared<NeedletOptions>();
@@ -61,20 +64,23 @@ void add_needlets_command(CLI::App& app, Action& action, const std::string& comm
   rc->add_option("--scene", pr_t->scene, "sphere (default; one sphere over the ground), corner (two walls) or spheres (three)");
   rc->add_option("--transfer", pr_t->transfer, "diffuse (default) or glossy (Phong lobe, exponent 20)");
   keep_old_spelling(rc, rc->add_option("--image", pr_t->image, "A Radiance .hdr equirectangular sky (row 0 at +z, phi from +x towards +y; default: an analytic sun and sky)"), "--sky", pr_t->image);
-  rc->add_option("--side", pr_t->side, "Vertices per side of the ground grid, 1.." + std::to_string(runtime::kMaxPrtSide) + " (default 16)");
+  rc->add_option("--side", pr_t->side, "Vertices per side of the ground grid, 1.." + std::to_string(frames::kMaxPrtSide) + " (default 16)");
   rc->add_option("--kept", pr_t->kept, "Coefficient counts K per vertex, e.g. 16,64,256,1024 (the default)");
   rc->add_option("--B", pr_t->dilation, kDilationHelp);
-  add_band_limit(rc, *pr_t, runtime::kMaxProjectionOrder - 1);
+  add_band_limit(rc, *pr_t, frames::kMaxProjectionOrder - 1);
   rc->add_option("--size", pr_t->size, kTableSizeHelp + " (the tabulated rotation of the sky)");
   rc->add_flag("--gauss", pr_t->gauss, "Gauss product cubatures instead of the shipped designs");
   rc->add_option("--out", pr_t->out, "Write the report here (zhf-needlet-prt-1)");
   rc->add_option("--shading-csv", pr_t->shading_csv, "Write each vertex's shading here (x, y, exact, then SH and needlets per K): the images");
+  rc->add_option("--threads", pr_t->threads, "Threads, 0.." + std::to_string(runtime::kMaxThreads) + " (0: all cores); never changes the result");
+  rc->add_flag("--quiet", pr_t->quiet, "No progress line");
+  rc->add_flag("--verbose", pr_t->verbose, "Progress lines on stderr (one a second at most) also when it is not a terminal");
   rc->add_option("--csv", pr_t->csv, "Write the error table here (K, SH rms, SH worst, needlet rms, needlet worst, both skies' least values)");
   rc->callback([pr_t, &action] { action = [pr_t] { return run_needlet_prt(*pr_t); }; });
   auto t = std::make_shared<NeedletOptions>();
   CLI::App* tc = nc->add_subcommand("tables", "The needlet frame of bands 0..lmax: levels, kernel look-up error and tabulated rotation error per table size");
   tc->add_option("--B", t->dilation, kDilationHelp);
-  add_band_limit(tc, *t, runtime::kMaxNeedletFrameBand);
+  add_band_limit(tc, *t, frames::kMaxNeedletFrameBand);
   tc->add_option("--sizes", t->sizes, "Table sizes, e.g. 64,256,1024 (" + kTableSizeRange + "; default 64,256,1024,4096,16384)");
   tc->add_flag("--gauss", t->gauss, "Gauss product cubatures at every level instead of the shipped designs");
   keep_old_spelling(tc, tc->add_option("--out", t->out, "Write the tables here (zhf-needlet-tables-1)"), "--json", t->out);
@@ -88,7 +94,7 @@ void add_needlets_command(CLI::App& app, Action& action, const std::string& comm
   auto mk = std::make_shared<NeedletOptions>();
   CLI::App* mc = nc->add_subcommand("mask", "A signal cut around the equator: which SH and needlet coefficients the cut disturbs");
   mc->add_option("--B", mk->dilation, kDilationHelp);
-  add_band_limit(mc, *mk, runtime::kMaxNeedletFrameBand);
+  add_band_limit(mc, *mk, frames::kMaxNeedletFrameBand);
   mc->add_option("--cut", mk->cut, "Half-width of the cut band in degrees of latitude, 0.1..80 (default 10)");
   mc->add_option("--margin", mk->margin, "Beyond the cut by this many half-wavelengths of the top band (pi / lmax of a level, pi / L for SH), 0..64 (default 4)");
   mc->add_flag("--gauss", mk->gauss, "Gauss product cubatures instead of the shipped designs");
@@ -96,13 +102,13 @@ void add_needlets_command(CLI::App& app, Action& action, const std::string& comm
   auto e = std::make_shared<NeedletOptions>();
   CLI::App* ec = nc->add_subcommand("emit", "Emit a needlet expansion's evaluator (kernel look-up tables) as C++, GLSL, HLSL or WGSL");
   ec->add_option("--B", e->dilation, kDilationHelp);
-  add_band_limit(ec, *e, runtime::kMaxNeedletFrameBand);
+  add_band_limit(ec, *e, frames::kMaxNeedletFrameBand);
   ec->add_option("--size", e->size, kTableSizeHelp);
   ec->add_option("--interpolation", e->interpolation, "linear (default) or quadratic");
   ec->add_option("--lang", e->lang, "cpp, glsl, hlsl or wgsl")->required();
   ec->add_option("--prefix", e->prefix, "Prefix of every emitted name (default zhf_needlets)");
-  ec->add_option("--set", e->set, "Shaders' data buffer: descriptor set / WGSL group, 0.." + std::to_string(runtime::kMaxStorageSet) + " (default 0)");
-  ec->add_option("--binding", e->binding, "Shaders' data buffer: binding, 0.." + std::to_string(runtime::kMaxStorageBinding) + " (default 0)");
+  ec->add_option("--set", e->set, "Shaders' data buffer: descriptor set / WGSL group, 0.." + std::to_string(codegen::kMaxStorageSet) + " (default 0)");
+  ec->add_option("--binding", e->binding, "Shaders' data buffer: binding, 0.." + std::to_string(codegen::kMaxStorageBinding) + " (default 0)");
   ec->add_flag("--gauss", e->gauss, "Gauss product cubatures instead of the shipped designs");
   ec->add_option("--out", e->out, "The file to write")->required();
   ec->add_option("--data", e->data, "Also write the nodes, scales and tables as little-endian float32 (the shaders' storage buffer)");
@@ -110,7 +116,7 @@ void add_needlets_command(CLI::App& app, Action& action, const std::string& comm
   auto v = std::make_shared<NeedletOptions>();
   CLI::App* vc = nc->add_subcommand("verify", "Compile and run the emitted needlet evaluators against their CPU mirror and the exact expansion");
   vc->add_option("--B", v->dilation, kDilationHelp);
-  add_band_limit(vc, *v, runtime::kMaxNeedletFrameBand);
+  add_band_limit(vc, *v, frames::kMaxNeedletFrameBand);
   vc->add_option("--size", v->size, kTableSizeHelp);
   vc->add_option("--interpolation", v->interpolation, "linear (default) or quadratic");
   vc->add_option("--langs", v->langs, "Languages, e.g. cpp,glsl (default cpp,glsl,hlsl,wgsl)");

@@ -12,6 +12,7 @@
 #include "commands.h"
 #include "needlets.h"
 #include "options.h"
+#include "zhf/frames/limits.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/io/signals.h"
@@ -23,7 +24,7 @@ namespace zhf::cli {
 
 int run_needlet_emit(const NeedletOptions& o, const std::string& command) {
   const double dilation = dilation_option(o.dilation);
-  const int lmax = top_band(o, 1, runtime::kMaxNeedletFrameBand);
+  const int lmax = top_band(o, 1, frames::kMaxNeedletFrameBand);
   const codegen::NeedletLutOptions lut = lut_options(o, command);
   const codegen::Language language = language_option("--lang", o.lang);
   io::PendingFile out(o.out);
@@ -50,7 +51,7 @@ int run_needlet_emit(const NeedletOptions& o, const std::string& command) {
 }
 int run_needlet_verify(const NeedletOptions& o) {
   const double dilation = dilation_option(o.dilation);
-  const int lmax = top_band(o, 1, runtime::kMaxNeedletFrameBand);
+  const int lmax = top_band(o, 1, frames::kMaxNeedletFrameBand);
   const codegen::NeedletLutOptions lut = lut_options(o, "zhf needlets verify");
   verify::NeedletLutVerify v;
   v.languages.clear();

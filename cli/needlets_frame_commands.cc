@@ -12,12 +12,12 @@
 #include "commands.h"
 #include "needlets.h"
 #include "options.h"
+#include "zhf/frames/limits.h"
 #include "zhf/frames/needlet_studies.h"
 #include "zhf/frames/windows.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/io/signals.h"
-#include "zhf/runtime/limits.h"
 #include "zhf/runtime/sh_eval.h"
 
 namespace zhf::cli {
@@ -26,8 +26,8 @@ int run_needlet_window(const NeedletOptions& o) {
   frames::Window w;
   w.dilation = dilation_option(o.dilation);
   if (!frames::parse_window_kind(o.window, w.kind)) throw UsageError("--window: '" + runtime::excerpt(o.window) + "' is not standard, spline or mexican");
-  w.order = static_cast<int>(integer_option("--mexican-order", o.mexican_order, 1, runtime::kMaxMexicanOrder));
-  const int lmax = top_band(o, 0, runtime::kMaxNeedletBand);
+  w.order = static_cast<int>(integer_option("--mexican-order", o.mexican_order, 1, frames::kMaxMexicanOrder));
+  const int lmax = top_band(o, 0, frames::kMaxNeedletBand);
   std::unique_ptr<io::PendingFile> out;
   if (!o.out.empty()) out = std::make_unique<io::PendingFile>(o.out);
   nlohmann::ordered_json b = nlohmann::ordered_json::array();
@@ -73,8 +73,8 @@ int run_needlet_window(const NeedletOptions& o) {
 // size against the exact path; times on stdout only, so the JSON is the same on every run.
 int run_needlet_tables(const NeedletOptions& o) {
   const double dilation = dilation_option(o.dilation);
-  const int lmax = top_band(o, 1, runtime::kMaxNeedletFrameBand);
-  const std::vector<int> sizes = orders_option("--sizes", o.sizes, runtime::kMinNeedletTableSize, runtime::kMaxNeedletTableSize);
+  const int lmax = top_band(o, 1, frames::kMaxNeedletFrameBand);
+  const std::vector<int> sizes = orders_option("--sizes", o.sizes, frames::kMinNeedletTableSize, frames::kMaxNeedletTableSize);
   if (sizes.size() > 16) throw UsageError("--sizes: at most 16 sizes (got " + std::to_string(sizes.size()) + ")");
   std::unique_ptr<io::PendingFile> out;
   if (!o.out.empty()) out = std::make_unique<io::PendingFile>(o.out);
@@ -124,8 +124,8 @@ int run_needlet_profile(const NeedletOptions& o) {
   const double dilation = dilation_option(o.dilation);
   const std::string& level = o.level.empty() ? std::string("1") : o.level;
   const int j = static_cast<int>(integer_option("--level", level, 0, 16));
-  if (std::pow(dilation, j + 1) > runtime::kMaxProfileBand + 1)
-    throw UsageError("--level: level " + level + " of B = " + o.dilation + " reaches past band " + std::to_string(runtime::kMaxProfileBand));
+  if (std::pow(dilation, j + 1) > frames::kMaxProfileBand + 1)
+    throw UsageError("--level: level " + level + " of B = " + o.dilation + " reaches past band " + std::to_string(frames::kMaxProfileBand));
   std::unique_ptr<io::PendingFile> out;
   if (!o.out.empty()) out = std::make_unique<io::PendingFile>(o.out);
   const frames::NeedletProfile p = frames::needlet_profile(dilation, j);
@@ -150,7 +150,7 @@ int run_needlet_profile(const NeedletOptions& o) {
 // The talk's case: a signal cut to zero around the equator, in SH and in needlets.
 int run_needlet_mask(const NeedletOptions& o) {
   const double dilation = dilation_option(o.dilation);
-  const int lmax = top_band(o, 1, runtime::kMaxNeedletFrameBand);
+  const int lmax = top_band(o, 1, frames::kMaxNeedletFrameBand);
   const double cut = number_option("--cut", o.cut, 0.1, 80) * runtime::kPi / 180;
   const double margin = number_option("--margin", o.margin, 0, 64);
   const frames::NeedletFrame frame = needlet_frame(dilation, lmax, o.gauss);

@@ -9,12 +9,14 @@
 #include "commands.h"
 #include "needlets.h"
 #include "options.h"
+#include "zhf/frames/limits.h"
+#include "zhf/healpix/limits.h"
 #include "zhf/healpix/maps.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
+#include "zhf/io/limits.h"
 #include "zhf/io/signals.h"
 #include "zhf/runtime/json.h"
-#include "zhf/runtime/limits.h"
 
 namespace zhf::cli {
 
@@ -22,8 +24,8 @@ namespace zhf::cli {
 // by the pixel quadrature and Jacobi steps, then the frame's analysis.
 int run_needlet_analyze(const NeedletOptions& o) {
   const double dilation = dilation_option(o.dilation);
-  const int lmax = top_band(o, 1, runtime::kMaxNeedletFrameBand);
-  const int iterations = static_cast<int>(integer_option("--iterations", o.iterations, 0, runtime::kMaxHealpixIterations));
+  const int lmax = top_band(o, 1, frames::kMaxNeedletFrameBand);
+  const int iterations = static_cast<int>(integer_option("--iterations", o.iterations, 0, healpix::kMaxHealpixIterations));
   if (o.healpix.empty()) throw UsageError("--healpix: required");
   if (o.out.empty()) throw UsageError("--out: required");
   io::PendingFile out(o.out);
@@ -64,20 +66,20 @@ int run_needlet_synthesize(const NeedletOptions& o) {
   if (o.in.empty()) throw UsageError("--in: required");
   if (o.out.empty()) throw UsageError("--out: required");
   if (o.nside.empty()) throw UsageError("--nside: required");
-  const std::int64_t nside = integer_option("--nside", o.nside, 1, runtime::kMaxHealpixNside);
+  const std::int64_t nside = integer_option("--nside", o.nside, 1, healpix::kMaxHealpixNside);
   healpix::HealpixOrdering ordering = healpix::HealpixOrdering::kRing;
   if (o.ordering == "nested") ordering = healpix::HealpixOrdering::kNested;
   else if (o.ordering != "ring") throw UsageError("--ordering: '" + io::excerpt(o.ordering) + "' is not ring or nested");
   if (ordering == healpix::HealpixOrdering::kNested && (nside & (nside - 1)) != 0)
     throw UsageError("--nside: " + std::to_string(nside) + " is not a power of two, as --ordering nested needs");
   io::PendingFile out(o.out);
-  const runtime::json::Value root = io::read_json_file(o.in, runtime::kMaxCoefficientBytes);
+  const runtime::json::Value root = io::read_json_file(o.in, io::kMaxCoefficientBytes);
   const runtime::json::Field top(root, o.in);
   top.allow_only({"format", "B", "lmax", "nodes", "levels", "beta"});
   const runtime::json::Field format = top.member("format");
   if (format.string() != kNeedletCoefficientsFormat) format.fail("'" + io::excerpt(format.string()) + "' is not " + kNeedletCoefficientsFormat);
-  const double dilation = top.member("B").number(runtime::kMinDilation, runtime::kMaxDilation);
-  const int lmax = top.member("lmax").integer(1, runtime::kMaxNeedletFrameBand);
+  const double dilation = top.member("B").number(frames::kMinDilation, frames::kMaxDilation);
+  const int lmax = top.member("lmax").integer(1, frames::kMaxNeedletFrameBand);
   const bool gauss = top.member("nodes").one_of({"design", "gauss"}) == "gauss";
   const frames::NeedletFrame frame = needlet_frame(dilation, lmax, gauss);
   std::vector<double> beta;

@@ -4,11 +4,12 @@
 
 #include "needlets.h"
 #include "options.h"
+#include "zhf/codegen/limits.h"
 #include "zhf/frames/cubature.h"
+#include "zhf/frames/limits.h"
 #include "zhf/io/errors.h"
 #include "zhf/pipeline/project.h"
 #include "zhf/runtime/enum_names.h"
-#include "zhf/runtime/limits.h"
 
 namespace zhf::cli {
 
@@ -19,7 +20,7 @@ int top_band(const NeedletOptions& o, int lo, int hi) {
 }
 
 double dilation_option(const std::string& text) {
-  return number_option("--B", text, runtime::kMinDilation, runtime::kMaxDilation);
+  return number_option("--B", text, frames::kMinDilation, frames::kMaxDilation);
 }
 
 frames::NeedletFrame needlet_frame(double dilation, int lmax, bool gauss) {
@@ -30,15 +31,15 @@ frames::NeedletFrame needlet_frame(double dilation, int lmax, bool gauss) {
 
 codegen::NeedletLutOptions lut_options(const NeedletOptions& o, const std::string& command) {
   codegen::NeedletLutOptions lut;
-  lut.table_size = static_cast<int>(integer_option("--size", o.size, runtime::kMinNeedletTableSize, runtime::kMaxNeedletTableSize));
+  lut.table_size = static_cast<int>(integer_option("--size", o.size, frames::kMinNeedletTableSize, frames::kMaxNeedletTableSize));
   if (o.interpolation == "linear") lut.interpolation = frames::Interpolation::kLinear;
   else if (o.interpolation == "quadratic") lut.interpolation = frames::Interpolation::kQuadratic;
   else throw UsageError("--interpolation: '" + io::excerpt(o.interpolation) + "' is not linear or quadratic");
   std::string why;
   if (!codegen::valid_prefix(o.prefix, why)) throw UsageError("--prefix: " + why);
   lut.prefix = o.prefix;
-  lut.storage_set = static_cast<int>(integer_option("--set", o.set, 0, runtime::kMaxStorageSet));
-  lut.storage_binding = static_cast<int>(integer_option("--binding", o.binding, 0, runtime::kMaxStorageBinding));
+  lut.storage_set = static_cast<int>(integer_option("--set", o.set, 0, codegen::kMaxStorageSet));
+  lut.storage_binding = static_cast<int>(integer_option("--binding", o.binding, 0, codegen::kMaxStorageBinding));
   lut.command = command;
   return lut;
 }

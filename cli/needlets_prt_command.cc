@@ -10,6 +10,8 @@
 #include "commands.h"
 #include "needlets.h"
 #include "options.h"
+#include "progress.h"
+#include "zhf/frames/limits.h"
 #include "zhf/frames/prt.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
@@ -23,13 +25,13 @@ namespace zhf::cli {
 // against the exact integral (frames/prt.h).
 int run_needlet_prt(const NeedletOptions& o) {
   const double dilation = dilation_option(o.dilation);
-  const int lmax = o.order.empty() && o.lmax.empty() ? 31 : top_band(o, 1, runtime::kMaxProjectionOrder - 1);
+  const int lmax = o.order.empty() && o.lmax.empty() ? 31 : top_band(o, 1, frames::kMaxProjectionOrder - 1);
   frames::PrtScene scene;
   if (!frames::parse_prt_scene(o.scene, scene)) throw UsageError("--scene: '" + io::excerpt(o.scene) + "' is not sphere, corner or spheres");
   frames::PrtTransfer transfer;
   if (!frames::parse_prt_transfer(o.transfer, transfer)) throw UsageError("--transfer: '" + io::excerpt(o.transfer) + "' is not diffuse or glossy");
-  const int side = static_cast<int>(integer_option("--side", o.side, 1, runtime::kMaxPrtSide));
-  const int table_size = static_cast<int>(integer_option("--size", o.size, runtime::kMinNeedletTableSize, runtime::kMaxNeedletTableSize));
+  const int side = static_cast<int>(integer_option("--side", o.side, 1, frames::kMaxPrtSide));
+  const int table_size = static_cast<int>(integer_option("--size", o.size, frames::kMinNeedletTableSize, frames::kMaxNeedletTableSize));
   const std::vector<int> kept = orders_option("--kept", o.kept, 1, 1 << 20);
   if (kept.size() > 16) throw UsageError("--kept: at most 16 counts (got " + std::to_string(kept.size()) + ")");
   std::unique_ptr<io::PendingFile> out, csv_out;
@@ -46,7 +48,16 @@ int run_needlet_prt(const NeedletOptions& o) {
   const frames::NeedletFrame frame = needlet_frame(dilation, lmax, o.gauss);
   for (int k : kept)
     if (k > frame.size()) throw UsageError("--kept: " + std::to_string(k) + " is more than the frame's " + std::to_string(frame.size()) + " coefficients");
-  const frames::PrtReport r = frames::prt_experiment(frame, scene, transfer, sky, side, kept, table_size, io::throw_if_interrupted);
+  const int threads = static_cast<int>(integer_option("--threads", o.threads, 0, runtime::kMaxThreads));
+  Progress progress("needlets prt", o.quiet, o.verbose);
+  const frames::PrtReport r = frames::prt_experiment(
+      frame, scene, transfer, sky, side, kept, table_size,
+      [&](int done, int total) {
+        io::throw_if_interrupted();
+        progress.update(done, total, "vertices shaded exactly");
+      },
+      threads);
+  progress.done();
   std::printf("%s scene, %s transfer, %s sky: %d vertices; SH bands 0..%d (%d coefficients), needlets B = %g (%d coefficients)\n", o.scene.c_str(),
               o.transfer.c_str(), analytic_sky ? "sun and sky" : o.image.c_str(), r.vertices, lmax, r.sh_coefficients, dilation, r.needlet_coefficients);
   std::printf("shading error against the exact integral (RMS / worst, relative to the exact RMS / largest); least value of the sky rebuilt (true: %.3g)\n", r.sky_min);

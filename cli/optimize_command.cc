@@ -6,7 +6,9 @@
 #include "commands.h"
 #include "options.h"
 #include "progress.h"
+#include "zhf/candidates/limits.h"
 #include "zhf/codegen/kernels.h"
+#include "zhf/codegen/limits.h"
 #include "zhf/io/files.h"
 #include "zhf/io/lobe_table_writer.h"
 #include "zhf/io/signals.h"
@@ -49,7 +51,7 @@ void print_summary(const runtime::LobeTable& table) {
   }
   std::printf("  total %d/%d zeros (%.1f%% sparse), worst condition %.2f, %d multiplies\n", table.zeros, table.entries,
               100.0 * table.zeros / std::max(1, table.entries), table.worst_condition(), multiplies);
-  if (table.order <= runtime::kMaxEmitOrder)
+  if (table.order <= codegen::kMaxEmitOrder)
     std::printf("  rotate_order%d by lobes (zhf emit --method zhf): %d multiplies, %d of them depending on the lobe set\n",
                 table.order, codegen::lobe_rotation_multiplies(table), codegen::lobe_dependent_multiplies(table));
   for (const PaperFigure& p : kPaper)
@@ -59,7 +61,7 @@ void print_summary(const runtime::LobeTable& table) {
 
 int run_optimize(const OptimizeOptions& o, const std::string& command) {
   pipeline::SearchRequest r;
-  r.order = static_cast<int>(integer_option("--order", o.order, runtime::kMinSearchOrder, runtime::kMaxSearchOrder));
+  r.order = static_cast<int>(integer_option("--order", o.order, candidates::kMinSearchOrder, candidates::kMaxSearchOrder));
   r.objective = o.objective == "amplification" ? pipeline::Objective::kAmplification
                 : o.objective == "operations"  ? pipeline::Objective::kOperations
                                                : pipeline::Objective::kSparsity;

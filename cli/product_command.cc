@@ -9,6 +9,7 @@
 #include "zhf/io/coefficients.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
+#include "zhf/io/limits.h"
 #include "zhf/io/signals.h"
 #include "zhf/runtime/gaunt.h"
 #include "zhf/runtime/limits.h"
@@ -82,7 +83,7 @@ void add_product_command(CLI::App& app, Action& action) {
   CLI::App* c = app.add_subcommand("product", "Multiply SH functions and project the product back to an order (double precision)");
   c->add_option("--lhs", o->lhs, "Coefficient vectors of f (JSON array or text; as zhf analyze reads them)")->required();
   c->add_option("--rhs", o->rhs, "Coefficient vectors of g: as many as f, or one for every f")->required();
-  c->add_option("--channels", o->channels, "Channels per vector (products are taken channel by channel)")->check(CLI::Range(1, runtime::kMaxChannels));
+  c->add_option("--channels", o->channels, "Channels per vector (products are taken channel by channel)")->check(CLI::Range(1, io::kMaxChannels));
   c->add_option("--order", o->order, "Order of the result h = P_N(f g) (default: the larger input order)")
       ->check(CLI::Range(1, runtime::kMaxGauntOrder));
   c->add_option("--out", o->out, "Write the products here (JSON)")->required();

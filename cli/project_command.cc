@@ -8,14 +8,15 @@
 #include "commands.h"
 #include "options.h"
 #include "zhf/frames/cubature.h"
+#include "zhf/frames/limits.h"
 #include "zhf/frames/projection.h"
+#include "zhf/healpix/limits.h"
 #include "zhf/healpix/maps.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/io/hdr.h"
 #include "zhf/io/signals.h"
 #include "zhf/pipeline/project.h"
-#include "zhf/runtime/limits.h"
 
 namespace zhf::cli {
 namespace {
@@ -71,14 +72,14 @@ int run_compare(const ProjectOptions& o, int order) {
 }
 
 int run_project(const ProjectOptions& o) {
-  const int order = static_cast<int>(integer_option("--order", o.order, 1, runtime::kMaxProjectionOrder));
+  const int order = static_cast<int>(integer_option("--order", o.order, 1, frames::kMaxProjectionOrder));
   if (o.compare) {
     if (!o.image.empty() || !o.function.empty() || !o.out.empty()) throw UsageError("--compare: takes no --image, --function or --out");
     return run_compare(o, order);
   }
   if (o.image.empty() + o.healpix.empty() + o.function.empty() != 2) throw UsageError("--image, --healpix or --function: give exactly one");
   if (!o.mask.empty() && o.healpix.empty()) throw UsageError("--mask: only with --healpix");
-  const int iterations = static_cast<int>(integer_option("--iterations", o.iterations, 0, runtime::kMaxHealpixIterations));
+  const int iterations = static_cast<int>(integer_option("--iterations", o.iterations, 0, healpix::kMaxHealpixIterations));
   if (o.out.empty()) throw UsageError("--out: required");
   io::PendingFile out(o.out);  // refuse an unwritable output before the work
   std::vector<std::vector<double>> coefficients;
@@ -100,7 +101,7 @@ int run_project(const ProjectOptions& o) {
     if (o.function == "band-limited") f = frames::TestFunction::kBandLimited;
     else if (o.function == "cap") f = frames::TestFunction::kCap;
     else throw UsageError("--function: '" + io::excerpt(o.function) + "' is not band-limited or cap");
-    const int degree = o.degree.empty() ? 7 + order - 1 : static_cast<int>(integer_option("--degree", o.degree, 0, runtime::kMaxCubatureDegree));
+    const int degree = o.degree.empty() ? 7 + order - 1 : static_cast<int>(integer_option("--degree", o.degree, 0, frames::kMaxCubatureDegree));
     const frames::Cubature nodes = nodes_of(o.nodes, degree);
     std::vector<double> values;
     for (const frames::Point& p : nodes.points) values.push_back(frames::test_function(f, p));
@@ -125,7 +126,7 @@ void add_project_command(CLI::App& app, Action& action) {
   c->add_option("--image", o->image, "A Radiance .hdr equirectangular image (row 0 at +z, phi from +x towards +y): RGB coefficients");
   c->add_option("--healpix", o->healpix, "A HEALPix map (FITS, RING or NESTED; healpy's layout): its first column's coefficients");
   c->add_option("--mask", o->mask, "With --healpix: a HEALPix mask of the same Nside, values in [0, 1], multiplied into the map (UNSEEN pixels need 0)");
-  c->add_option("--iterations", o->iterations, "With --healpix: Jacobi steps after the pixel quadrature, 0.." + std::to_string(runtime::kMaxHealpixIterations) + " (default 3, as healpy's iter)");
+  c->add_option("--iterations", o->iterations, "With --healpix: Jacobi steps after the pixel quadrature, 0.." + std::to_string(healpix::kMaxHealpixIterations) + " (default 3, as healpy's iter)");
   c->add_option("--function", o->function, "A test function with known coefficients: band-limited (bands 0..7) or cap (30 degrees)");
   c->add_option("--nodes", o->nodes, "With --function: design (default), gauss or grid");
   c->add_option("--degree", o->degree, "With --function: the nodes' degree, 0..126 (default 7 + N - 1, exact for the band-limited function)");

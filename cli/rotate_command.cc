@@ -13,6 +13,7 @@
 #include "zhf/io/coefficients.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
+#include "zhf/io/limits.h"
 #include "zhf/io/signals.h"
 #include "zhf/pipeline/project.h"
 #include "zhf/runtime/conventions.h"
@@ -87,7 +88,7 @@ void add_rotate_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<RotateOptions>();
   CLI::App* c = app.add_subcommand("rotate", "Rotate SH coefficient vectors from a file (double precision)");
   c->add_option("--coeffs", o->coeffs, "Coefficient vectors (JSON array or text; as zhf analyze reads them)")->required();
-  c->add_option("--channels", o->channels, "Channels per vector")->check(CLI::Range(1, runtime::kMaxChannels));
+  c->add_option("--channels", o->channels, "Channels per vector")->check(CLI::Range(1, io::kMaxChannels));
   add_transform_options(c, o->transform);
   c->add_option("--convention", o->convention,
                 "The coefficients' convention, the rotation in the same system's axes: " + runtime::convention_names() +

@@ -12,6 +12,7 @@
 #include "zhf/io/rotation_text.h"
 #include "zhf/runtime/conventions.h"
 #include "zhf/runtime/limits.h"
+#include "zhf/splat/limits.h"
 #include "zhf/splat/scene.h"
 
 namespace zhf::cli {
@@ -48,7 +49,7 @@ int run_splat(const SplatOptions& o) {
     throw UsageError("--convention: '" + runtime::excerpt(o.convention) + "' is not one of " + runtime::convention_names());
   splat::Transform t;
   if (!o.identity) t.r = transform_matrix(o.transform, o.quiet);
-  t.scale = number_option("--scale", o.scale, runtime::kMinSplatScale, runtime::kMaxSplatScale);
+  t.scale = number_option("--scale", o.scale, splat::kMinSplatScale, splat::kMaxSplatScale);
   t.translation = translation(o.translate);
   t.convention = convention;
   const int threads = static_cast<int>(integer_option("--threads", o.threads, 0, runtime::kMaxThreads));

@@ -5,11 +5,13 @@
 #include "commands.h"
 #include "options.h"
 #include "progress.h"
+#include "zhf/codegen/limits.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/io/signals.h"
 #include "zhf/pipeline/project.h"
 #include "zhf/runtime/limits.h"
+#include "zhf/verify/limits.h"
 #include "zhf/verify/verify.h"
 
 namespace zhf::cli {
@@ -51,9 +53,9 @@ int run_verify_command(const VerifyCommandOptions& o) {
   const pipeline::Project project = pipeline::project();
   verify::VerifyOptions options;
   options.generated_dir = o.generated.empty() ? project.generated() : o.generated;
-  if (!o.orders.empty()) options.orders = orders_option("--orders", o.orders, runtime::kMinGeneratedOrder, runtime::kMaxEmitOrder);
+  if (!o.orders.empty()) options.orders = orders_option("--orders", o.orders, runtime::kMinGeneratedOrder, codegen::kMaxEmitOrder);
   options.languages = parse_languages(o.languages);
-  options.rotations = static_cast<int>(integer_option("--rotations", o.rotations, 1, runtime::kMaxVerifyRotations));
+  options.rotations = static_cast<int>(integer_option("--rotations", o.rotations, 1, verify::kMaxVerifyRotations));
   options.work_dir = o.work_dir;
   options.runtime_include = project.runtime_include;
   options.naga_wasm = project.naga_wasm();
@@ -92,7 +94,7 @@ void add_verify_command(CLI::App& app, Action& action) {
   c->add_flag("--quiet", o->quiet, "No progress line");
   c->add_flag("--verbose", o->verbose, "A progress line per step also when stderr is not a terminal");
   c->add_option("--work-dir", o->work_dir, "Keep the harnesses, shaders and logs here (default: a private temp dir, removed)");
-  c->add_option("--rotations", o->rotations, "Random rotations besides the fixed extreme set, 1.." + std::to_string(runtime::kMaxVerifyRotations) + " (default 1000)");
+  c->add_option("--rotations", o->rotations, "Random rotations besides the fixed extreme set, 1.." + std::to_string(verify::kMaxVerifyRotations) + " (default 1000)");
   c->callback([o, &action] { action = [o] { return run_verify_command(*o); }; });
 }
 

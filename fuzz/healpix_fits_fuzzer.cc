@@ -8,6 +8,7 @@
 #include <string>
 
 #include "zhf/healpix/fits.h"
+#include "zhf/healpix/limits.h"
 #include "zhf/io/errors.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -4,8 +4,9 @@
 Run from anywhere: python3 scripts/check_one_place.py. The test suite runs it (ctest: one_place).
 Each rule names its home; a finding prints file:line and the rule, and the exit code is 1.
 
-- Limits (order ranges, counts, sizes): defined in runtime/limits.h only (a test may name a bound
-  of its own on what it measures).
+- Limits (order ranges, counts, sizes): defined in a library's limits.h only, beside its readers:
+  runtime/limits.h holds the runtime's, shared by every library (a test may name a bound of its
+  own on what it measures).
 - Tolerances: in C++ outside the tests, a literal in scientific notation with a negative
   exponent (1e-6, 2.5e-7) stands in runtime/tolerances.h or runtime/limits.h only (a line that
   uses one as an input, such as a tiny test angle, says "// an input, not a tolerance"); in the tests,
@@ -29,7 +30,7 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SKIP_DIRS = {"generated", "build", ".git", "node_modules", "fuzz_corpus", "data"}
-LIMITS = "runtime/include/zhf/runtime/limits.h"
+LIMITS = re.compile(r"^\w+/include/zhf/\w+/limits\.h$")  # a library's limits.h
 TOLERANCES = "runtime/include/zhf/runtime/tolerances.h"
 TABLE_IO = "runtime/include/zhf/runtime/table_io.h"
 DESIGNS = "frames/include/zhf/frames/designs.h"
@@ -82,9 +83,10 @@ def check(path, findings):
     for number, raw in enumerate(lines, 1):
         line = code_of(raw) if cpp else raw.split("#")[0]
         where = f"{path}:{number}"
-        if cpp and not test and path != LIMITS and LIMIT_DEFINITION.search(line):
-            findings.append(f"{where}: a limit defined outside {LIMITS}")
-        if cpp and not test and path not in (LIMITS, TOLERANCES) and SCIENTIFIC.search(line) and INPUT_MARK not in raw:
+        limits_file = bool(LIMITS.match(path))
+        if cpp and not test and not limits_file and LIMIT_DEFINITION.search(line):
+            findings.append(f"{where}: a limit defined outside a library's limits.h")
+        if cpp and not test and not limits_file and path != TOLERANCES and SCIENTIFIC.search(line) and INPUT_MARK not in raw:
             findings.append(f"{where}: a tolerance literal outside {TOLERANCES} ({SCIENTIFIC.search(line).group(0)})")
         if cpp and test and NEAR_LITERAL.search(line):
             findings.append(f"{where}: a NEAR bound that is a literal, not a named tolerance")

@@ -15,6 +15,7 @@
 
 #include "healpix_method.h"
 #include "lanes_kernels.h"
+#include "zhf/bench/limits.h"
 #include "zhf/bench/machine.h"
 #include "zhf/codegen/manifest.h"
 #include "zhf/frames/tight_frame_rotation.h"
@@ -380,7 +381,7 @@ SuiteReport run_suite(const SuiteOptions& o) {
     const std::string on = "_order" + std::to_string(order);
     const bool generated = order >= 2 && order <= runtime::kMaxGeneratedOrder;
     const fs::path table_path = runtime::table_path((root / "generated" / "lobes").string(), order);
-    const bool have_table = order >= 3 && fs::exists(table_path) && order <= runtime::kMaxBenchOrder;
+    const bool have_table = order >= 3 && fs::exists(table_path) && order <= bench::kMaxBenchOrder;
 
     // Scenario 1: one vector, a new rotation per call.
     if (generated) {
@@ -437,7 +438,7 @@ SuiteReport run_suite(const SuiteOptions& o) {
       say(row);
       say(single<float>(scale, pool, "zxzxz", "rgb", 3, [&](auto r, auto in, auto out) { z.rotate_channels(r, in, out, 3); }));
     }
-    if (order <= runtime::kMaxBenchOrder) {
+    if (order <= bench::kMaxBenchOrder) {
       // Lobes at a design's points: a tight frame, no inverse, condition 1 at every order.
       const frames::Cubature nodes = frames::design_cubature((root / "generated" / "designs").string(), 2 * (order - 1));
       const frames::TightFrameRotator<float> tight(order, nodes);

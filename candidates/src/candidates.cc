@@ -6,7 +6,7 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "zhf/runtime/limits.h"
+#include "zhf/candidates/limits.h"
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/runtime/tolerances.h"
 #include "zhf/sh/legendre.h"
@@ -54,9 +54,9 @@ std::vector<std::pair<PiFraction, std::string>> phi_zeros(int max_m) {
 }
 
 CandidateSet enumerate_candidates(int order) {
-  if (order < runtime::kMinSearchOrder || order > runtime::kMaxSearchOrder) {
-    throw std::invalid_argument("order " + std::to_string(order) + " is outside [" + std::to_string(runtime::kMinSearchOrder) +
-                                ", " + std::to_string(runtime::kMaxSearchOrder) + "]");
+  if (order < candidates::kMinSearchOrder || order > candidates::kMaxSearchOrder) {
+    throw std::invalid_argument("order " + std::to_string(order) + " is outside [" + std::to_string(candidates::kMinSearchOrder) +
+                                ", " + std::to_string(candidates::kMaxSearchOrder) + "]");
   }
   CandidateSet set;
   set.order = order;

@@ -5,6 +5,7 @@
 
 #include "kernel_cost.h"
 #include "zhf/codegen/kernels.h"
+#include "zhf/codegen/limits.h"
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/tolerances.h"
 
@@ -23,7 +24,7 @@ std::vector<BandMethod> cheapest_band_methods(const Module& module, const Module
                                               const sh::BandMatrices& quarter_turn, std::string& reason) {
   const int n = module.order, free_bands = std::max(n - 2, 0);
   std::vector<std::vector<BandMethod>> candidates;
-  if (free_bands <= runtime::kMaxExhaustiveMethodBands) {
+  if (free_bands <= codegen::kMaxExhaustiveMethodBands) {
     for (int mask = 0; mask < (1 << free_bands); ++mask) {
       std::vector<BandMethod> m(n, BandMethod::kLobes);
       for (int l = 2; l < n; ++l)

@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <set>
 
+#include "zhf/codegen/limits.h"
 #include "zhf/io/files.h"
+#include "zhf/io/limits.h"
 #include "zhf/runtime/enum_names.h"
 #include "zhf/runtime/limits.h"
 
@@ -83,7 +85,7 @@ Manifest parse_manifest(const runtime::json::Value& root, const std::string& sou
   manifest.generator = top.member("generator").string();
   manifest.command = top.member("command").string();
   if (const auto scene = top.find("scene")) manifest.scene = io::to_ordered_json(scene->value());
-  for (const Field& f : top.member("files").items(0, runtime::kMaxManifestFiles)) {
+  for (const Field& f : top.member("files").items(0, codegen::kMaxManifestFiles)) {
     ManifestFile file;
     const Field path = f.member("path");
     file.path = path.string();
@@ -101,12 +103,12 @@ Manifest parse_manifest(const runtime::json::Value& root, const std::string& sou
     f.allow_only({"path", "kind", "language", "order", "precision", "lobe_stage", "zero_bands", "functions", "fnv1a64"});
     const Field language = f.member("language");
     if (!parse_language(language.string(), file.language)) language.fail("'" + runtime::excerpt(language.string()) + "' is not a language zhf emits");
-    file.order = f.member("order").integer(file.kind == FileKind::kDispatch ? 0 : runtime::kMinGeneratedOrder, runtime::kMaxEmitOrder);
+    file.order = f.member("order").integer(file.kind == FileKind::kDispatch ? 0 : runtime::kMinGeneratedOrder, codegen::kMaxEmitOrder);
     runtime::parse_enum(kPrecisionNames, f.member("precision").one_of(runtime::enum_names(kPrecisionNames)), file.precision);
     runtime::parse_lobe_stage(f.member("lobe_stage").one_of(runtime::enum_names(runtime::kLobeStageNames)), file.lobe_stage);
-    for (const Field& band : f.member("zero_bands").items(0, runtime::kMaxEmitOrder))
+    for (const Field& band : f.member("zero_bands").items(0, codegen::kMaxEmitOrder))
       file.zero_bands.push_back(band.integer(0, std::max(0, file.order - 1)));
-    for (const Field& fn : f.member("functions").items(0, runtime::kMaxManifestFunctions)) {
+    for (const Field& fn : f.member("functions").items(0, codegen::kMaxManifestFunctions)) {
       fn.allow_only({"name", "kind", "channels", "multiplies", "adds", "others"});
       EmittedFunction function;
       function.name = fn.member("name").string();
@@ -114,7 +116,7 @@ Manifest parse_manifest(const runtime::json::Value& root, const std::string& sou
       const Field kind_field = fn.member("kind");
       if (!parse_kernel_kind(kind_field.string(), function.kind))
         kind_field.fail("'" + runtime::excerpt(kind_field.string()) + "' is not a kind of function zhf emits");
-      function.channels = fn.member("channels").integer(1, runtime::kMaxChannels);
+      function.channels = fn.member("channels").integer(1, io::kMaxChannels);
       function.ops.multiplies = fn.member("multiplies").integer(0, 1 << 30);
       function.ops.adds = fn.member("adds").integer(0, 1 << 30);
       if (const auto others = fn.find("others")) function.ops.others = others->integer(0, 1 << 30);  // absent: none
@@ -127,12 +129,12 @@ Manifest parse_manifest(const runtime::json::Value& root, const std::string& sou
 }
 
 Manifest read_manifest(const std::string& path) {
-  return parse_manifest(io::read_json_file(path, runtime::kMaxManifestBytes), path);
+  return parse_manifest(io::read_json_file(path, codegen::kMaxManifestBytes), path);
 }
 
 std::map<std::string, std::string> read_manifest_hashes(const std::string& path) {
   using runtime::json::Field;
-  const runtime::json::Value root = io::read_json_file(path, runtime::kMaxManifestBytes);
+  const runtime::json::Value root = io::read_json_file(path, codegen::kMaxManifestBytes);
   const Field top(root, path);
   const std::string& format = top.member("format").one_of({kManifestFormat, "zhf-manifest-1"});
   std::map<std::string, std::string> hashes;
@@ -140,7 +142,7 @@ std::map<std::string, std::string> read_manifest_hashes(const std::string& path)
     for (const ManifestFile& f : parse_manifest(root, path).files) hashes[f.path] = f.fnv1a64;
     return hashes;
   }
-  for (const Field& f : top.member("files").items(0, runtime::kMaxManifestFiles)) hashes[f.member("path").string()] = f.member("fnv1a64").string();
+  for (const Field& f : top.member("files").items(0, codegen::kMaxManifestFiles)) hashes[f.member("path").string()] = f.member("fnv1a64").string();
   return hashes;
 }
 

@@ -1,5 +1,6 @@
 #include "zhf/codegen/needlet_lut.h"
-#include "zhf/runtime/limits.h"
+#include "zhf/codegen/limits.h"
+#include "zhf/frames/limits.h"
 
 #include <cmath>
 #include <sstream>
@@ -118,11 +119,11 @@ std::vector<float> needlet_lut_data(const frames::NeedletFrame& frame, int table
 EmittedFile emit_needlet_lut(const frames::NeedletFrame& frame, Language language, const NeedletLutOptions& o) {
   std::string why;
   if (!valid_prefix(o.prefix, why)) throw std::invalid_argument("prefix: " + why);
-  if (o.table_size < runtime::kMinNeedletTableSize || o.table_size > runtime::kMaxNeedletTableSize)
-    throw std::invalid_argument("table size must be " + std::to_string(runtime::kMinNeedletTableSize) + ".." + std::to_string(runtime::kMaxNeedletTableSize));
-  if (o.storage_set < 0 || o.storage_set > runtime::kMaxStorageSet || o.storage_binding < 0 || o.storage_binding > runtime::kMaxStorageBinding)
-    throw std::invalid_argument("storage set must be 0.." + std::to_string(runtime::kMaxStorageSet) + " and binding 0.." +
-                                std::to_string(runtime::kMaxStorageBinding));
+  if (o.table_size < frames::kMinNeedletTableSize || o.table_size > frames::kMaxNeedletTableSize)
+    throw std::invalid_argument("table size must be " + std::to_string(frames::kMinNeedletTableSize) + ".." + std::to_string(frames::kMaxNeedletTableSize));
+  if (o.storage_set < 0 || o.storage_set > codegen::kMaxStorageSet || o.storage_binding < 0 || o.storage_binding > codegen::kMaxStorageBinding)
+    throw std::invalid_argument("storage set must be 0.." + std::to_string(codegen::kMaxStorageSet) + " and binding 0.." +
+                                std::to_string(codegen::kMaxStorageBinding));
   const NeedletSpelling s = spelling(language);
   const std::string& p = o.prefix;
   const int size = o.table_size, levels = static_cast<int>(frame.levels().size());

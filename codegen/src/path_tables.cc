@@ -4,13 +4,13 @@
 #include <filesystem>
 #include <system_error>
 
+#include "zhf/codegen/limits.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/runtime/band_rows.h"
 #include "zhf/runtime/enum_names.h"
 #include "zhf/runtime/errors.h"
 #include "zhf/runtime/json.h"
-#include "zhf/runtime/limits.h"
 
 namespace zhf::codegen {
 namespace {
@@ -67,7 +67,7 @@ PathTimes parse_times(const Field& f, const std::string& isa, bool is_float, int
 
 PathTable read_table(const std::string& file, const std::string& isa, const std::vector<int>& orders,
                      const std::vector<int>& lanes_orders) {
-  const runtime::json::Value root = io::read_json_file(file, runtime::kMaxPathTableBytes);
+  const runtime::json::Value root = io::read_json_file(file, codegen::kMaxPathTableBytes);
   const Field top(root, file);
   top.allow_only({"format", "isa", "measured_on", "orders"});
   const Field format = top.member("format");
@@ -79,8 +79,8 @@ PathTable read_table(const std::string& file, const std::string& isa, const std:
   table.file = file;
   const Field measured = top.member("measured_on");
   table.measured_on = measured.string();
-  if (table.measured_on.empty() || table.measured_on.size() > runtime::kMaxPathTableNoteChars || !runtime::is_printable_text(table.measured_on))
-    measured.fail("must be 1 to " + std::to_string(runtime::kMaxPathTableNoteChars) + " printable characters");
+  if (table.measured_on.empty() || table.measured_on.size() > codegen::kMaxPathTableNoteChars || !runtime::is_printable_text(table.measured_on))
+    measured.fail("must be 1 to " + std::to_string(codegen::kMaxPathTableNoteChars) + " printable characters");
   for (const Field& entry : top.member("orders").items(orders.size())) {
     entry.allow_only({"order", "float", "double"});
     OrderPaths o;

@@ -4,8 +4,10 @@
 #include <set>
 #include <string_view>
 
+#include "zhf/codegen/limits.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
+#include "zhf/io/limits.h"
 #include "zhf/runtime/limits.h"
 
 namespace zhf::codegen {
@@ -101,7 +103,7 @@ Scene parse_scene(const runtime::json::Value& root, const std::string& source) {
   if (const auto stage = top.find("lobe_stage")) parse_lobe_stage_choice(stage->one_of(lobe_stage_choices()), scene.lobe_stage);
   if (const auto method = top.find("method")) parse_band_method_choice(method->one_of(band_method_choices()), scene.method);
   std::map<int, std::string> first_of_order;
-  const std::vector<Field> signals = top.member("signals").items(1, runtime::kMaxSceneSignals);
+  const std::vector<Field> signals = top.member("signals").items(1, codegen::kMaxSceneSignals);
   for (size_t i = 0; i < signals.size(); ++i) {
     const Field& s = signals[i];
     s.allow_only({"name", "order", "channels", "variants", "zero_bands"});
@@ -112,9 +114,9 @@ Scene parse_scene(const runtime::json::Value& root, const std::string& source) {
       if (signal.name.empty() || signal.name.size() > 64 || !runtime::is_printable_text(signal.name))
         name->fail("must be 1 to 64 printable characters");
     }
-    signal.order = s.member("order").integer(runtime::kMinGeneratedOrder, runtime::kMaxEmitOrder);
+    signal.order = s.member("order").integer(runtime::kMinGeneratedOrder, codegen::kMaxEmitOrder);
     if (const auto channels = s.find("channels")) {
-      signal.channels = channels->integer(1, runtime::kMaxChannels);
+      signal.channels = channels->integer(1, io::kMaxChannels);
       if (signal.channels == 2) channels->fail("must be 1, 3 or 4 (got 2)");
     }
     for (const Field& variant : s.member("variants").items(1, kVariants.size())) signal.variants.push_back(variant.one_of(kVariants));
@@ -140,7 +142,7 @@ Scene parse_scene(const runtime::json::Value& root, const std::string& source) {
 }
 
 Scene read_scene(const std::string& path) {
-  return parse_scene(io::read_json_file(path, runtime::kMaxSceneBytes), path);
+  return parse_scene(io::read_json_file(path, codegen::kMaxSceneBytes), path);
 }
 
 }  // namespace zhf::codegen

@@ -6,7 +6,7 @@
 #include <string>
 #include <sys/stat.h>
 
-#include "zhf/runtime/limits.h"
+#include "zhf/frames/limits.h"
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/sh/reference_rotation.h"
 
@@ -21,8 +21,8 @@ bool is_file(const std::string& path) {
 }  // namespace
 
 Cubature gauss_product_cubature(int degree) {
-  if (degree < 0 || degree > runtime::kMaxCubatureDegree)
-    throw std::invalid_argument("cubature degree must be 0.." + std::to_string(runtime::kMaxCubatureDegree) + " (got " + std::to_string(degree) + ")");
+  if (degree < 0 || degree > frames::kMaxCubatureDegree)
+    throw std::invalid_argument("cubature degree must be 0.." + std::to_string(frames::kMaxCubatureDegree) + " (got " + std::to_string(degree) + ")");
   const int nz = degree / 2 + 1, nphi = degree + 1;
   std::vector<double> z, wz;
   sh::gauss_legendre(nz, z, wz);
@@ -41,7 +41,7 @@ Cubature gauss_product_cubature(int degree) {
 }
 
 Cubature design_cubature(const std::string& folder, int degree) {
-  for (int t = std::max(degree, 1); t <= runtime::kMaxDesignStrength; ++t) {
+  for (int t = std::max(degree, 1); t <= frames::kMaxDesignStrength; ++t) {
     const std::string path = design_path(folder, t);
     if (!is_file(path)) continue;
     Cubature c;

@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 #include <nlopt.hpp>
 
+#include "zhf/frames/limits.h"
 #include "zhf/runtime/band_recurrence.h"
 #include "zhf/runtime/enum_names.h"
 #include "zhf/runtime/errors.h"
@@ -524,8 +525,8 @@ int symmetry_count(Symmetry symmetry, int t) {
 }
 
 Design search_design(const DesignSearch& s) {
-  if (s.t < 1 || s.t > runtime::kMaxDesignStrength)
-    throw std::invalid_argument("t " + std::to_string(s.t) + " is outside 1.." + std::to_string(runtime::kMaxDesignStrength));
+  if (s.t < 1 || s.t > frames::kMaxDesignStrength)
+    throw std::invalid_argument("t " + std::to_string(s.t) + " is outside 1.." + std::to_string(frames::kMaxDesignStrength));
   if (s.points < 2) throw std::invalid_argument("a design needs at least 2 points (got " + std::to_string(s.points) + ")");
   const int size = orbit_size(s.symmetry);
   if (s.points % size)
@@ -569,7 +570,7 @@ std::vector<Point> read_points(const std::string& path) {
     top = top.member("points");
   }
   std::vector<Point> points;
-  for (const runtime::json::Field& item : top.items(1, runtime::kMaxDesignPoints)) {
+  for (const runtime::json::Field& item : top.items(1, frames::kMaxDesignPoints)) {
     const std::vector<runtime::json::Field> xyz = item.items(3);
     const Point p{xyz[0].number(), xyz[1].number(), xyz[2].number()};
     const double norm = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);

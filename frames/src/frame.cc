@@ -7,7 +7,7 @@
 
 #include <Eigen/Dense>
 
-#include "zhf/runtime/limits.h"
+#include "zhf/frames/limits.h"
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/runtime/tolerances.h"
 
@@ -16,9 +16,9 @@ namespace {
 
 void check(const std::vector<Point>& directions, int lmin, int lmax) {
   if (directions.empty()) throw std::invalid_argument("a frame needs at least one direction");
-  if (lmin < 0 || lmax < lmin || lmax > runtime::kMaxFrameBand)
+  if (lmin < 0 || lmax < lmin || lmax > frames::kMaxFrameBand)
     throw std::invalid_argument("bands " + std::to_string(lmin) + ".." + std::to_string(lmax) + " are not within 0.." +
-                                std::to_string(runtime::kMaxFrameBand));
+                                std::to_string(frames::kMaxFrameBand));
 }
 
 // Phi: row i holds y_l^m(w_i) for the bands of the range.

@@ -7,8 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "zhf/frames/limits.h"
 #include "zhf/frames/windows.h"
-#include "zhf/runtime/limits.h"
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/runtime/tolerances.h"
 #include "zhf/sh/random.h"
@@ -62,8 +62,8 @@ double integrate(double a, double b) {
 }  // namespace
 
 void check_dilation(double dilation) {
-  if (!(dilation >= runtime::kMinDilation && dilation <= runtime::kMaxDilation))
-    throw std::invalid_argument("B must be in [" + std::to_string(runtime::kMinDilation).substr(0, 4) + ", " + std::to_string(int(runtime::kMaxDilation)) +
+  if (!(dilation >= frames::kMinDilation && dilation <= frames::kMaxDilation))
+    throw std::invalid_argument("B must be in [" + std::to_string(frames::kMinDilation).substr(0, 4) + ", " + std::to_string(int(frames::kMaxDilation)) +
                                 "] (got " + std::to_string(dilation) + ")");
 }
 
@@ -128,8 +128,8 @@ Point rotate_point(const runtime::Matrix3& r, const Point& p) {
 NeedletFrame::NeedletFrame(double dilation, int band_limit, const CubatureSource& cubature)
     : dilation_(dilation), band_limit_(band_limit) {
   check_dilation(dilation);
-  if (band_limit < 0 || band_limit > runtime::kMaxNeedletFrameBand)
-    throw std::invalid_argument("band limit must be 0.." + std::to_string(runtime::kMaxNeedletFrameBand) + " (got " + std::to_string(band_limit) + ")");
+  if (band_limit < 0 || band_limit > frames::kMaxNeedletFrameBand)
+    throw std::invalid_argument("band limit must be 0.." + std::to_string(frames::kMaxNeedletFrameBand) + " (got " + std::to_string(band_limit) + ")");
   NeedletLevel scaling;
   scaling.j = -1;
   scaling.window = {1.0};
@@ -252,8 +252,8 @@ std::vector<double> NeedletFrame::rotate_exact(const std::vector<double>& beta, 
 // ---- Look-up tables -----------------------------------------------------------------------------
 
 UniformTable::UniformTable(const std::function<double(double)>& f, int size) {
-  if (size < runtime::kMinNeedletTableSize || size > runtime::kMaxNeedletTableSize)
-    throw std::invalid_argument("table size must be " + std::to_string(runtime::kMinNeedletTableSize) + ".." + std::to_string(runtime::kMaxNeedletTableSize) +
+  if (size < frames::kMinNeedletTableSize || size > frames::kMaxNeedletTableSize)
+    throw std::invalid_argument("table size must be " + std::to_string(frames::kMinNeedletTableSize) + ".." + std::to_string(frames::kMaxNeedletTableSize) +
                                 " (got " + std::to_string(size) + ")");
   values_.resize(size);
   for (int i = 0; i < size; ++i) values_[i] = f(i == size - 1 ? 1.0 : -1.0 + 2.0 * i / (size - 1));
@@ -320,9 +320,9 @@ std::vector<double> TabulatedNeedletRotation::rotate(const std::vector<double>& 
 int needlet_top_band(double dilation, int j) {
   check_dilation(dilation);
   const double top = std::ceil(std::pow(dilation, j + 1)) - 1;  // compared before the cast: B^(j+1) may pass any int
-  if (!(j >= 0 && top <= runtime::kMaxNeedletBand))
+  if (!(j >= 0 && top <= frames::kMaxNeedletBand))
     throw std::invalid_argument("level " + std::to_string(j) + " of B = " + std::to_string(dilation) + " reaches past band " +
-                                std::to_string(runtime::kMaxNeedletBand));
+                                std::to_string(frames::kMaxNeedletBand));
   return static_cast<int>(top);
 }
 
@@ -342,8 +342,8 @@ constexpr int kLargestRule = 64;  // sh::gauss_legendre's most nodes
 }  // namespace
 
 Localisation localisation(const std::function<double(double)>& kernel, int degree, double cap) {
-  if (degree < 0 || degree > runtime::kMaxProfileBand)
-    throw std::invalid_argument("profile degree must be 0.." + std::to_string(runtime::kMaxProfileBand) + " (got " + std::to_string(degree) + ")");
+  if (degree < 0 || degree > frames::kMaxProfileBand)
+    throw std::invalid_argument("profile degree must be 0.." + std::to_string(frames::kMaxProfileBand) + " (got " + std::to_string(degree) + ")");
   // K^2 has degree 2 degree: one Gauss-Legendre rule of degree + 1 nodes is exact; past the
   // largest rule, panels of it (twice as many nodes in all as the degree needs).
   const int nodes = std::min(degree + 1, kLargestRule);

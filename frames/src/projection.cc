@@ -4,7 +4,7 @@
 #include <random>
 #include <stdexcept>
 
-#include "zhf/runtime/limits.h"
+#include "zhf/frames/limits.h"
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/sh/random.h"
 
@@ -32,8 +32,8 @@ double legendre(int l, double t) { return runtime::legendre_q(l, 0, t) / (std::s
 }  // namespace
 
 std::vector<std::vector<double>> project_samples(const Cubature& nodes, const std::vector<double>& values, int channels, int order) {
-  if (order < 1 || order > runtime::kMaxProjectionOrder)
-    throw std::invalid_argument("projection order must be 1.." + std::to_string(runtime::kMaxProjectionOrder) + " (got " + std::to_string(order) + ")");
+  if (order < 1 || order > frames::kMaxProjectionOrder)
+    throw std::invalid_argument("projection order must be 1.." + std::to_string(frames::kMaxProjectionOrder) + " (got " + std::to_string(order) + ")");
   if (channels < 1 || values.size() != nodes.points.size() * channels)
     throw std::invalid_argument("samples: " + std::to_string(values.size()) + " values for " + std::to_string(nodes.points.size()) +
                                 " nodes and " + std::to_string(channels) + " channels");

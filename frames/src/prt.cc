@@ -6,8 +6,8 @@
 #include <stdexcept>
 
 #include "zhf/frames/cubature.h"
+#include "zhf/frames/limits.h"
 #include "zhf/frames/projection.h"
-#include "zhf/runtime/limits.h"
 #include "zhf/runtime/parallel.h"
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/sh_eval.h"
@@ -20,7 +20,7 @@ using runtime::kPi;
 // The reference rule: Gauss-Legendre panels in z times equal steps in phi.
 constexpr int kReferencePanels = 8, kReferencePanelNodes = 64, kReferencePhi = 1024;
 // The projections' rule: the largest Gauss product (degree 126, 8128 nodes).
-constexpr int kProjectionDegree = runtime::kMaxCubatureDegree;
+constexpr int kProjectionDegree = frames::kMaxCubatureDegree;
 // The sweep of sky turns: angles k 2 pi / kSweep about a fixed skew axis.
 constexpr int kSweep = 12;
 
@@ -104,8 +104,8 @@ bool parse_prt_transfer(const std::string& name, PrtTransfer& transfer) {
 }
 
 std::vector<Point> prt_vertices(int side) {
-  if (side < 1 || side > runtime::kMaxPrtSide)
-    throw std::invalid_argument("vertices per side " + std::to_string(side) + " is outside 1.." + std::to_string(runtime::kMaxPrtSide));
+  if (side < 1 || side > frames::kMaxPrtSide)
+    throw std::invalid_argument("vertices per side " + std::to_string(side) + " is outside 1.." + std::to_string(frames::kMaxPrtSide));
   std::vector<Point> v;
   for (int i = 0; i < side; ++i)
     for (int j = 0; j < side; ++j) v.push_back({-1.5 + 3.0 * (j + 0.5) / side, -1.5 + 3.0 * (i + 0.5) / side, 0.0});
@@ -155,13 +155,14 @@ double sun_and_sky(const Point& w) {
 }
 
 PrtReport prt_experiment(const NeedletFrame& frame, PrtScene scene, PrtTransfer transfer, const Radiance& sky, int side,
-                         const std::vector<int>& kept, int table_size, const std::function<void()>& checkpoint) {
+                         const std::vector<int>& kept, int table_size, const std::function<void(int, int)>& checkpoint,
+                         int threads) {
   const std::vector<Point> vertices = prt_vertices(side);
   const int order = frame.band_limit() + 1, n_sh = order * order, n_frame = frame.size();
   for (int k : kept)
     if (k < 1 || k > n_frame) throw std::invalid_argument("K " + std::to_string(k) + " is outside 1.." + std::to_string(n_frame));
   const int count = static_cast<int>(vertices.size());
-  const int threads = runtime::worker_count(0);
+  threads = runtime::worker_count(threads);
   PrtReport report;
   report.vertices = count;
   report.sh_coefficients = n_sh;
@@ -173,7 +174,7 @@ PrtReport prt_experiment(const NeedletFrame& frame, PrtScene scene, PrtTransfer 
   for (std::size_t i = 0; i < sky_at.size(); ++i) sky_at[i] = sky(reference.points[i]);
   std::vector<double> exact(count);
   for (int first = 0; first < count; first += threads) {
-    if (checkpoint) checkpoint();
+    if (checkpoint) checkpoint(first, count);
     runtime::parallel_for(std::min(threads, count - first), threads, [&](int b) {
       const Point& p = vertices[first + b];
       double sum = 0;
@@ -194,7 +195,7 @@ PrtReport prt_experiment(const NeedletFrame& frame, PrtScene scene, PrtTransfer 
     sky_values[i] = sky(nodes.points[i]);
     for (int v = 0; v < count; ++v) transfer_values[i * count + v] = prt_transfer(scene, transfer, vertices[v], nodes.points[i]);
   }
-  if (checkpoint) checkpoint();
+  if (checkpoint) checkpoint(count, count);
   const std::vector<double> sky_sh = project_samples(nodes, sky_values, 1, order)[0];
   const std::vector<std::vector<double>> transfer_sh = project_samples(nodes, transfer_values, count, order);
   const std::vector<double> sky_beta = frame.analyze(sky_sh);
@@ -205,7 +206,7 @@ PrtReport prt_experiment(const NeedletFrame& frame, PrtScene scene, PrtTransfer 
   std::vector<int> ks = kept;
   ks.push_back(n_frame);
   for (int k : ks) {
-    if (checkpoint) checkpoint();
+    if (checkpoint) checkpoint(count, count);
     PrtRow row;
     row.kept = k;
     int bands = 1;  // SH keeps whole bands: the most with bands^2 <= K
@@ -247,7 +248,7 @@ PrtReport prt_experiment(const NeedletFrame& frame, PrtScene scene, PrtTransfer 
   const double total = std::inner_product(sky_beta.begin(), sky_beta.end(), sky_beta.begin(), 0.0);
   const double axis_length = std::sqrt(1.0 + 4.0 + 9.0), axis[3] = {1 / axis_length, 2 / axis_length, 3 / axis_length};
   for (int step = 1; step <= kSweep; ++step) {
-    if (checkpoint) checkpoint();
+    if (checkpoint) checkpoint(count, count);
     const runtime::Matrix3 r = runtime::rotation_about_unit_axis(axis, 2 * kPi * step / kSweep);
     const std::vector<double> turned = tabulated.rotate(sky_beta, r), exact_turn = frame.rotate_exact(sky_beta, r);
     for (std::size_t l = 0; l < levels.size(); ++l) {

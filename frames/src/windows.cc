@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "zhf/frames/limits.h"
 #include "zhf/frames/needlets.h"
 #include "zhf/runtime/enum_names.h"
-#include "zhf/runtime/limits.h"
 #include "zhf/runtime/tolerances.h"
 
 namespace zhf::frames {
@@ -20,8 +20,8 @@ constexpr runtime::EnumName<WindowKind> kWindowNames[] = {
 
 void check(const Window& w) {
   check_dilation(w.dilation);
-  if (w.kind == WindowKind::kMexican && (w.order < 1 || w.order > runtime::kMaxMexicanOrder))
-    throw std::invalid_argument("Mexican needlet order must be 1.." + std::to_string(runtime::kMaxMexicanOrder) + " (got " + std::to_string(w.order) + ")");
+  if (w.kind == WindowKind::kMexican && (w.order < 1 || w.order > frames::kMaxMexicanOrder))
+    throw std::invalid_argument("Mexican needlet order must be 1.." + std::to_string(frames::kMaxMexicanOrder) + " (got " + std::to_string(w.order) + ")");
 }
 
 // Cumulative centred cubic B-spline: F(s) = int_{-2}^{s} M, for s in [-2, 0] (F(s) = 1 - F(-s)
@@ -96,8 +96,8 @@ BandRange bands_of_level(const Window& w, int j) {
 
 std::vector<WindowValue> window_values(const Window& w, int lmax) {
   check(w);
-  if (lmax < 0 || lmax > runtime::kMaxNeedletBand)
-    throw std::invalid_argument("lmax must be 0.." + std::to_string(runtime::kMaxNeedletBand) + " (got " + std::to_string(lmax) + ")");
+  if (lmax < 0 || lmax > frames::kMaxNeedletBand)
+    throw std::invalid_argument("lmax must be 0.." + std::to_string(frames::kMaxNeedletBand) + " (got " + std::to_string(lmax) + ")");
   std::vector<WindowValue> out;
   if (lmax == 0) return out;
   double low = 0, high = 0;
@@ -126,8 +126,8 @@ double window_square_sum(const Window& w, int l) {
 double kernel_energy_outside(const Window& w, int j, double radius) {
   if (!(radius > 0 && radius <= runtime::kPi)) throw std::invalid_argument("cap radius must be in (0, pi]");
   const BandRange bands = bands_of_level(w, j);
-  if (bands.last > runtime::kMaxProfileBand)
-    throw std::invalid_argument("level " + std::to_string(j) + " reaches band " + std::to_string(bands.last) + "; at most " + std::to_string(runtime::kMaxProfileBand));
+  if (bands.last > frames::kMaxProfileBand)
+    throw std::invalid_argument("level " + std::to_string(j) + " reaches band " + std::to_string(bands.last) + "; at most " + std::to_string(frames::kMaxProfileBand));
   std::vector<double> b(bands.last + 1, 0.0);
   for (int l = bands.first; l <= bands.last; ++l) b[l] = window_value(w, l / std::pow(w.dilation, j));
   const auto kernel = [&](double t) { return zonal_series(bands.first, bands.last, t, [&](int l) { return b[l]; }); };

@@ -11,6 +11,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "zhf/healpix/limits.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/io/signals.h"
@@ -146,7 +147,7 @@ Cards check_headers(const std::string& head, std::uint64_t file_bytes, const std
   auto header = [&](const char* which, const std::vector<std::string>& leading) {
     Cards cards(source);
     for (std::size_t n = 0;; ++n) {
-      if (at + 80 > head.size()) fail(std::string("the ") + which + " header has no END within " + std::to_string(runtime::kMaxHealpixHeaderBytes) + " bytes");
+      if (at + 80 > head.size()) fail(std::string("the ") + which + " header has no END within " + std::to_string(healpix::kMaxHealpixHeaderBytes) + " bytes");
       const std::string card = head.substr(at, 80);
       at += 80;
       if (std::any_of(card.begin(), card.end(), [](char c) { return c < 0x20 || c > 0x7e; }))
@@ -180,7 +181,7 @@ Cards check_headers(const std::string& head, std::uint64_t file_bytes, const std
     if (data > limit) fail("the primary data is larger than the file");
   }
   at += static_cast<std::size_t>((data + kFitsBlock - 1) / kFitsBlock * kFitsBlock);
-  if (at >= head.size()) fail("no extension after the primary header within " + std::to_string(runtime::kMaxHealpixHeaderBytes) + " bytes");
+  if (at >= head.size()) fail("no extension after the primary header within " + std::to_string(healpix::kMaxHealpixHeaderBytes) + " bytes");
   Cards table = header("extension", {"XTENSION", "BITPIX", "NAXIS", "NAXIS1", "NAXIS2", "PCOUNT", "GCOUNT", "TFIELDS"});
   if (table.text("XTENSION") != "BINTABLE") fail("the first extension is not a binary table");
   if (table.integer("BITPIX", -64, 64) != 8 || table.integer("NAXIS", 0, 999) != 2 || table.integer("GCOUNT", 0, limit) != 1)
@@ -213,8 +214,8 @@ class MapReader {
     if (hdu_type != BINARY_TBL) fail("the first extension is not a binary table");
     LONGLONG header_start = 0, data_start = 0, data_end = 0;
     check(fits_get_hduaddrll(file_, &header_start, &data_start, &data_end, &status_), "the table's header");
-    if (static_cast<std::uint64_t>(data_start) > runtime::kMaxHealpixHeaderBytes)
-      fail("headers of " + std::to_string(data_start) + " bytes, more than the limit of " + std::to_string(runtime::kMaxHealpixHeaderBytes));
+    if (static_cast<std::uint64_t>(data_start) > healpix::kMaxHealpixHeaderBytes)
+      fail("headers of " + std::to_string(data_start) + " bytes, more than the limit of " + std::to_string(healpix::kMaxHealpixHeaderBytes));
     const LONGLONG padded_end = (data_end + kFitsBlock - 1) / kFitsBlock * kFitsBlock;
     if (static_cast<std::uint64_t>(data_end) > file_bytes_)
       fail("truncated: the table needs " + std::to_string(data_end) + " bytes, the file has " + std::to_string(file_bytes_));
@@ -318,8 +319,8 @@ HealpixMap read_healpix_map(const std::string& path) {
   struct stat st {};
   if (stat(path.c_str(), &st) != 0) throw InputError(path + ": cannot be read (missing or not accessible)");
   if (S_ISREG(st.st_mode) && st.st_size == 0) throw InputError(path + ": empty, not a FITS file");
-  if (!S_ISREG(st.st_mode)) return parse_healpix_map(runtime::read_file(path, runtime::kMaxHealpixHeaderBytes + healpix_pixels(kMaxHealpixNside) * 8), path);
-  std::string head(std::min<std::size_t>(static_cast<std::size_t>(st.st_size), runtime::kMaxHealpixHeaderBytes), '\0');
+  if (!S_ISREG(st.st_mode)) return parse_healpix_map(runtime::read_file(path, healpix::kMaxHealpixHeaderBytes + healpix_pixels(kMaxHealpixNside) * 8), path);
+  std::string head(std::min<std::size_t>(static_cast<std::size_t>(st.st_size), healpix::kMaxHealpixHeaderBytes), '\0');
   std::ifstream in(path, std::ios::binary);
   if (!in.read(head.data(), static_cast<std::streamsize>(head.size()))) throw InputError(path + ": cannot be read");
   const Cards cards = check_headers(head, static_cast<std::uint64_t>(st.st_size), path);
@@ -331,7 +332,7 @@ HealpixMap read_healpix_map(const std::string& path) {
 
 HealpixMap parse_healpix_map(const std::string& bytes, const std::string& source) {
   if (bytes.empty()) throw InputError(source + ": empty, not a FITS file");
-  const Cards cards = check_headers(bytes.substr(0, runtime::kMaxHealpixHeaderBytes), bytes.size(), source);
+  const Cards cards = check_headers(bytes.substr(0, healpix::kMaxHealpixHeaderBytes), bytes.size(), source);
   void* buffer = const_cast<char*>(bytes.data());  // read only: cfitsio neither writes nor grows it
   std::size_t size = bytes.size();
   fitsfile* raw = nullptr;

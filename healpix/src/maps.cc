@@ -10,8 +10,8 @@
 #include <string>
 
 #include "zhf/healpix/alm.h"
+#include "zhf/healpix/limits.h"
 #include "zhf/runtime/errors.h"
-#include "zhf/runtime/limits.h"
 #include "zhf/runtime/sh_eval.h"
 
 namespace zhf::healpix {
@@ -29,8 +29,8 @@ void check_nside(std::int64_t nside, std::size_t pixels) {
 }
 
 void check_order(int order) {
-  if (order < 1 || order > runtime::kMaxProjectionOrder)
-    throw std::invalid_argument("order " + std::to_string(order) + " is outside 1.." + std::to_string(runtime::kMaxProjectionOrder));
+  if (order < 1 || order > runtime::kMaxShOrder)
+    throw std::invalid_argument("order " + std::to_string(order) + " is outside 1.." + std::to_string(runtime::kMaxShOrder));
 }
 
 Healpix_Map<double> ring_map(std::int64_t nside, const std::vector<double>& ring) {
@@ -114,8 +114,8 @@ std::vector<double> analyze_map(std::int64_t nside, const std::vector<double>& r
   check_order(order);
   if (order - 1 > max_analysis_band(nside))
     throw std::invalid_argument("band " + std::to_string(order - 1) + " is above 4 Nside = " + std::to_string(max_analysis_band(nside)) + ", what the map's rings resolve");
-  if (iterations < 0 || iterations > runtime::kMaxHealpixIterations)
-    throw std::invalid_argument("iterations " + std::to_string(iterations) + " is outside 0.." + std::to_string(runtime::kMaxHealpixIterations));
+  if (iterations < 0 || iterations > healpix::kMaxHealpixIterations)
+    throw std::invalid_argument("iterations " + std::to_string(iterations) + " is outside 0.." + std::to_string(healpix::kMaxHealpixIterations));
   const Healpix_Map<double> map = ring_map(nside, ring);
   const arr<double> unit_weights(2 * static_cast<std::size_t>(nside), 1.0);
   ComplexAlm alm(order - 1, order - 1);

@@ -7,6 +7,7 @@
 
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
+#include "zhf/io/limits.h"
 #include "zhf/io/numbers.h"
 #include "zhf/runtime/limits.h"
 
@@ -109,7 +110,7 @@ CoefficientFile parse_coefficients(const std::string& text, const std::string& s
 }
 
 CoefficientFile read_coefficients(const std::string& path, int channels) {
-  return parse_coefficients(read_text_file(path, runtime::kMaxCoefficientBytes), path, channels);
+  return parse_coefficients(read_text_file(path, io::kMaxCoefficientBytes), path, channels);
 }
 
 }  // namespace zhf::io

@@ -6,6 +6,7 @@
 
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
+#include "zhf/io/limits.h"
 #include "zhf/runtime/tolerances.h"
 
 namespace zhf::io {

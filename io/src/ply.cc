@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "zhf/io/errors.h"
+#include "zhf/io/limits.h"
 #include "zhf/io/numbers.h"
 
 namespace zhf::io::ply {
@@ -193,10 +194,10 @@ void write_binary(unsigned char* record, const Property& property, double value)
 
 std::string_view read_ascii_line(std::istream& in, std::vector<char>& buffer, const std::string& source, std::uint64_t vertex,
                                  std::uint64_t vertices) {
-  buffer.resize(runtime::kMaxPlyAsciiLine + 2);
+  buffer.resize(io::kMaxPlyAsciiLine + 2);
   in.getline(buffer.data(), std::streamsize(buffer.size()));
   if (in.fail() && !in.eof())
-    throw InputError(source + ": splat " + std::to_string(vertex) + ": a line longer than " + std::to_string(runtime::kMaxPlyAsciiLine) + " bytes");
+    throw InputError(source + ": splat " + std::to_string(vertex) + ": a line longer than " + std::to_string(io::kMaxPlyAsciiLine) + " bytes");
   if (in.gcount() == 0 && in.eof())
     throw InputError(source + ": truncated: the data ends before splat " + std::to_string(vertex) + " of " + std::to_string(vertices));
   return std::string_view(buffer.data());

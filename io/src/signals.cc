@@ -15,7 +15,8 @@
 #include <set>
 #include <thread>
 
-#include "zhf/runtime/limits.h"
+#include "zhf/io/limits.h"
+
 
 namespace zhf::io {
 namespace {
@@ -61,7 +62,7 @@ ssize_t read_byte(int fd, char* byte) {
 void watch() {
   char byte = 0;
   if (read_byte(g_wake_reader, &byte) != 1) return;
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(runtime::kInterruptGraceSeconds);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(io::kInterruptGraceSeconds);
   pollfd wake{g_wake_reader, POLLIN, 0};
   while (std::chrono::steady_clock::now() < deadline) {
     const int left = static_cast<int>(

@@ -12,8 +12,8 @@
 #include <nlopt.hpp>
 
 #include "search_support.h"
+#include "zhf/candidates/limits.h"
 #include "zhf/optimizer/objective.h"
-#include "zhf/runtime/limits.h"
 #include "zhf/runtime/parallel.h"
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/runtime/tolerances.h"
@@ -98,9 +98,9 @@ StartResult descend_from(int order, std::vector<double> x, const AmplificationOp
 }  // namespace
 
 AmplificationResult amplification_search(int order, const AmplificationOptions& options) {
-  if (order < runtime::kMinSearchOrder || order > runtime::kMaxSearchOrder)
+  if (order < candidates::kMinSearchOrder || order > candidates::kMaxSearchOrder)
     throw std::invalid_argument("amplification_search: order " + std::to_string(order) + " is outside [" +
-                                std::to_string(runtime::kMinSearchOrder) + ", " + std::to_string(runtime::kMaxSearchOrder) + "]");
+                                std::to_string(candidates::kMinSearchOrder) + ", " + std::to_string(candidates::kMaxSearchOrder) + "]");
   const int lobes = 2 * order - 1;
   // Every start point is drawn here, on one thread, so a start's result never depends on which
   // worker ran it; the best is then taken in start order (ties: the earlier start).

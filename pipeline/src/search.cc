@@ -5,12 +5,12 @@
 #include <stdexcept>
 
 #include "zhf/candidates/candidates.h"
+#include "zhf/candidates/limits.h"
 #include "zhf/codegen/kernels.h"
 #include "zhf/optimizer/amplification.h"
 #include "zhf/optimizer/continuous.h"
 #include "zhf/optimizer/exhaustive.h"
 #include "zhf/optimizer/local_search.h"
-#include "zhf/runtime/limits.h"
 
 namespace zhf::pipeline {
 namespace {
@@ -132,7 +132,7 @@ SearchOutcome lobe_search(const SearchRequest& r, const optimizer::LobeEvaluator
   ils.stall_kicks = r.local_search_stall;
   ils.threads = r.threads;
   ils.stop = r.stop;
-  ils.time_limit_seconds = r.time_limit > 0 ? std::max(runtime::kMinSearchSeconds, r.time_limit - ga_result.seconds) : 0;
+  ils.time_limit_seconds = r.time_limit > 0 ? std::max(candidates::kMinSearchSeconds, r.time_limit - ga_result.seconds) : 0;
   if (r.progress)
     ils.on_improvement = [&r](int kick, const optimizer::Fitness& best, long evaluations) {
       say(r, format("local search kick %.0f: best ", kick) + merit(r, best) +
@@ -165,9 +165,9 @@ SearchOutcome lobe_search(const SearchRequest& r, const optimizer::LobeEvaluator
 }  // namespace
 
 SearchOutcome search(const SearchRequest& request) {
-  if (request.order < runtime::kMinSearchOrder || request.order > runtime::kMaxSearchOrder)
+  if (request.order < candidates::kMinSearchOrder || request.order > candidates::kMaxSearchOrder)
     throw std::invalid_argument("order " + std::to_string(request.order) + " is outside [" +
-                                std::to_string(runtime::kMinSearchOrder) + ", " + std::to_string(runtime::kMaxSearchOrder) + "]");
+                                std::to_string(candidates::kMinSearchOrder) + ", " + std::to_string(candidates::kMaxSearchOrder) + "]");
   if (request.objective == Objective::kAmplification) return amplification(request);
   const candidates::CandidateSet set = candidates::enumerate_candidates(request.order);
   const optimizer::LobeEvaluator evaluator(set, request.lobe_sharing, request.max_condition, scoring(request));

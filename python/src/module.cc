@@ -28,6 +28,7 @@
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/rotator.h"
 #include "zhf/sh/analysis.h"
+#include "zhf/sh/limits.h"
 
 namespace py = pybind11;
 namespace rt = zhf::runtime;
@@ -268,8 +269,8 @@ py::dict analyze(const Array<double>& coeffs, double tolerance) {
   const py::buffer_info in = coeffs.request();
   if (in.ndim != 2 || in.shape[0] < 1) throw rt::InputError("coeffs: expected a non-empty (count, N^2) array");
   order_of(in);
-  if (!(tolerance >= rt::kMinZonalTolerance && tolerance <= 1))
-    throw rt::InputError("tolerance: must be in [" + rt::format_number(rt::kMinZonalTolerance) + ", 1]");
+  if (!(tolerance >= zhf::sh::kMinZonalTolerance && tolerance <= 1))
+    throw rt::InputError("tolerance: must be in [" + rt::format_number(zhf::sh::kMinZonalTolerance) + ", 1]");
   const std::size_t count = in.shape[0], n = in.shape[1];
   refuse_non_finite(coeffs.data(), 0, count * n, n);
   std::vector<Eigen::VectorXd> signals(count);

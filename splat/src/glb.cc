@@ -31,9 +31,10 @@
 #include "formats.h"
 #include "splat_math.h"
 #include "zhf/io/errors.h"
+#include "zhf/io/limits.h"
 #include "zhf/runtime/json.h"
-#include "zhf/runtime/limits.h"
 #include "zhf/runtime/rotation.h"
+#include "zhf/splat/limits.h"
 
 namespace zhf::splat {
 namespace {
@@ -190,15 +191,15 @@ class GlbReader : public SceneReader {
       throw InputError(path + ": the header says " + std::to_string(get_uint32(header + 8)) + " bytes, the file has " + std::to_string(size));
     const std::uint64_t json_bytes = get_uint32(header + 12);
     if (get_uint32(header + 16) != kJsonChunk) throw InputError(path + ": the first chunk is not JSON");
-    if (json_bytes > runtime::kMaxGlbJsonBytes)
-      throw InputError(path + ": JSON chunk of " + std::to_string(json_bytes) + " bytes; at most " + std::to_string(runtime::kMaxGlbJsonBytes));
+    if (json_bytes > splat::kMaxGlbJsonBytes)
+      throw InputError(path + ": JSON chunk of " + std::to_string(json_bytes) + " bytes; at most " + std::to_string(splat::kMaxGlbJsonBytes));
     if (json_bytes > size - sizeof header) throw InputError(path + ": the JSON chunk runs past the end of the file");
     std::string text(json_bytes, '\0');
     fill(sizeof header, reinterpret_cast<unsigned char*>(text.data()), json_bytes);
     // Chunks after the JSON: the first may be BIN (the buffer); others are ignored, as glTF says.
     std::uint64_t at = sizeof header + json_bytes, bin_at = 0, bin_bytes = 0;
     for (int chunk = 1; at < size; ++chunk) {
-      if (chunk > runtime::kMaxGlbChunks) throw InputError(path + ": more than " + std::to_string(runtime::kMaxGlbChunks) + " chunks");
+      if (chunk > splat::kMaxGlbChunks) throw InputError(path + ": more than " + std::to_string(splat::kMaxGlbChunks) + " chunks");
       if (size - at < kChunkHeaderBytes) throw InputError(path + ": chunk " + std::to_string(chunk) + ": truncated header");
       unsigned char chunk_header[kChunkHeaderBytes];
       fill(at, chunk_header, sizeof chunk_header);
@@ -246,9 +247,9 @@ class GlbReader : public SceneReader {
     int mesh_index = -1;
     std::optional<Field> primitive;
     if (std::optional<Field> meshes = root.find("meshes")) {
-      const std::vector<Field> list = meshes->items(0, runtime::kMaxGlbObjects);
+      const std::vector<Field> list = meshes->items(0, splat::kMaxGlbObjects);
       for (std::size_t m = 0; m < list.size(); ++m)
-        for (const Field& p : list[m].member("primitives").items(1, runtime::kMaxGlbObjects)) {
+        for (const Field& p : list[m].member("primitives").items(1, splat::kMaxGlbObjects)) {
           std::optional<Field> extensions = p.find("extensions");
           if (!extensions || !extensions->find(kExtension)) continue;
           if (primitive) p.fail("a second splat primitive; zhf reads files with one");
@@ -276,9 +277,9 @@ class GlbReader : public SceneReader {
       for (const auto& name : names) known = known || name.first == key;
       if (!known) attributes.member(key).fail("not an attribute of a degree-" + std::to_string(degree_) + " scene");
     }
-    const std::vector<Field> accessors = root.member("accessors").items(1, runtime::kMaxGlbObjects);
-    const std::vector<Field> views = root.member("bufferViews").items(1, runtime::kMaxGlbObjects);
-    const std::vector<Field> buffers = root.member("buffers").items(1, runtime::kMaxGlbObjects);
+    const std::vector<Field> accessors = root.member("accessors").items(1, splat::kMaxGlbObjects);
+    const std::vector<Field> views = root.member("bufferViews").items(1, splat::kMaxGlbObjects);
+    const std::vector<Field> buffers = root.member("buffers").items(1, splat::kMaxGlbObjects);
     std::optional<std::uint64_t> count;
     for (const auto& [name, spec] : names) {
       std::optional<Field> index = attributes.find(name);
@@ -294,7 +295,7 @@ class GlbReader : public SceneReader {
       if (accessor.member("type").string() != type_name(spec.components))
         accessor.member("type").fail("must be " + std::string(type_name(spec.components)) + " for " + name);
       if (accessor.find("sparse")) accessor.member("sparse").fail("sparse accessors are not read");
-      const std::uint64_t n = std::uint64_t(accessor.member("count").integer(1LL, (long long)runtime::kMaxPlyVertices));
+      const std::uint64_t n = std::uint64_t(accessor.member("count").integer(1LL, (long long)io::kMaxPlyVertices));
       if (count && n != *count) accessor.member("count").fail(std::to_string(n) + " for " + name + ", " + std::to_string(*count) + " for POSITION");
       count = n;
       const Field view = views[std::size_t(accessor.member("bufferView").integer(0, int(views.size()) - 1))];
@@ -321,11 +322,11 @@ class GlbReader : public SceneReader {
   void node_transform(const Field& root, int mesh_index) {
     std::optional<Field> nodes_field = root.find("nodes");
     if (!nodes_field) return;
-    const std::vector<Field> nodes = nodes_field->items(0, runtime::kMaxGlbObjects);
+    const std::vector<Field> nodes = nodes_field->items(0, splat::kMaxGlbObjects);
     std::vector<int> parent(nodes.size(), -1);
     int placing = -1;
     for (std::size_t i = 0; i < nodes.size(); ++i) {
-      if (std::optional<Field> mesh = nodes[i].find("mesh"); mesh && mesh->integer(0, runtime::kMaxGlbObjects) == mesh_index) {
+      if (std::optional<Field> mesh = nodes[i].find("mesh"); mesh && mesh->integer(0, splat::kMaxGlbObjects) == mesh_index) {
         if (placing >= 0) mesh->fail("a second node places the splat mesh; zhf reads one instance");
         placing = int(i);
       }

@@ -5,7 +5,7 @@
 #include "format_io.h"
 #include "formats.h"
 #include "zhf/io/errors.h"
-#include "zhf/runtime/limits.h"
+#include "zhf/io/limits.h"
 #include "zhf/runtime/sh_eval.h"
 
 namespace zhf::splat {
@@ -27,8 +27,8 @@ class SplatFileReader : public SceneReader {
     if (size % kSplatBytes != 0)
       throw InputError(path + ": " + std::to_string(size) + " bytes: not a whole number of 32-byte splats");
     splats_ = size / kSplatBytes;
-    if (splats_ > runtime::kMaxPlyVertices)
-      throw InputError(path + ": " + std::to_string(splats_) + " splats; at most " + std::to_string(runtime::kMaxPlyVertices));
+    if (splats_ > io::kMaxPlyVertices)
+      throw InputError(path + ": " + std::to_string(splats_) + " splats; at most " + std::to_string(io::kMaxPlyVertices));
     degree_ = 0;
   }
 

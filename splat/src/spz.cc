@@ -26,8 +26,9 @@
 #include "format_io.h"
 #include "formats.h"
 #include "zhf/io/errors.h"
+#include "zhf/io/limits.h"
 #include "zhf/io/private_dir.h"
-#include "zhf/runtime/limits.h"
+#include "zhf/splat/limits.h"
 
 namespace zhf::splat {
 namespace {
@@ -212,8 +213,8 @@ class SpzReader : public SceneReader {
     if (zstd ? version_ != 4 : version_ != 2 && version_ != 3)
       throw InputError(path + ": .spz version " + std::to_string(version_) + (zstd ? " in a plain header; expected 4" : "; zhf reads versions 2, 3 and 4"));
     splats_ = get_uint32(h + 8);
-    if (splats_ > runtime::kMaxPlyVertices)
-      throw InputError(path + ": " + std::to_string(splats_) + " splats; at most " + std::to_string(runtime::kMaxPlyVertices));
+    if (splats_ > io::kMaxPlyVertices)
+      throw InputError(path + ": " + std::to_string(splats_) + " splats; at most " + std::to_string(io::kMaxPlyVertices));
     degree_ = h[12];
     if (degree_ > 3) throw InputError(path + ": SH degree " + std::to_string(degree_) + "; zhf splat handles degrees 0..3");
     fractional_bits_ = h[13];
@@ -221,7 +222,7 @@ class SpzReader : public SceneReader {
     const std::array<std::uint64_t, kAttributes> bytes = attribute_bytes(version_, degree_);
     std::uint64_t claimed = 0;
     for (std::uint64_t b : bytes) claimed += b * splats_;
-    if (double(claimed) > runtime::kMaxCompressionRatio * double(size))
+    if (double(claimed) > splat::kMaxCompressionRatio * double(size))
       throw InputError(path + ": the header claims " + std::to_string(splats_) + " splats (" + std::to_string(claimed) +
                        " bytes), more than " + std::to_string(size) + " compressed bytes can hold");
     if (!zstd) {

@@ -14,7 +14,7 @@
 #include "test_support.h"
 #include "zhf/frames/designs.h"
 #include "zhf/frames/frame.h"
-#include "zhf/runtime/limits.h"
+#include "zhf/frames/limits.h"
 #include "zhf/runtime/table_io.h"
 #include "zhf/runtime/tolerances.h"
 #include "zhf/sh/random.h"
@@ -192,7 +192,7 @@ TEST(Designs, AntipodalThreefoldSetsAreWholeOrbitsAndExact) {
 // construction (its count, symmetric_count, is reached from t = 19 on; below that the smallest
 // known counts are smaller than antipodal searches reach) or the efficient count, at every t.
 TEST(Designs, DefaultCountsNeverExceedTheAntipodalTheBestKnownOrTheEfficientCount) {
-  for (int t = 1; t <= runtime::kMaxDesignStrength; ++t) {
+  for (int t = 1; t <= frames::kMaxDesignStrength; ++t) {
     const DesignChoice choice = default_design(t);
     EXPECT_EQ(choice.points % orbit_size(choice.symmetry), 0) << "t " << t;
     if (t <= 21) {
@@ -211,7 +211,7 @@ TEST(Designs, DefaultCountsNeverExceedTheAntipodalTheBestKnownOrTheEfficientCoun
   EXPECT_EQ(default_design(40).symmetry, Symmetry::kTetrahedral);
   // A symmetry asked for without a count: the default's count where the symmetry is the default's,
   // otherwise its own.
-  for (int t = 1; t <= runtime::kMaxDesignStrength; ++t)
+  for (int t = 1; t <= frames::kMaxDesignStrength; ++t)
     EXPECT_EQ(symmetry_count(default_design(t).symmetry, t), default_design(t).points) << "t " << t;
   EXPECT_EQ(symmetry_count(Symmetry::kAntipodal, 12), 94);  // an antipodal 12-design is a 13-design
   EXPECT_EQ(symmetry_count(Symmetry::kAntipodalThreefold, 25), 330);
@@ -237,13 +237,13 @@ TEST(Designs, TheDocumentedCountsAreTheDefaults) {
                                  " | " + std::to_string(symmetric_count(t)) + " | " + std::to_string(best > 0 ? best : efficient_count(t)) + " |";
     EXPECT_EQ(line, expected) << "t " << t;
   }
-  EXPECT_EQ(t, runtime::kMaxDesignStrength);
+  EXPECT_EQ(t, frames::kMaxDesignStrength);
 }
 
 TEST(Designs, RefusesWhatItCannotSearch) {
   DesignSearch s;
   s.points = 10;
-  for (int t : {0, runtime::kMaxDesignStrength + 1}) {
+  for (int t : {0, frames::kMaxDesignStrength + 1}) {
     s.t = t;
     EXPECT_THROW(search_design(s), std::invalid_argument) << t;
   }

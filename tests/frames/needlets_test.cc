@@ -9,8 +9,8 @@
 
 #include "test_support.h"
 
+#include "zhf/frames/limits.h"
 #include "zhf/frames/needlets.h"
-#include "zhf/runtime/limits.h"
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/runtime/tolerances.h"
 #include "zhf/sh/random.h"
@@ -96,7 +96,7 @@ TEST(NeedletWindow, PartitionOfUnityForEveryBand) {
   }
   EXPECT_THROW(needlet_windows(1.0, 10), std::invalid_argument);
   EXPECT_THROW(needlet_windows(2.0, -1), std::invalid_argument);
-  EXPECT_THROW(needlet_windows(2.0, runtime::kMaxNeedletBand + 1), std::invalid_argument);
+  EXPECT_THROW(needlet_windows(2.0, frames::kMaxNeedletBand + 1), std::invalid_argument);
 }
 
 // Random SH coefficients of bands 0..L, about unit norm.
@@ -203,7 +203,7 @@ TEST(NeedletFrame, SampledAnalysisAndPointEvaluationAgreeWithTheSpectralPath) {
   }
   EXPECT_THROW(frame.analyze_samples(gauss_product_cubature(2 * c.band_limit - 1), std::vector<double>(1)), std::invalid_argument);
   EXPECT_THROW(frame.analyze(std::vector<double>(3)), std::invalid_argument);
-  EXPECT_THROW(NeedletFrame(2.0, runtime::kMaxNeedletFrameBand + 1), std::invalid_argument);
+  EXPECT_THROW(NeedletFrame(2.0, frames::kMaxNeedletFrameBand + 1), std::invalid_argument);
 }
 
 // Rotation: the exact path against analysing samples of f(R^T x); the tabulated path converging
@@ -272,7 +272,7 @@ TEST(NeedletLocalisation, UncutKernelsAndCapEnergies) {
     EXPECT_NEAR(localisation(delta, lmax, runtime::kPi).outside_energy, 0.0, kNeedletFrame) << "lmax " << lmax;
     EXPECT_NEAR(delta(1), (lmax + 1) * (lmax + 1) / (4 * runtime::kPi), kNeedletFrame) << "lmax " << lmax;
   }
-  EXPECT_THROW(localisation([](double) { return 1.0; }, runtime::kMaxProfileBand + 1, 0.1), std::invalid_argument);
+  EXPECT_THROW(localisation([](double) { return 1.0; }, frames::kMaxProfileBand + 1, 0.1), std::invalid_argument);
   EXPECT_THROW(needlet_top_band(64, 16), std::invalid_argument);  // 64^17 passes any int
   EXPECT_EQ(needlet_top_band(2, 3), 15);
 }

@@ -31,6 +31,29 @@ TEST(Prt, NeedletShadingWithEveryCoefficientIsTheShSum) {
   }
 }
 
+// The same report on one thread as on three, and a checkpoint that sees every vertex counted.
+TEST(Prt, TheReportDoesNotDependOnTheThreads) {
+  const NeedletFrame frame(2.0, 6);
+  int last_done = -1, calls = 0;
+  const auto watch = [&](int done, int total) {
+    EXPECT_EQ(total, 9);
+    EXPECT_GE(done, last_done);
+    last_done = done, ++calls;
+  };
+  const PrtReport one = prt_experiment(frame, PrtScene::kCorner, PrtTransfer::kGlossy, sun_and_sky, 3, {9, 25}, 64, watch, 1);
+  EXPECT_EQ(last_done, 9);
+  EXPECT_GE(calls, 9);  // a vertex at a time on one thread, then the later stages
+  const PrtReport three = prt_experiment(frame, PrtScene::kCorner, PrtTransfer::kGlossy, sun_and_sky, 3, {9, 25}, 64, {}, 3);
+  EXPECT_EQ(one.exact, three.exact);
+  ASSERT_EQ(one.rows.size(), three.rows.size());
+  for (std::size_t i = 0; i < one.rows.size(); ++i) {
+    EXPECT_EQ(one.rows[i].sh, three.rows[i].sh) << "K = " << one.rows[i].kept;
+    EXPECT_EQ(one.rows[i].needlet, three.rows[i].needlet) << "K = " << one.rows[i].kept;
+  }
+  EXPECT_EQ(one.level_energy_change, three.level_energy_change);
+  EXPECT_EQ(one.kept_energy_least, three.kept_energy_least);
+}
+
 TEST(Prt, VisibilityOfEachScene) {
   const Point up{0, 0, 1}, low_west{-0.99, 0, 0.141}, low_east{0.99, 0, 0.141};
   EXPECT_EQ(prt_visibility(PrtScene::kSphere, {0, 0, 0}, up), 0);

@@ -8,9 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include "zhf/frames/limits.h"
 #include "zhf/frames/windows.h"
 #include "zhf/runtime/conventions.h"
-#include "zhf/runtime/limits.h"
 #include "zhf/runtime/tolerances.h"
 
 namespace zhf::frames {
@@ -127,7 +127,7 @@ TEST(Windows, KernelEnergyOutsideACapMatchesAFineRuleInTheAngle) {
 
 TEST(Windows, BadParametersAreRefused) {
   EXPECT_THROW(window_value(Window{WindowKind::kMexican, 2.0, 0}, 1.0), std::invalid_argument);
-  EXPECT_THROW(window_value(Window{WindowKind::kMexican, 2.0, runtime::kMaxMexicanOrder + 1}, 1.0), std::invalid_argument);
+  EXPECT_THROW(window_value(Window{WindowKind::kMexican, 2.0, frames::kMaxMexicanOrder + 1}, 1.0), std::invalid_argument);
   EXPECT_THROW(window_value(Window{WindowKind::kSpline, 1.0, 1}, 1.0), std::invalid_argument);
   EXPECT_THROW(kernel_energy_outside(Window{WindowKind::kStandard, 2.0, 1}, 2, 0.0), std::invalid_argument);
   EXPECT_THROW(window_values(Window{WindowKind::kSpline, 2.0, 1}, -1), std::invalid_argument);

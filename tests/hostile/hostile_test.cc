@@ -23,6 +23,7 @@
 #include <gtest/gtest.h>
 
 #include "test_support.h"
+#include "zhf/io/limits.h"
 #include "zhf/io/process.h"
 #include "zhf/runtime/limits.h"
 #include "zhf/runtime/table_io.h"
@@ -495,7 +496,7 @@ TEST(Hostile, SignalsToEveryThreadStillEndTheRun) {
   const int exit = exit_code_of(zhf);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
   EXPECT_EQ(exit, 143) << threads.size() << " threads";
-  EXPECT_LT(seconds, runtime::kInterruptGraceSeconds + 2.0);
+  EXPECT_LT(seconds, io::kInterruptGraceSeconds + 2.0);
   EXPECT_TRUE(snapshot(box.dir()) == before) << "the sandbox changed";
   EXPECT_EQ(leftovers(box), "");
   ++tally()["SignalsToEveryThreadStillEndTheRun"].first;
@@ -516,7 +517,7 @@ TEST(Hostile, ASignalDuringTheCommitWritesNothing) {
   const int exit = interrupted_exit(box, {"designs", "--t", "5", "--quiet", "--out", fifo}, SIGTERM, 1500, errors);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   EXPECT_EQ(exit, 143) << read_text(errors);
-  EXPECT_LT(seconds, 1.5 + runtime::kInterruptGraceSeconds + 2.0);
+  EXPECT_LT(seconds, 1.5 + io::kInterruptGraceSeconds + 2.0);
   const int reader = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);  // nothing was written into it
   char byte = 0;
   EXPECT_LE(::read(reader, &byte, 1), 0);

@@ -9,8 +9,8 @@
 #include <gtest/gtest.h>
 
 #include "test_support.h"
+#include "zhf/codegen/limits.h"
 #include "zhf/codegen/needlet_lut.h"
-#include "zhf/runtime/limits.h"
 #include "zhf/runtime/tolerances.h"
 #include "zhf/verify/needlets.h"
 
@@ -69,8 +69,8 @@ TEST(NeedletLut, NamesAreIdentifiersAndProvenanceIsEscaped) {
   EXPECT_NE(codegen::emit_needlet_lut(frame, codegen::Language::kWgsl, lut).text.find("@group(2) @binding(17) var<storage, read> probe_lighting_data"),
             std::string::npos);
   EXPECT_NE(codegen::emit_needlet_lut(frame, codegen::Language::kGlsl, lut).text.find("#define PROBE_LIGHTING_BINDING 17\n"), std::string::npos);
-  for (const auto& [set, binding] : {std::pair{-1, 0}, std::pair{runtime::kMaxStorageSet + 1, 0}, std::pair{0, -1},
-                                     std::pair{0, runtime::kMaxStorageBinding + 1}}) {
+  for (const auto& [set, binding] : {std::pair{-1, 0}, std::pair{codegen::kMaxStorageSet + 1, 0}, std::pair{0, -1},
+                                     std::pair{0, codegen::kMaxStorageBinding + 1}}) {
     lut.storage_set = set;
     lut.storage_binding = binding;
     EXPECT_THROW(codegen::emit_needlet_lut(frame, codegen::Language::kWgsl, lut), std::invalid_argument) << set << " " << binding;

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include "zhf/io/limits.h"
 #include "zhf/runtime/product.h"
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/sh/random.h"

@@ -7,13 +7,13 @@
 #include <vector>
 
 #include "zhf/codegen/kernels.h"
-#include "zhf/runtime/limits.h"
+#include "zhf/io/limits.h"
 #include "zhf/runtime/lobe_table.h"
 
 namespace zhf::verify {
 
 // Every output holds up to kMaxChannels channels: output v of a mode is at [v * kMaxChannels * n].
-using runtime::kMaxChannels;
+using io::kMaxChannels;
 // Per input in the rotations stream: R (9) and the zonal axis (3).
 constexpr int kRotationStride = 12;
 

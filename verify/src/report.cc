@@ -7,6 +7,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "zhf/io/limits.h"
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/runtime/tolerances.h"
 

@@ -6,6 +6,7 @@
 
 #include "../runner.h"
 #include "zhf/io/files.h"
+#include "zhf/io/limits.h"
 #include "zhf/io/process.h"
 
 namespace zhf::verify {

@@ -9,8 +9,10 @@
 
 #include "../vulkan_device.h"
 #include "zhf/io/files.h"
+#include "zhf/io/limits.h"
 #include "zhf/io/process.h"
 #include "zhf/runtime/limits.h"
+#include "zhf/verify/limits.h"
 
 namespace zhf::verify {
 namespace {
@@ -279,7 +281,7 @@ void compile_wgsl(const std::string& dir, const std::string& path, const std::st
   io::write_file_atomically(script, kNagaScript);
   io::ProcessOptions options;
   options.stdout_path = dir + "/compile.log";
-  options.time_limit_seconds = runtime::kShaderCompileSeconds;
+  options.time_limit_seconds = verify::kShaderCompileSeconds;
   const io::ProcessResult result = io::run_process({"node", script, naga_wasm, path, spirv}, options);
   if (!result.ok())
     throw RunFailure(std::string(result.timed_out ? "naga timed out" : "naga refused the WGSL") + ": " +

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
-#include "zhf/runtime/limits.h"
+#include "zhf/candidates/limits.h"
 
 namespace zhf::candidates {
 
@@ -39,7 +39,7 @@ struct CandidateSet {
 };
 
 // Throws std::invalid_argument naming the order when it is outside
-// [runtime::kMinSearchOrder, runtime::kMaxSearchOrder].
+// [candidates::kMinSearchOrder, candidates::kMaxSearchOrder].
 CandidateSet enumerate_candidates(int order);
 
 // Exact phi zeros as reduced fractions num/den of pi in (-1, 1].

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "zhf/codegen/backend.h"
+#include "zhf/codegen/limits.h"
 #include "zhf/frames/needlets.h"
 
 namespace zhf::codegen {
@@ -21,7 +22,7 @@ struct NeedletLutOptions {
   frames::Interpolation interpolation = frames::Interpolation::kLinear;
   std::string prefix = "zhf_needlets";  // names every function and constant; [A-Za-z_][A-Za-z0-9_]{0,47}
   // Where shaders find the data buffer: GLSL and HLSL macros' defaults, WGSL's fixed group and
-  // binding; 0..runtime::kMaxStorageSet and 0..runtime::kMaxStorageBinding.
+  // binding; 0..codegen::kMaxStorageSet and 0..codegen::kMaxStorageBinding.
   int storage_set = 0, storage_binding = 0;
   std::string command;                   // recorded in the banner
 };

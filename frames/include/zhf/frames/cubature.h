@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "zhf/frames/designs.h"
-#include "zhf/runtime/limits.h"
+#include "zhf/frames/limits.h"
 
 namespace zhf::frames {
 
@@ -20,7 +20,7 @@ struct Cubature {
 };
 // Gauss-Legendre in z (degree/2 + 1 nodes) times equally spaced phi (degree + 1): exact to
 // `degree`, for any degree; about degree^2 / 2 nodes, twice a design's count.
-// Throws std::invalid_argument for a degree outside 0..runtime::kMaxCubatureDegree (64 Gauss-Legendre
+// Throws std::invalid_argument for a degree outside 0..frames::kMaxCubatureDegree (64 Gauss-Legendre
 // nodes, the most sh/'s root finder gives).
 Cubature gauss_product_cubature(int degree);
 // The equal-weight rule of a design of strength >= degree, read from `folder`/t_T.json (the

@@ -19,6 +19,7 @@
 #include <functional>
 #include <string>
 #include <vector>
+#include "zhf/frames/limits.h"
 #include "zhf/runtime/limits.h"
 #include "zhf/runtime/tolerances.h"
 
@@ -93,12 +94,12 @@ struct Design {
   int start = -1;            // which start converged (-1: none did; points are the best found)
 };
 
-// Throws std::invalid_argument for t outside 1..runtime::kMaxDesignStrength, a count below 2 or
+// Throws std::invalid_argument for t outside 1..frames::kMaxDesignStrength, a count below 2 or
 // not whole orbits.
 Design search_design(const DesignSearch& search);
 
 // Point sets in files: a JSON array of [x, y, z], or an object with "points" such (a design file,
-// "format": "zhf-design-1"). Nonzero finite vectors, normalised; up to runtime::kMaxDesignPoints of them, files up
+// "format": "zhf-design-1"). Nonzero finite vectors, normalised; up to frames::kMaxDesignPoints of them, files up
 // to runtime::kMaxTableBytes. Throws runtime::InputError naming the file and entry.
 std::vector<Point> read_points(const std::string& path);
 inline constexpr const char* kDesignFormat = "zhf-design-1";

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "zhf/frames/designs.h"
-#include "zhf/runtime/limits.h"
+#include "zhf/frames/limits.h"
 #include "zhf/runtime/tolerances.h"
 
 namespace zhf::frames {
@@ -33,7 +33,7 @@ struct FrameBounds {
   double condition() const;  // sqrt(B / A); infinite when not a frame
 };
 
-// Throws std::invalid_argument for an empty set or a band range outside 0..runtime::kMaxFrameBand.
+// Throws std::invalid_argument for an empty set or a band range outside 0..frames::kMaxFrameBand.
 FrameBounds frame_bounds(const std::vector<Point>& directions, int lmin, int lmax);
 
 // The Gram matrix of the lobes, row-major M x M.

@@ -36,13 +36,13 @@
 
 #include "zhf/frames/cubature.h"
 #include "zhf/frames/designs.h"
-#include "zhf/runtime/limits.h"
+#include "zhf/frames/limits.h"
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/sh_eval.h"
 
 namespace zhf::frames {
 
-// Throws std::invalid_argument unless B is in [runtime::kMinDilation, runtime::kMaxDilation].
+// Throws std::invalid_argument unless B is in [frames::kMinDilation, frames::kMaxDilation].
 void check_dilation(double dilation);
 
 // sum_{l = lo..hi} weight(l) L_l(t), with L_l(t) = (2l+1)/(4 pi) P_l(t) = sum_m y_l^m(x) y_l^m(xi)
@@ -60,7 +60,7 @@ double zonal_series(int lo, int hi, double t, Weight&& weight) {
 // int_{-1}^{1} exp(-1 / (1 - t^2)) dt.
 double bump_integral();
 double needlet_psi(double u);
-// B in [runtime::kMinDilation, runtime::kMaxDilation]: a B closer to 1 asks for ~log(l) / log(B) levels.
+// B in [frames::kMinDilation, frames::kMaxDilation]: a B closer to 1 asks for ~log(l) / log(B) levels.
 // phi(t) = psi(u(t)): u = 1 up to t = 1/B (phi = 1), -1 beyond t = 1 (phi = 0), linear between.
 double phi_argument(double t, double dilation);
 double needlet_phi(double t, double dilation);
@@ -71,7 +71,7 @@ struct WindowValue {
   double value;
 };
 // Every non-zero b(l / B^j) for l = 0..lmax, j = 0, 1, ... Throws std::invalid_argument for B
-// outside [runtime::kMinDilation, runtime::kMaxDilation] or lmax outside 0..runtime::kMaxNeedletBand.
+// outside [frames::kMinDilation, frames::kMaxDilation] or lmax outside 0..frames::kMaxNeedletBand.
 std::vector<WindowValue> needlet_windows(double dilation, int lmax);
 
 // ---- The needlet frame ------------------------------------------------------------------------
@@ -88,8 +88,8 @@ struct NeedletLevel {
 class NeedletFrame {
  public:
   // The scaling function and every level j >= 0 whose window reaches a band in 1..band_limit.
-  // Throws std::invalid_argument for B outside [runtime::kMinDilation, runtime::kMaxDilation] or L outside
-  // 0..runtime::kMaxNeedletFrameBand, or a cubature that is not exact to the degree asked.
+  // Throws std::invalid_argument for B outside [frames::kMinDilation, frames::kMaxDilation] or L outside
+  // 0..frames::kMaxNeedletFrameBand, or a cubature that is not exact to the degree asked.
   NeedletFrame(double dilation, int band_limit, const CubatureSource& cubature = gauss_product_cubature);
 
   double dilation() const { return dilation_; }
@@ -172,7 +172,7 @@ namespace zhf::frames {
 // The full needlet kernel of level j (its window uncut): sum_l b(l / B^j) (2l+1)/(4 pi) P_l(t) over
 // B^(j-1) < l < B^(j+1); and the truncated SH delta of bands 0..lmax, sum_l (2l+1)/(4 pi) P_l(t).
 // Top bands: needlet_top_band(B, j) = ceil(B^(j+1)) - 1; std::invalid_argument for a level below 0
-// or reaching past runtime::kMaxNeedletBand. Cost: O(lmax) per t.
+// or reaching past frames::kMaxNeedletBand. Cost: O(lmax) per t.
 int needlet_top_band(double dilation, int j);
 std::function<double(double)> needlet_kernel(double dilation, int j);  // its windows computed once
 double sh_delta_kernel(int lmax, double t);
@@ -181,7 +181,7 @@ double sh_delta_kernel(int lmax, double t);
 // cap theta < cap: its energy fraction there, int_{theta > cap} K^2 / int K^2 (Gauss-Legendre on
 // each side: exact to degree 63, on panels of 64 nodes beyond, converged to rounding), and its
 // largest |K| there relative to K(1) (sampled at 20001 angles). Degrees up to
-// runtime::kMaxProfileBand (std::invalid_argument beyond).
+// frames::kMaxProfileBand (std::invalid_argument beyond).
 struct Localisation {
   double outside_energy = 0;
   double sidelobe = 0;

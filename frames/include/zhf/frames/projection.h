@@ -14,13 +14,13 @@
 #include <vector>
 
 #include "zhf/frames/cubature.h"
-#include "zhf/runtime/limits.h"
+#include "zhf/frames/limits.h"
 
 namespace zhf::frames {
 
 
 // values: channels per node, node-major (values[k * channels + c]). Returns channels vectors of
-// N^2 coefficients. Throws std::invalid_argument for an order outside 1..runtime::kMaxProjectionOrder or
+// N^2 coefficients. Throws std::invalid_argument for an order outside 1..frames::kMaxProjectionOrder or
 // values of the wrong length.
 std::vector<std::vector<double>> project_samples(const Cubature& nodes, const std::vector<double>& values, int channels, int order);
 

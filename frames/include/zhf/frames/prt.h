@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "zhf/frames/limits.h"
 #include "zhf/frames/needlets.h"
 
 namespace zhf::frames {
@@ -67,10 +68,12 @@ struct PrtReport {
   std::vector<double> kept_energy_least, kept_energy_greatest;  // per K asked
 };
 
-// Throws std::invalid_argument for side outside 1..runtime::kMaxPrtSide or a K outside 1..frame.size(). Calls
-// checkpoint (which may throw) between vertices. Cost: vertices x (8128 + 524288 sky and
-// visibility samples + frame size x L^2).
+// Throws std::invalid_argument for side outside 1..frames::kMaxPrtSide or a K outside 1..frame.size(). Calls
+// checkpoint(vertices done, vertices) (which may throw) between vertices of the exact shading, the
+// most of the cost, and between the later stages. threads: 0 for all cores; the report is the same
+// for every count. Cost: vertices x (8128 + 524288 sky and visibility samples + frame size x L^2).
 PrtReport prt_experiment(const NeedletFrame& frame, PrtScene scene, PrtTransfer transfer, const Radiance& sky, int side,
-                         const std::vector<int>& kept, int table_size, const std::function<void()>& checkpoint = {});
+                         const std::vector<int>& kept, int table_size,
+                         const std::function<void(int, int)>& checkpoint = {}, int threads = 0);
 
 }  // namespace zhf::frames

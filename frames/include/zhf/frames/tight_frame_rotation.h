@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "zhf/frames/cubature.h"
-#include "zhf/runtime/limits.h"
+#include "zhf/frames/limits.h"
 #include "zhf/runtime/sh_eval.h"
 
 namespace zhf::frames {
@@ -28,9 +28,9 @@ class TightFrameRotator {
   // `nodes` must be exact to degree 2 (order - 1); throws std::invalid_argument otherwise.
   TightFrameRotator(int order, const Cubature& nodes)
       : order_(order), n_(order * order), points_(static_cast<int>(nodes.points.size())), legendre_(order) {
-    if (order < 2 || order > runtime::kMaxTightFrameOrder)
+    if (order < 2 || order > frames::kMaxTightFrameOrder)
       throw std::invalid_argument("tight-frame rotation: order " + std::to_string(order) + " outside 2.." +
-                                  std::to_string(runtime::kMaxTightFrameOrder));
+                                  std::to_string(frames::kMaxTightFrameOrder));
     if (nodes.degree < 2 * (order - 1) || nodes.points.empty() || nodes.points.size() != nodes.weights.size())
       throw std::invalid_argument("tight-frame rotation: order " + std::to_string(order) + " needs nodes exact to degree " +
                                   std::to_string(2 * (order - 1)) + " ('" + nodes.name + "' is exact to " + std::to_string(nodes.degree) + ")");
@@ -48,8 +48,8 @@ class TightFrameRotator {
 
   // out = the coefficients of f(R^T w); r row-major. in and out must not overlap.
   void rotate(const T r[9], const T* in, T* out) const {
-    std::array<T, runtime::kMaxTightFrameOrder> value{};
-    std::array<T, runtime::kMaxTightFrameOrder * runtime::kMaxTightFrameOrder> y{};
+    std::array<T, frames::kMaxTightFrameOrder> value{};
+    std::array<T, frames::kMaxTightFrameOrder * frames::kMaxTightFrameOrder> y{};
     out[0] = in[0];
     for (int i = 1; i < n_; ++i) out[i] = T(0);
     for (int k = 0; k < points_; ++k) {

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "zhf/frames/limits.h"
 #include "zhf/frames/needlets.h"
 
 namespace zhf::frames {
@@ -31,8 +32,8 @@ const char* window_kind_name(WindowKind kind);
 
 struct Window {
   WindowKind kind = WindowKind::kStandard;
-  double dilation = 2;  // B in [runtime::kMinDilation, runtime::kMaxDilation]
-  int order = 1;        // mexican: p in 1..runtime::kMaxMexicanOrder
+  double dilation = 2;  // B in [frames::kMinDilation, frames::kMaxDilation]
+  int order = 1;        // mexican: p in 1..frames::kMaxMexicanOrder
 };
 
 // The cubic B-spline step: 0 for u <= -1, 1 for u >= 1, psi(u) + psi(-u) = 1. Exact to rounding.
@@ -55,7 +56,7 @@ BandRange bands_of_level(const Window& w, int j);
 
 // Every non-negligible b(l / B^j) for bands l = 1..lmax, level by level (j from the least that
 // reaches band 1), band by band. Throws std::invalid_argument for lmax outside
-// 0..runtime::kMaxNeedletBand.
+// 0..frames::kMaxNeedletBand.
 std::vector<WindowValue> window_values(const Window& w, int lmax);
 
 // sum over the levels of b^2(l / B^j), band l >= 1: 1 for standard and spline.
@@ -63,7 +64,7 @@ double window_square_sum(const Window& w, int l);
 
 // The fraction of level j's kernel energy outside the cap of angular radius `radius` (radians,
 // in (0, pi]) around its centre: needlets.h's localisation() of K_j. Levels reaching past
-// runtime::kMaxProfileBand are refused (std::invalid_argument). Cost: O(n^2) for the n bands.
+// frames::kMaxProfileBand are refused (std::invalid_argument). Cost: O(n^2) for the n bands.
 double kernel_energy_outside(const Window& w, int j, double radius);
 
 }  // namespace zhf::frames

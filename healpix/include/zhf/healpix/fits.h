@@ -21,11 +21,9 @@
 #include <string>
 #include <vector>
 
-#include "zhf/runtime/limits.h"
+#include "zhf/healpix/limits.h"
 
 namespace zhf::healpix {
-
-using runtime::kMaxHealpixNside;
 
 enum class HealpixOrdering { kRing, kNested };
 

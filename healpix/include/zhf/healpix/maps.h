@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "zhf/healpix/fits.h"
+#include "zhf/healpix/limits.h"
 
 namespace zhf::healpix {
 
@@ -57,9 +58,9 @@ inline int max_analysis_band(std::int64_t nside) { return static_cast<int>(std::
 // The transforms are the HEALPix library's (libsharp: FFTs along rings, Legendre recurrences;
 // OpenMP threads, results independent of their count); the coefficients converted to zhf's
 // convention. Cost per pass ~ N_pix log(Nside) + rings N^2; 1 + 2 iterations passes.
-// Throws std::invalid_argument for an order outside 1..runtime::kMaxProjectionOrder or above
+// Throws std::invalid_argument for an order outside 1..runtime::kMaxShOrder or above
 // max_analysis_band(nside) + 1, iterations
-// outside 0..runtime::kMaxHealpixIterations or a pixel count that is not 12 nside^2.
+// outside 0..healpix::kMaxHealpixIterations or a pixel count that is not 12 nside^2.
 std::vector<double> analyze_map(std::int64_t nside, const std::vector<double>& ring, int order, int iterations,
                                 const Checkpoint& checkpoint = {});
 

@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <string>
 #include <vector>
+#include "zhf/io/limits.h"
 #include "zhf/runtime/limits.h"
 
 namespace zhf::io {
@@ -22,12 +23,9 @@ struct CoefficientFile {
   std::vector<std::vector<double>> signals;  // one per vector and channel, N^2 each
 };
 
-// Limits (runtime/limits.h): orders up to kMaxShOrder, files up to kMaxCoefficientBytes, channels
-// up to kMaxChannels, magnitudes up to kMaxCoefficientMagnitude.
-using runtime::kMaxChannels;
-using runtime::kMaxCoefficientCount;
-using runtime::kMaxCoefficientMagnitude;
-
+// Limits (io/limits.h): orders up to runtime::kMaxShOrder, files up to kMaxCoefficientBytes,
+// channels up to kMaxChannels, magnitudes up to kMaxCoefficientMagnitude.
+//
 // channels: 0 to take it from the JSON nesting (text then means 1). Throws InputError naming
 // the source and the vector (line for text) that is wrong.
 CoefficientFile parse_coefficients(const std::string& text, const std::string& source, int channels = 0);

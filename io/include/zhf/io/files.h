@@ -1,5 +1,5 @@
 // Reading inputs and writing outputs by zhf's rules (docs/usage.md, "Files"):
-// - every input is read with a size bound for its kind (runtime/limits.h) and JSON through the
+// - every input is read with a size bound for its kind (its reader's limits.h) and JSON through the
 //   one strict reader (runtime/json.h);
 // - an output is written whole or not at all: to a temporary file in the target's own directory,
 //   flushed, then renamed over the target; a symlink is resolved and the file it names replaced;

@@ -12,14 +12,9 @@
 #include <cstddef>
 #include <string>
 #include <vector>
-#include "zhf/runtime/limits.h"
+#include "zhf/io/limits.h"
 
 namespace zhf::io {
-
-using runtime::kMaxHdrBytes;
-using runtime::kMaxHdrHeader;
-using runtime::kMaxHdrPixels;
-using runtime::kMaxHdrSide;
 
 struct HdrImage {
   int width = 0, height = 0;

@@ -12,17 +12,12 @@
 #include <string>
 #include <string_view>
 #include <vector>
-#include "zhf/runtime/limits.h"
+#include "zhf/io/limits.h"
 
 namespace zhf::io::ply {
 
 enum class Format { kAscii, kBinaryLittleEndian };
 enum class Type { kInt8, kUint8, kInt16, kUint16, kInt32, kUint32, kFloat32, kFloat64 };
-
-using runtime::kMaxPlyElements;
-using runtime::kMaxPlyHeaderBytes;
-using runtime::kMaxPlyProperties;
-using runtime::kMaxPlyVertices;
 
 struct Property {
   std::string name;

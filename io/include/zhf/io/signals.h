@@ -2,7 +2,7 @@
 // long work polls it and stops, child processes are stopped with their process group, nothing
 // half-written is committed, and the command exits 130 (SIGINT) or 143 (SIGTERM), its previous
 // outputs intact. Work that cannot poll (a driver compiling a shader, one long search start) is
-// ended by a watchdog: runtime::kInterruptGraceSeconds after the signal it removes every
+// ended by a watchdog: io::kInterruptGraceSeconds after the signal it removes every
 // registered temporary (PendingFile's, private directories) and exits with the same code. SIGPIPE
 // is ignored, so a closed pipe is a write error, not a silent death.
 #pragma once
@@ -10,6 +10,8 @@
 #include <atomic>
 #include <stdexcept>
 #include <string>
+
+#include "zhf/io/limits.h"
 
 namespace zhf::io {
 

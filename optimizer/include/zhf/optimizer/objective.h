@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "zhf/candidates/candidates.h"
-#include "zhf/runtime/limits.h"
+#include "zhf/candidates/limits.h"
 #include "zhf/runtime/lobe_table.h"
 #include "zhf/runtime/tolerances.h"
 
@@ -69,7 +69,7 @@ class LobeEvaluator {
   // Candidates' SH values are tabulated up front when they fit in max_tabulated_values doubles,
   // else evaluated on demand (same results, slower).
   LobeEvaluator(const candidates::CandidateSet& set, bool lobe_sharing, double max_condition, Scoring scoring = {},
-                size_t max_tabulated_values = runtime::kMaxTabulatedValues);
+                size_t max_tabulated_values = candidates::kMaxTabulatedValues);
 
   int order() const { return order_; }
   bool lobe_sharing() const { return lobe_sharing_; }

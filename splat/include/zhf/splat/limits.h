@@ -1,0 +1,27 @@
+// What splat/ reads besides .ply (io/limits.h): compressed scenes, .glb, and the scale a transform
+// may apply. Readers and commands check these before any work starts, so a hostile or mistaken
+// input is refused at once, never half-done (the runtime's own limits, which every library shares,
+// are in runtime/limits.h; scripts/check_one_place.py refuses a limit defined anywhere but a
+// library's limits.h).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "zhf/runtime/limits.h"
+
+namespace zhf::splat {
+
+// A compressed scene (.spz) whose header claims more than this many bytes per byte of the file
+// is refused before anything is decompressed: deflate cannot expand beyond about 1032:1, and a
+// real scene's attributes compress far less (zstd could go further only on degenerate data).
+inline constexpr double kMaxCompressionRatio = 1100;
+// A .glb scene's JSON chunk (a splat file's is a few kilobytes; whole glTF scenes are larger);
+// its chunks, and its meshes, primitives, nodes, accessors, views and buffers (each).
+inline constexpr std::size_t kMaxGlbJsonBytes = std::size_t(16) << 20;
+inline constexpr int kMaxGlbChunks = 16;
+inline constexpr int kMaxGlbObjects = 1 << 16;
+// zhf splat --scale: a factor in [kMinSplatScale, kMaxSplatScale].
+inline constexpr double kMinSplatScale = 1e-30, kMaxSplatScale = 1e30;
+
+}  // namespace zhf::splat
