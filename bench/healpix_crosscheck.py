@@ -125,7 +125,7 @@ def main():
     for name, known_error, healpy_error, cl_error, seconds, healpy_seconds in rows:
         shown = "-" if np.isnan(known_error) else f"{known_error:.2e}"
         print(f"| {name} | {shown} | {healpy_error:.2e} | {cl_error:.2e} | {seconds:.3f} | {healpy_seconds:.3f} |")
-    print(f"\nzhf needlets analyze -> synthesize --healpix-out, read by healpy.read_map: max |map - healpy alm2map| "
+    print(f"\nzhf needlets analyze -> synthesize --out, read by healpy.read_map: max |map - healpy alm2map| "
           f"RING {written[0]:.2e}, NESTED {written[1]:.2e}")
 
 
