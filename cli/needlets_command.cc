@@ -38,7 +38,8 @@ void add_needlets_command(CLI::App& app, Action& action, const std::string& comm
   wc->add_option("--B", w->dilation, kDilationHelp);
   wc->add_option("--window", w->window, "standard (the C-infinity bump), spline (cubic B-spline step) or mexican (x^(2p) exp(-x^2)); default standard");
   wc->add_option("--mexican-order", w->mexican_order, "p of the Mexican window, 1.." + std::to_string(frames::kMaxMexicanOrder) + " (default 1)");
-  wc->add_option("--level", w->level, "Also print level J's kernel energy outside caps of radius k / B^J, k = 1, 2, 4, 8 (J in 0..12)");
+  wc->add_option("--level", w->level, "Also print level J's kernel energy outside caps of radius k / B^J, k = 1, 2, 4, 8 (J in 0.." +
+                     std::to_string(frames::kMaxLocalisationLevel) + ")");
   add_band_limit(wc, *w, frames::kMaxNeedletBand);
   keep_old_spelling(wc, wc->add_option("--out", w->out, "Write the windows here: {\"B\", \"lmax\", \"b\": [[j, l, value], ...]}"), "--json", w->out);
   wc->callback([w, &action] { action = [w] { return run_needlet_window(*w); }; });
@@ -88,15 +89,17 @@ void add_needlets_command(CLI::App& app, Action& action, const std::string& comm
   auto pr = std::make_shared<NeedletOptions>();
   CLI::App* pc = nc->add_subcommand("profile", "One level's needlet against the SH delta of its top band: energy and side lobes outside caps");
   pc->add_option("--B", pr->dilation, kDilationHelp);
-  keep_old_spelling(pc, pc->add_option("--level", pr->level, "Level, 0..16 (default 1)"), "--j", pr->level);
+  keep_old_spelling(pc, pc->add_option("--level", pr->level, "Level, 0.." + std::to_string(frames::kMaxProfileLevel) + " (default 1)"), "--j", pr->level);
   keep_old_spelling(pc, pc->add_option("--out", pr->out, "Write both profiles against theta here as CSV (degrees, each divided by its peak)"), "--csv", pr->out);
   pc->callback([pr, &action] { action = [pr] { return run_needlet_profile(*pr); }; });
   auto mk = std::make_shared<NeedletOptions>();
   CLI::App* mc = nc->add_subcommand("mask", "A signal cut around the equator: which SH and needlet coefficients the cut disturbs");
   mc->add_option("--B", mk->dilation, kDilationHelp);
   add_band_limit(mc, *mk, frames::kMaxNeedletFrameBand);
-  mc->add_option("--cut", mk->cut, "Half-width of the cut band in degrees of latitude, 0.1..80 (default 10)");
-  mc->add_option("--margin", mk->margin, "Beyond the cut by this many half-wavelengths of the top band (pi / lmax of a level, pi / L for SH), 0..64 (default 4)");
+  mc->add_option("--cut", mk->cut, "Half-width of the cut band in degrees of latitude, " + runtime::format_number(frames::kMinMaskCut) + ".." +
+                                      runtime::format_number(frames::kMaxMaskCut) + " (default 10)");
+  mc->add_option("--margin", mk->margin, "Beyond the cut by this many half-wavelengths of the top band (pi / lmax of a level, pi / L for SH), 0.." +
+                                            runtime::format_number(frames::kMaxMaskMargin) + " (default 4)");
   mc->add_flag("--gauss", mk->gauss, "Gauss product cubatures instead of the shipped designs");
   mc->callback([mk, &action] { action = [mk] { return run_needlet_mask(*mk); }; });
   auto e = std::make_shared<NeedletOptions>();

@@ -50,7 +50,7 @@ int run_needlet_window(const NeedletOptions& o) {
   }
   if (!o.level.empty()) {
     // Localisation: level j's kernel energy outside caps of radius k / B^j, k = 1, 2, 4, 8.
-    const int j = static_cast<int>(integer_option("--level", o.level, 0, 12));
+    const int j = static_cast<int>(integer_option("--level", o.level, 0, frames::kMaxLocalisationLevel));
     nlohmann::ordered_json caps = nlohmann::ordered_json::array();
     std::printf("level %d kernel, energy outside the cap of radius k / B^%d:", j, j);
     const std::vector<double> ks = {1, 2, 4, 8};
@@ -123,7 +123,7 @@ int run_needlet_tables(const NeedletOptions& o) {
 int run_needlet_profile(const NeedletOptions& o) {
   const double dilation = dilation_option(o.dilation);
   const std::string& level = o.level.empty() ? std::string("1") : o.level;
-  const int j = static_cast<int>(integer_option("--level", level, 0, 16));
+  const int j = static_cast<int>(integer_option("--level", level, 0, frames::kMaxProfileLevel));
   if (std::pow(dilation, j + 1) > frames::kMaxProfileBand + 1)
     throw UsageError("--level: level " + level + " of B = " + o.dilation + " reaches past band " + std::to_string(frames::kMaxProfileBand));
   std::unique_ptr<io::PendingFile> out;
@@ -151,8 +151,8 @@ int run_needlet_profile(const NeedletOptions& o) {
 int run_needlet_mask(const NeedletOptions& o) {
   const double dilation = dilation_option(o.dilation);
   const int lmax = top_band(o, 1, frames::kMaxNeedletFrameBand);
-  const double cut = number_option("--cut", o.cut, 0.1, 80) * runtime::kPi / 180;
-  const double margin = number_option("--margin", o.margin, 0, 64);
+  const double cut = number_option("--cut", o.cut, frames::kMinMaskCut, frames::kMaxMaskCut) * runtime::kPi / 180;
+  const double margin = number_option("--margin", o.margin, 0, frames::kMaxMaskMargin);
   const frames::NeedletFrame frame = needlet_frame(dilation, lmax, o.gauss);
   const frames::MaskExperiment m = frames::mask_experiment(frame, cut, margin);
   double worst_band = 0, least_band = 1e300;

@@ -2,6 +2,7 @@
 #include <string>
 #include <vector>
 
+#include "commands.h"
 #include "needlets.h"
 #include "options.h"
 #include "zhf/codegen/limits.h"

@@ -16,8 +16,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   namespace ply = zhf::io::ply;
   try {
     const ply::Header h = ply::read_header(in, "fuzz.ply");
-    if (bytes.compare(0, h.text.size(), h.text) != 0 || h.text.size() > ply::kMaxPlyHeaderBytes + 1) std::abort();
-    if (h.properties.empty() || h.properties.size() > ply::kMaxPlyProperties || h.vertices > ply::kMaxPlyVertices) std::abort();
+    if (bytes.compare(0, h.text.size(), h.text) != 0 || h.text.size() > zhf::io::kMaxPlyHeaderBytes + 1) std::abort();
+    if (h.properties.empty() || h.properties.size() > zhf::io::kMaxPlyProperties || h.vertices > zhf::io::kMaxPlyVertices) std::abort();
     std::size_t total = 0;
     for (const ply::Property& p : h.properties) {
       if (p.offset != total) std::abort();

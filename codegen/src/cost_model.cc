@@ -3,6 +3,7 @@
 // multiplies the lobe search ranks tables by.
 #include <algorithm>
 
+#include "band_lobes.h"
 #include "kernel_cost.h"
 #include "zhf/codegen/kernels.h"
 #include "zhf/codegen/limits.h"

@@ -30,6 +30,13 @@ inline constexpr int kMaxNeedletBand = 4096;
 inline constexpr int kMaxNeedletFrameBand = 63;
 inline constexpr int kMinNeedletTableSize = 3, kMaxNeedletTableSize = 1 << 20;
 inline constexpr int kMaxProfileBand = 1023;
+// The levels zhf needlets profile and a window's localisation look at, and the equatorial cut of
+// zhf needlets mask: its half-width in degrees, and the margin beyond it in half-wavelengths of
+// the top band.
+inline constexpr int kMaxProfileLevel = 16;
+inline constexpr int kMaxLocalisationLevel = 12;
+inline constexpr double kMinMaskCut = 0.1, kMaxMaskCut = 80;
+inline constexpr double kMaxMaskMargin = 64;
 // Mexican needlets x^(2p) exp(-x^2): orders p.
 inline constexpr int kMaxMexicanOrder = 8;
 // zhf needlets prt: vertices per side of the ground grid (64^2 = 4096 vertices: about 80 s here).
