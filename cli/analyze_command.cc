@@ -11,7 +11,7 @@
 #include "zhf/io/files.h"
 #include "zhf/io/limits.h"
 #include "zhf/io/signals.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/analysis.h"
 #include "zhf/sh/limits.h"
 
@@ -20,7 +20,7 @@ namespace {
 
 struct AnalyzeOptions {
   std::string coeffs;
-  std::string tolerance = runtime::format_number(runtime::tolerance::kDefaultZonalFit);
+  std::string tolerance = runtime::format_number(zhf::tolerance::kDefaultZonalFit);
   int channels = 0;
   std::string json;
   std::string scene_out;
@@ -57,7 +57,7 @@ int run_analyze(const AnalyzeOptions& options) {
       if (!have_axis) {
         axis = fit.axis;
         have_axis = true;
-      } else if (axis.cross(fit.axis).norm() > runtime::tolerance::kSameAxis) {
+      } else if (axis.cross(fit.axis).norm() > zhf::tolerance::kSameAxis) {
         common = false;
       }
     }
@@ -142,7 +142,7 @@ void add_analyze_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<AnalyzeOptions>();
   CLI::App* c = app.add_subcommand("analyze", "Per-band energy, the order the data needs, known-zero bands, zonal axis");
   c->add_option("--coeffs", o->coeffs, "SH coefficient vectors: JSON array or text, one vector per line")->required();
-  c->add_option("--tolerance", o->tolerance, "Relative L2 error allowed, " + runtime::format_number(sh::kMinZonalTolerance) + "..1 (default " + runtime::format_number(runtime::tolerance::kDefaultZonalFit) + "); also the zonal residual bound");
+  c->add_option("--tolerance", o->tolerance, "Relative L2 error allowed, " + runtime::format_number(sh::kMinZonalTolerance) + "..1 (default " + runtime::format_number(zhf::tolerance::kDefaultZonalFit) + "); also the zonal residual bound");
   c->add_option("--channels", o->channels, "Channels per vector (text: numbers per line split evenly; JSON: checked)")
       ->check(CLI::Range(1, io::kMaxChannels));
   keep_old_spelling(c, c->add_option("--out", o->json, "Write the analysis as JSON here"), "--json", o->json);

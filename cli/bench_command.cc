@@ -74,8 +74,7 @@ void add_bench_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* c = app.add_subcommand("bench", "Time and error of every rotation method, per order and scenario");
   c->add_flag("--quick", o->quick, "Small counts and few repeats (CI: checks every method runs and is accurate)");
-  c->add_flag("--quiet", o->quiet, "No progress line");
-  c->add_flag("--verbose", o->verbose, "Progress lines on stderr (one a second at most) also when it is not a terminal");
+  add_progress_flags(c, o->quiet, o->verbose);
   c->add_option("--orders", o->orders, "Orders, e.g. 3,5,8 or 2..8, each 2.." + std::to_string(bench::kMaxBenchOrder) +
                                           " (default 2..8 plus 10, 12, 16)");
   keep_old_spelling(c, c->add_option("--out", o->json, "Write every measurement as JSON here"), "--json", o->json);

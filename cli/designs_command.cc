@@ -12,7 +12,6 @@
 #include "zhf/frames/limits.h"
 #include "zhf/io/files.h"
 #include "zhf/io/signals.h"
-#include "zhf/runtime/limits.h"
 #include "zhf/runtime/parallel.h"
 
 namespace zhf::cli {
@@ -55,7 +54,7 @@ int run_designs(const DesignsOptions& o) {
                      " (got " + std::to_string(s.points) + ")");
   s.starts = static_cast<int>(integer_option("--starts", o.starts, 1, frames::kMaxDesignStarts));
   s.seed = seed_option("--seed", o.seed);
-  s.threads = runtime::worker_count(static_cast<int>(integer_option("--threads", o.threads, 0, runtime::kMaxThreads)));
+  s.threads = runtime::worker_count(threads_option(o.threads));
   s.interrupted = [] { return io::interrupt_requested().load(); };
   Progress progress("designs", o.quiet);
   s.progress = [&](int started) { progress.update(started, s.starts, "starts tried for a " + std::to_string(s.points) + "-point " + std::to_string(s.t) + "-design"); };
@@ -109,7 +108,7 @@ void add_designs_command(CLI::App& app, Action& action) {
   keep_old_spelling(c, count, "--points", d->count);
   c->add_option("--starts", d->starts, "Starts to try, 1.." + std::to_string(frames::kMaxDesignStarts) + " (default 64); the first that converges wins");
   c->add_option("--seed", d->seed, "Random seed, 0..2^64-1 (default 1)");
-  c->add_option("--threads", d->threads, "Threads, 0.." + std::to_string(runtime::kMaxThreads) + " (0: all cores); never changes the result");
+  add_threads_option(c, d->threads);
   c->add_flag("--quiet", d->quiet, "No progress line");
   keep_old_spelling(c, c->add_option("--out", d->out, "Write the design here (zhf-design-1)"), "--json", d->out);
   c->callback([d, &action] { action = [d] { return run_designs(*d); }; });

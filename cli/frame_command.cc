@@ -18,12 +18,12 @@ namespace zhf::cli {
 namespace {
 
 struct FrameOptions {
-  std::string points, table, bands;
+  std::string directions, table, bands;
   std::string out;
 };
 
 int run_frame(const FrameOptions& o) {
-  if (o.points.empty() == o.table.empty()) throw UsageError("--points or --table: give exactly one");
+  if (o.directions.empty() == o.table.empty()) throw UsageError("--directions or --table: give exactly one");
   std::unique_ptr<io::PendingFile> out;
   if (!o.out.empty()) out = std::make_unique<io::PendingFile>(o.out);
   // Band ranges: --bands L0..L1 over every direction; a table without --bands: each band on its lobes.
@@ -39,9 +39,9 @@ int run_frame(const FrameOptions& o) {
     lmax = bands.back();
     if (lmax - lmin + 1 != static_cast<int>(bands.size())) throw UsageError("--bands: give a range L0..L1");
   }
-  if (!o.points.empty()) {
-    if (o.bands.empty()) throw UsageError("--bands: required with --points");
-    jobs.push_back({frames::read_points(o.points), lmin, lmax});
+  if (!o.directions.empty()) {
+    if (o.bands.empty()) throw UsageError("--bands: required with --directions");
+    jobs.push_back({frames::read_points(o.directions), lmin, lmax});
   } else {
     const runtime::LobeTable table = runtime::read_lobe_table(o.table);
     std::vector<frames::Point> all;
@@ -90,7 +90,8 @@ int run_frame(const FrameOptions& o) {
 void add_frame_command(CLI::App& app, Action& action) {
   auto f = std::make_shared<FrameOptions>();
   CLI::App* fc = app.add_subcommand("frame", "Frame bounds of the zonal lobes at a set of directions, for a band range");
-  fc->add_option("--points", f->points, "Directions: a JSON array of [x, y, z] or a design file");
+  keep_old_spelling(fc, fc->add_option("--directions", f->directions, "Directions: a JSON array of [x, y, z] or a design file"), "--points",
+                    f->directions);
   fc->add_option("--table", f->table, "A lobe table's lobes (without --bands: each band on its own lobes)");
   fc->add_option("--bands", f->bands, "Bands L0..L1 (0.." + std::to_string(frames::kMaxFrameBand) + ")");
   keep_old_spelling(fc, fc->add_option("--out", f->out, "Write the bounds here (zhf-frame-1)"), "--json", f->out);

@@ -10,7 +10,6 @@
 #include "zhf/codegen/limits.h"
 #include "zhf/frames/limits.h"
 #include "zhf/healpix/limits.h"
-#include "zhf/runtime/limits.h"
 #include "zhf/runtime/sh_eval.h"
 
 namespace zhf::cli {
@@ -73,9 +72,8 @@ void add_needlets_command(CLI::App& app, Action& action, const std::string& comm
   rc->add_flag("--gauss", pr_t->gauss, "Gauss product cubatures instead of the shipped designs");
   rc->add_option("--out", pr_t->out, "Write the report here (zhf-needlet-prt-1)");
   rc->add_option("--shading-csv", pr_t->shading_csv, "Write each vertex's shading here (x, y, exact, then SH and needlets per K): the images");
-  rc->add_option("--threads", pr_t->threads, "Threads, 0.." + std::to_string(runtime::kMaxThreads) + " (0: all cores); never changes the result");
-  rc->add_flag("--quiet", pr_t->quiet, "No progress line");
-  rc->add_flag("--verbose", pr_t->verbose, "Progress lines on stderr (one a second at most) also when it is not a terminal");
+  add_threads_option(rc, pr_t->threads);
+  add_progress_flags(rc, pr_t->quiet, pr_t->verbose);
   rc->add_option("--csv", pr_t->csv, "Write the error table here (K, SH rms, SH worst, needlet rms, needlet worst, both skies' least values)");
   rc->callback([pr_t, &action] { action = [pr_t] { return run_needlet_prt(*pr_t); }; });
   auto t = std::make_shared<NeedletOptions>();
@@ -126,6 +124,7 @@ void add_needlets_command(CLI::App& app, Action& action, const std::string& comm
   vc->add_option("--compiler", v->compiler, "C++ compiler and leading arguments (default $CXX, else c++)");
   vc->add_flag("--gauss", v->gauss, "Gauss product cubatures instead of the shipped designs");
   keep_old_spelling(vc, vc->add_option("--out", v->out, "Write the results here (zhf-needlet-verify-1)"), "--json", v->out);
+  add_progress_flags(vc, v->quiet, v->verbose);
   vc->callback([v, &action] { action = [v] { return run_needlet_verify(*v); }; });
 }
 

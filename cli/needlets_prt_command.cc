@@ -17,7 +17,6 @@
 #include "zhf/io/files.h"
 #include "zhf/io/hdr.h"
 #include "zhf/io/signals.h"
-#include "zhf/runtime/limits.h"
 
 namespace zhf::cli {
 
@@ -32,8 +31,9 @@ int run_needlet_prt(const NeedletOptions& o) {
   if (!frames::parse_prt_transfer(o.transfer, transfer)) throw UsageError("--transfer: '" + io::excerpt(o.transfer) + "' is not diffuse or glossy");
   const int side = static_cast<int>(integer_option("--side", o.side, 1, frames::kMaxPrtSide));
   const int table_size = static_cast<int>(integer_option("--size", o.size, frames::kMinNeedletTableSize, frames::kMaxNeedletTableSize));
-  const std::vector<int> kept = orders_option("--kept", o.kept, 1, 1 << 20);
-  if (kept.size() > 16) throw UsageError("--kept: at most 16 counts (got " + std::to_string(kept.size()) + ")");
+  const std::vector<int> kept = orders_option("--kept", o.kept, 1, (frames::kMaxNeedletFrameBand + 1) * (frames::kMaxNeedletFrameBand + 1));
+  if (kept.size() > std::size_t(frames::kMaxPrtKeptCounts))
+    throw UsageError("--kept: at most " + std::to_string(frames::kMaxPrtKeptCounts) + " counts (got " + std::to_string(kept.size()) + ")");
   std::unique_ptr<io::PendingFile> out, csv_out;
   if (!o.out.empty()) out = std::make_unique<io::PendingFile>(o.out);
   if (!o.csv.empty()) csv_out = std::make_unique<io::PendingFile>(o.csv);
@@ -48,7 +48,7 @@ int run_needlet_prt(const NeedletOptions& o) {
   const frames::NeedletFrame frame = needlet_frame(dilation, lmax, o.gauss);
   for (int k : kept)
     if (k > frame.size()) throw UsageError("--kept: " + std::to_string(k) + " is more than the frame's " + std::to_string(frame.size()) + " coefficients");
-  const int threads = static_cast<int>(integer_option("--threads", o.threads, 0, runtime::kMaxThreads));
+  const int threads = threads_option(o.threads);
   Progress progress("needlets prt", o.quiet, o.verbose);
   const frames::PrtReport r = frames::prt_experiment(
       frame, scene, transfer, sky, side, kept, table_size,

@@ -13,7 +13,7 @@
 #include "zhf/io/lobe_table_writer.h"
 #include "zhf/io/signals.h"
 #include "zhf/pipeline/search.h"
-#include "zhf/runtime/limits.h"
+#include "zhf/runtime/errors.h"
 #include "zhf/runtime/tolerances.h"
 
 namespace zhf::cli {
@@ -66,14 +66,14 @@ int run_optimize(const OptimizeOptions& o, const std::string& command) {
                 : o.objective == "operations"  ? pipeline::Objective::kOperations
                                                : pipeline::Objective::kSparsity;
   r.seed = seed_option("--seed", o.seed);
-  r.time_limit = number_option("--time-limit", o.time_limit, 0, 1e7);
-  r.threads = static_cast<int>(integer_option("--threads", o.threads, 0, runtime::kMaxThreads));
-  r.population = static_cast<int>(integer_option("--population", o.population, 4, 1000000));
-  r.generations = static_cast<int>(integer_option("--generations", o.generations, 0, 100000000));
-  r.stall = static_cast<int>(integer_option("--stall", o.stall, 1, 1000000));
-  r.local_search_stall = static_cast<int>(integer_option("--local-search-stall", o.local_search_stall, 0, 1000000));
+  r.time_limit = number_option("--time-limit", o.time_limit, 0, candidates::kMaxSearchTimeLimit);
+  r.threads = threads_option(o.threads);
+  r.population = static_cast<int>(integer_option("--population", o.population, candidates::kMinPopulation, candidates::kMaxPopulation));
+  r.generations = static_cast<int>(integer_option("--generations", o.generations, 0, candidates::kMaxGenerations));
+  r.stall = static_cast<int>(integer_option("--stall", o.stall, 1, candidates::kMaxStall));
+  r.local_search_stall = static_cast<int>(integer_option("--local-search-stall", o.local_search_stall, 0, candidates::kMaxStall));
   r.max_condition = number_option("--max-condition", o.max_condition, 1.0, runtime::tolerance::kSingularCondition);
-  r.starts = static_cast<int>(integer_option("--starts", o.starts, 1, 1000000));
+  r.starts = static_cast<int>(integer_option("--starts", o.starts, 1, candidates::kMaxSearchStarts));
   r.lobe_sharing = !o.no_sharing;
   r.exhaustive = o.exhaustive;
   r.seed_from_continuous = o.seed_from_continuous;
@@ -117,16 +117,16 @@ int run_optimize(const OptimizeOptions& o, const std::string& command) {
 void add_optimize_command(CLI::App& app, Action& action, const std::string& command_line) {
   auto o = std::make_shared<OptimizeOptions>();
   CLI::App* c = app.add_subcommand("optimize", "Search for sparse lobe directions of an order");
-  c->add_option("--order", o->order, "Order N (bands 0..N-1), 3..32")->required();
+  c->add_option("--order", o->order, "Order N (bands 0..N-1), " + std::to_string(candidates::kMinSearchOrder) + ".." + std::to_string(candidates::kMaxSearchOrder))->required();
   c->add_option("--seed", o->seed, "Random seed, 0..2^64-1 (default 1)");
   c->add_option("--time-limit", o->time_limit, "Stop after this many seconds (0: none; results then depend on speed)");
-  c->add_option("--threads", o->threads, "Evaluation threads, 0..256 (0: all cores); never changes the result");
-  c->add_option("--population", o->population, "GA population, 4..1000000 (default 500)");
+  add_threads_option(c, o->threads);
+  c->add_option("--population", o->population, "GA population, " + std::to_string(candidates::kMinPopulation) + ".." + std::to_string(candidates::kMaxPopulation) + " (default 500)");
   c->add_option("--generations", o->generations, "GA generation limit (0: none)");
   c->add_option("--stall", o->stall, "GA stops after this many generations without improvement (default 50)");
   c->add_option("--local-search-stall", o->local_search_stall,
                 "Local search stops after this many kicks without improvement (default 100; 0: single descent)");
-  c->add_option("--max-condition", o->max_condition, "Reject lobe sets whose Y_l condition exceeds this, 1..1e6 (default 50)");
+  c->add_option("--max-condition", o->max_condition, "Reject lobe sets whose Y_l condition exceeds this, 1.." + runtime::format_number(runtime::tolerance::kSingularCondition) + " (default 50)");
   c->add_flag("--no-sharing", o->no_sharing, "Each band gets its own 2l+1 lobes (N^2-4 in all)");
   c->add_flag("--exhaustive", o->exhaustive,
               "Enumerate every lobe set (up to permutations within a band); with --time-limit, report the bound");
@@ -139,8 +139,7 @@ void add_optimize_command(CLI::App& app, Action& action, const std::string& comm
       ->check(CLI::IsMember({"sparsity", "operations", "amplification"}));
   CLI::Option* starts = c->add_option("--starts", o->starts,
                                       "amplification: random start points (default 8); more finds lower error, in proportion more time");
-  c->add_flag("--quiet", o->quiet, "No progress line");
-  c->add_flag("--verbose", o->verbose, "Progress lines on stderr (one a second at most) also when it is not a terminal");
+  add_progress_flags(c, o->quiet, o->verbose);
   c->add_option("--out", o->out, "Write the lobe table (zhf-lobes-1 JSON) here");
   c->callback([o, starts, &action, command_line] {
     o->starts_given = starts->count() > 0;

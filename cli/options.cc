@@ -8,6 +8,7 @@
 #include "commands.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/numbers.h"
+#include "zhf/runtime/limits.h"
 
 namespace zhf::cli {
 namespace {
@@ -67,6 +68,20 @@ std::vector<int> orders_option(const std::string& option, const std::string& tex
 std::vector<OldSpelling>& old_spellings() {
   static std::vector<OldSpelling> all;
   return all;
+}
+
+CLI::Option* add_threads_option(CLI::App* command, std::string& threads) {
+  return command->add_option("--threads", threads,
+                             "Threads, 0.." + std::to_string(runtime::kMaxThreads) + " (0: all cores, the default); never changes the result");
+}
+
+int threads_option(const std::string& threads) {
+  return static_cast<int>(integer_option("--threads", threads, 0, runtime::kMaxThreads));
+}
+
+void add_progress_flags(CLI::App* command, bool& quiet, bool& verbose) {
+  command->add_flag("--quiet", quiet, "No progress line");
+  command->add_flag("--verbose", verbose, "Progress lines on stderr (one a second at most) also when it is not a terminal");
 }
 
 void check_old_spellings() {

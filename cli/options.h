@@ -37,6 +37,12 @@ CLI::Option* keep_old_spelling(CLI::App* command, CLI::Option* current, const st
 // Throws UsageError when an option was given in both spellings (after parsing).
 void check_old_spellings();
 
+// --threads T (0..runtime::kMaxThreads, 0: all cores; a result never depends on it) and its
+// reading; --quiet and --verbose, the progress line's flags (progress.h).
+CLI::Option* add_threads_option(CLI::App* command, std::string& threads);
+int threads_option(const std::string& threads);
+void add_progress_flags(CLI::App* command, bool& quiet, bool& verbose);
+
 // "1 vector", "2 vectors".
 inline std::string counted(std::size_t count, const std::string& noun) {
   return std::to_string(count) + " " + noun + (count == 1 ? "" : "s");

@@ -11,7 +11,6 @@
 #include "zhf/io/errors.h"
 #include "zhf/io/rotation_text.h"
 #include "zhf/runtime/conventions.h"
-#include "zhf/runtime/limits.h"
 #include "zhf/splat/limits.h"
 #include "zhf/splat/scene.h"
 
@@ -52,7 +51,7 @@ int run_splat(const SplatOptions& o) {
   t.scale = number_option("--scale", o.scale, splat::kMinSplatScale, splat::kMaxSplatScale);
   t.translation = translation(o.translate);
   t.convention = convention;
-  const int threads = static_cast<int>(integer_option("--threads", o.threads, 0, runtime::kMaxThreads));
+  const int threads = threads_option(o.threads);
   splat::Formats formats{format_option("--in-format", o.in_format), format_option("--format", o.format)};
   formats.spz_version = static_cast<int>(integer_option("--spz-version", o.spz_version, 3, 4));
   const bool bar = !o.quiet && isatty(STDERR_FILENO);
@@ -102,7 +101,7 @@ void add_splat_command(CLI::App& app, Action& action) {
   c->add_option("--scale", o->scale, "Uniform scale s > 0 (positions times s, log-scales plus log s); non-uniform is not a similarity");
   c->add_option("--convention", o->convention,
                 "The SH coefficients' convention (default 3dgs): " + runtime::convention_names() + " (docs/conventions.md)");
-  c->add_option("--threads", o->threads, "Threads, 0..256 (0: all cores); never changes the result");
+  add_threads_option(c, o->threads);
   c->add_flag("--quiet", o->quiet, "No progress bar and no summary line");
   c->callback([o, &action] { action = [o] { return run_splat(*o); }; });
 }

@@ -8,7 +8,7 @@
 #include "zhf/io/errors.h"
 #include "zhf/io/rotation_text.h"
 #include "zhf/runtime/rotation.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 
 namespace zhf::cli {
 namespace {
@@ -52,10 +52,10 @@ std::array<double, 9> transform_matrix(const TransformOptions& o, bool quiet) {
   } catch (const io::InputError& e) {
     throw UsageError(e.what());  // an option's text: a bad command line
   }
-  if (!quiet && std::abs(parsed.quaternion_length - 1) > runtime::tolerance::kRotationDefect)
+  if (!quiet && std::abs(parsed.quaternion_length - 1) > zhf::tolerance::kRotationDefect)
     std::fprintf(stderr, "zhf: %s: normalised (its length was %.6g)\n", given.option.c_str(), parsed.quaternion_length);
   const std::array<double, 9>& r = parsed.matrix;
-  const runtime::RotationCheck check = runtime::validate_rotation(r.data(), runtime::tolerance::kRotationDefect,
+  const runtime::RotationCheck check = runtime::validate_rotation(r.data(), zhf::tolerance::kRotationDefect,
                                                                   runtime::Handedness::kEither);
   if (!check.ok && (!o.repair || !check.finite))
     throw UsageError(given.option + ": " + check.message + (check.finite ? "; --repair uses the nearest orthogonal matrix" : ""));
@@ -64,7 +64,7 @@ std::array<double, 9> transform_matrix(const TransformOptions& o, bool quiet) {
   const double defect = std::max(check.orthonormality, std::abs(std::abs(check.determinant) - 1));
   if (!check.ok) {
     std::fprintf(stderr, "zhf: %s: repaired to the nearest orthogonal matrix (%s)\n", given.option.c_str(), check.message.c_str());
-  } else if (!quiet && defect > runtime::tolerance::kDoubleRoundingDefect) {
+  } else if (!quiet && defect > zhf::tolerance::kDoubleRoundingDefect) {
     std::fprintf(stderr, "zhf: %s: off orthonormal by %s; used the nearest orthogonal matrix\n", given.option.c_str(),
                  runtime::format_number(defect, 2).c_str());
   }
@@ -84,7 +84,7 @@ void add_transform_options(CLI::App* c, TransformOptions& o) {
   c->add_flag("--intrinsic", o.intrinsic, "--euler turns about the axes as turned: R = R1(a) R2(b) R3(c)");
   c->add_flag("--extrinsic", o.extrinsic, "--euler turns about the fixed axes: R = R3(c) R2(b) R1(a)");
   c->add_flag("--repair", o.repair,
-              "Accept a matrix off orthonormal by more than " + runtime::format_number(runtime::tolerance::kRotationDefect) +
+              "Accept a matrix off orthonormal by more than " + runtime::format_number(zhf::tolerance::kRotationDefect) +
                   " too; every matrix is replaced by the nearest orthogonal one");
 }
 

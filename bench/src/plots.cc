@@ -9,12 +9,13 @@
 #include <sstream>
 #include <vector>
 
+#include "zhf/bench/limits.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/io/process.h"
 #include "zhf/io/signals.h"
 #include "zhf/runtime/errors.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 
 namespace zhf::bench {
 namespace {
@@ -50,7 +51,7 @@ std::string gnuplot_string(const std::string& text) {
 void check_derived(const fs::path& path, const std::string& mark) {
   std::error_code ec;
   if (!fs::exists(path, ec)) return;
-  if (!fs::is_regular_file(path, ec) || io::read_text_file(path.string(), std::size_t(1) << 26).find(mark) == std::string::npos)
+  if (!fs::is_regular_file(path, ec) || io::read_text_file(path.string(), kMaxPlotBytes).find(mark) == std::string::npos)
     throw io::OutputError(path.string() + ": exists and was not written by zhf bench; refusing to replace it");
 }
 
@@ -104,7 +105,7 @@ void write_block(std::ostringstream& csv, const std::string& name, const std::ve
   for (std::size_t k = 0; k < rows.size(); ++k) {
     // An exact zero would vanish from a log axis: drawn at the floor, below every measured error.
     std::snprintf(line, sizeof line, "%d,%.6g,%.6g,", rows[k]->order, rows[k]->ns_median,
-                  std::max(rows[k]->max_error, runtime::tolerance::kPlotErrorFloor));
+                  std::max(rows[k]->max_error, zhf::tolerance::kPlotErrorFloor));
     csv << line << field(labels[k]) << "\n";
   }
   csv << "\n\n";

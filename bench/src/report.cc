@@ -9,6 +9,7 @@
 #include "zhf/bench/suite.h"
 #include "zhf/io/files.h"
 #include "zhf/runtime/json.h"
+#include "zhf/bench/limits.h"
 #include "zhf/runtime/limits.h"
 
 namespace zhf::bench {
@@ -38,7 +39,7 @@ nlohmann::ordered_json SuiteReport::to_json() const {
 }
 
 SuiteReport read_report(const std::string& path) {
-  const runtime::json::Value root = io::read_json_file(path, runtime::kMaxTableBytes);
+  const runtime::json::Value root = io::read_json_file(path, kMaxReportBytes);
   const runtime::json::Field top(root, path);
   if (top.member("format").string() != "zhf-bench-1") top.member("format").fail("expected \"zhf-bench-1\"");
   SuiteReport report;
@@ -46,8 +47,8 @@ SuiteReport read_report(const std::string& path) {
   report.compiler = top.member("compiler").string();
   report.flags = top.member("flags").string();
   report.date = top.member("date").string();
-  for (const runtime::json::Field& note : top.member("notes").items(0, 1000)) report.notes.push_back(note.string());
-  for (const runtime::json::Field& row : top.member("rows").items(0, std::size_t(1) << 20)) {
+  for (const runtime::json::Field& note : top.member("notes").items(0, kMaxReportNotes)) report.notes.push_back(note.string());
+  for (const runtime::json::Field& row : top.member("rows").items(0, kMaxReportRows)) {
     Row r;
     r.method = row.member("method").string();
     r.scenario = row.member("scenario").string();
@@ -62,8 +63,8 @@ SuiteReport read_report(const std::string& path) {
     r.rms_error = optional("rms_error");
     r.worst_unit_error = optional("worst_unit_error");
     if (row.find("multiplies")) {
-      r.multiplies = row.member("multiplies").integer(0LL, 1LL << 40);
-      r.adds = row.member("adds").integer(0LL, 1LL << 40);
+      r.multiplies = row.member("multiplies").integer(0LL, kMaxReportOps);
+      r.adds = row.member("adds").integer(0LL, kMaxReportOps);
     }
     report.rows.push_back(std::move(r));
   }

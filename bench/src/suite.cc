@@ -30,7 +30,7 @@
 #include "zhf/runtime/rotator.h"
 #include "zhf/runtime/soa_batch.h"
 #include "zhf_kernels.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/zxzxz.h"
@@ -411,7 +411,7 @@ SuiteReport run_suite(const SuiteOptions& o) {
       say(single<float>(scale, pool, "zhf_runtime", "rgb", 3, [&](auto r, auto in, auto out) { t.rotate_rgb(r, in, out); }));
       if (generated) {
         // Knob: pruned tables, through the runtime path (which skips A's zeros).
-        for (double threshold : {runtime::tolerance::kBenchPruneSmall, runtime::tolerance::kBenchPruneLarge}) {
+        for (double threshold : {zhf::tolerance::kBenchPruneSmall, zhf::tolerance::kBenchPruneLarge}) {
           const runtime::LobeTable p = pruned(table, threshold);
           const auto pr = runtime::Rotator<float>::from_table(p);
           char variant[96];

@@ -8,7 +8,7 @@
 
 #include "zhf/candidates/limits.h"
 #include "zhf/runtime/sh_eval.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/legendre.h"
 
 namespace zhf::candidates {
@@ -20,7 +20,7 @@ std::string legendre_name(int l, int m) { return "P_" + std::to_string(l) + "^" 
 
 void add_theta(std::vector<AngleValue>& thetas, double value, const std::string& source) {
   for (AngleValue& existing : thetas) {
-    if (std::abs(existing.value - value) <= runtime::tolerance::kThetaMergeTolerance) {
+    if (std::abs(existing.value - value) <= zhf::tolerance::kThetaMergeTolerance) {
       existing.sources.push_back(source);
       return;
     }
@@ -103,7 +103,7 @@ CandidateSet enumerate_candidates(int order) {
     runtime::direction_from_angles(d.theta, d.phi, d.xyz);
     // cos(pi/2) and friends come out as ~6e-17; the true component is exactly zero.
     for (double& c : d.xyz)
-      if (std::abs(c) < runtime::tolerance::kSnapToZero) c = 0.0;
+      if (std::abs(c) < zhf::tolerance::kSnapToZero) c = 0.0;
     d.sources = theta.sources;
     d.sources.insert(d.sources.end(), phi_sources.begin(), phi_sources.end());
     return d;
@@ -123,7 +123,7 @@ nlohmann::ordered_json to_json(const CandidateSet& set) {
   nlohmann::ordered_json out;
   out["format"] = "zhf-candidates-1";
   out["order"] = set.order;
-  out["theta_merge_tolerance"] = runtime::tolerance::kThetaMergeTolerance;
+  out["theta_merge_tolerance"] = zhf::tolerance::kThetaMergeTolerance;
   auto values = [](const std::vector<AngleValue>& list) {
     nlohmann::ordered_json array = nlohmann::ordered_json::array();
     for (const AngleValue& v : list) array.push_back({{"value", v.value}, {"sources", v.sources}});

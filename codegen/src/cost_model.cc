@@ -8,7 +8,7 @@
 #include "zhf/codegen/kernels.h"
 #include "zhf/codegen/limits.h"
 #include "zhf/runtime/rotation.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 
 namespace zhf::codegen {
 namespace {
@@ -68,7 +68,7 @@ std::vector<BandMethod> cheapest_band_methods(const Module& module, const Module
 }
 
 runtime::LobeStage automatic_lobe_stage(const runtime::LobeTable& table) {
-  using namespace runtime::tolerance;
+  using namespace zhf::tolerance;
   return float_lobe_error_model(table.order, table.worst_condition()) > kFloatRotation ? runtime::LobeStage::kDouble
                                                                                        : runtime::LobeStage::kFloat;
 }
@@ -77,7 +77,7 @@ double lanes_float_error_model(const runtime::LobeTable& table) {
   double worst = 0;
   for (const runtime::TableBand& band : table.bands)
     worst = std::max(worst, runtime::band_amplification(runtime::band_matrix(table, band.l)));
-  return runtime::tolerance::kFloatEpsilon * (table.order - 1) * worst;
+  return zhf::tolerance::kFloatEpsilon * (table.order - 1) * worst;
 }
 
 int lobe_weight_multiplies(const runtime::Matrix& inverse) {

@@ -1,5 +1,5 @@
 #include "zhf/codegen/expr.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 
 #include <algorithm>
 #include <cmath>
@@ -146,7 +146,7 @@ int Graph::linear(const std::vector<std::pair<double, int>>& terms) {
     if (c == 0 || is_const(x, 0)) continue;
     const double m = std::abs(c);
     size_t g = 0;
-    while (g < magnitudes.size() && std::abs(magnitudes[g] - m) > runtime::tolerance::kSameMagnitude * m) ++g;
+    while (g < magnitudes.size() && std::abs(magnitudes[g] - m) > zhf::tolerance::kSameMagnitude * m) ++g;
     if (g == magnitudes.size()) {
       magnitudes.push_back(m);
       groups.emplace_back();

@@ -15,6 +15,7 @@
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/io/lobe_table_writer.h"
+#include "zhf/codegen/limits.h"
 #include "zhf/runtime/limits.h"
 #include "zhf/runtime/table_io.h"
 
@@ -98,9 +99,9 @@ void check_targets(const fs::path& out, const Tree& tree) {
     if (!S_ISREG(st.st_mode))
       throw io::OutputError(target.string() + ": exists and is not a regular file; refusing to replace it");
     if (relative == "manifest.json") continue;  // a zhf manifest (read above) is zhf's
-    if (io::read_text_file(target.string(), std::size_t(1) << 30) == text) continue;
+    if (io::read_text_file(target.string(), kMaxEmittedFileBytes) == text) continue;
     const auto recorded = old ? old->find(relative) : std::map<std::string, std::string>::const_iterator();
-    if (!old || recorded == old->end() || recorded->second != content_hash(io::read_text_file(target.string(), std::size_t(1) << 30)))
+    if (!old || recorded == old->end() || recorded->second != content_hash(io::read_text_file(target.string(), kMaxEmittedFileBytes)))
       throw io::OutputError(target.string() + ": exists and was not written by zhf (or was changed since); refusing to replace it");
   }
   if (!old) {

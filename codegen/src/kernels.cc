@@ -9,7 +9,7 @@
 #include "kernel_cost.h"
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/sh_eval.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/zxzxz.h"
 
 namespace zhf::codegen {
@@ -569,7 +569,7 @@ Module build_module(const runtime::LobeTable& table, const ModuleOptions& option
 }
 
 Module build_lanes_module(const runtime::LobeTable& table) {
-  using namespace runtime::tolerance;
+  using namespace zhf::tolerance;
   Module module;
   module.kind = ModuleKind::kLanesTables;
   module.order = table.order;

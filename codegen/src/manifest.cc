@@ -117,9 +117,9 @@ Manifest parse_manifest(const runtime::json::Value& root, const std::string& sou
       if (!parse_kernel_kind(kind_field.string(), function.kind))
         kind_field.fail("'" + runtime::excerpt(kind_field.string()) + "' is not a kind of function zhf emits");
       function.channels = fn.member("channels").integer(1, io::kMaxChannels);
-      function.ops.multiplies = fn.member("multiplies").integer(0, 1 << 30);
-      function.ops.adds = fn.member("adds").integer(0, 1 << 30);
-      if (const auto others = fn.find("others")) function.ops.others = others->integer(0, 1 << 30);  // absent: none
+      function.ops.multiplies = fn.member("multiplies").integer(0LL, kMaxFunctionOps);
+      function.ops.adds = fn.member("adds").integer(0LL, kMaxFunctionOps);
+      if (const auto others = fn.find("others")) function.ops.others = others->integer(0LL, kMaxFunctionOps);  // absent: none
       file.functions.push_back(function);
     }
     file.fnv1a64 = f.member("fnv1a64").string();

@@ -25,7 +25,7 @@
 #include "zhf/codegen/kernels.h"
 #include "zhf/runtime/gaunt.h"
 #include "zhf/runtime/sh_eval.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/reference_rotation.h"
 
 namespace zhf::codegen {
@@ -87,7 +87,7 @@ std::vector<int> gauss_fourier_factoring(Graph& g, int order, Operands in) {
   // The nodes are symmetric: positive node p stands for +z_p and -z_p; odd K adds the center z = 0
   // (computed as a root, so within rounding of 0).
   std::vector<int> positive;
-  auto is_center = [&](int k) { return std::abs(nodes[k]) < runtime::tolerance::kCenterNode; };
+  auto is_center = [&](int k) { return std::abs(nodes[k]) < zhf::tolerance::kCenterNode; };
   for (int k = 0; k < k_nodes; ++k)
     if (nodes[k] > 0 || is_center(k)) positive.push_back(k);
   std::vector<std::vector<double>> e;  // per positive node

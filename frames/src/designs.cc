@@ -19,7 +19,7 @@
 #include "zhf/runtime/read_file.h"
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/sh_eval.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/random.h"
 
 namespace zhf::frames {
@@ -72,7 +72,7 @@ class Evaluator {
   }
   // d/ds y(normalize(x + s w)) at s = 0.
   void derivative(const Point& x, const Point& w, double* out) {
-    const double h = runtime::tolerance::kDesignDifferenceStep;
+    const double h = zhf::tolerance::kDesignDifferenceStep;
     std::vector<double> plus(size()), minus(size());
     at(normalized({x[0] + h * w[0], x[1] + h * w[1], x[2] + h * w[2]}), plus.data());
     at(normalized({x[0] - h * w[0], x[1] - h * w[1], x[2] - h * w[2]}), minus.data());
@@ -136,7 +136,7 @@ bool damped_step(std::vector<Point>& x, const std::vector<Point>& us, const std:
     if (next.squaredNorm() < r.squaredNorm()) {
       x.swap(trial);
       r = next;
-      lambda = std::max(lambda / 10, runtime::tolerance::kDampingFloor);
+      lambda = std::max(lambda / 10, zhf::tolerance::kDampingFloor);
       return true;
     }
     lambda *= 10;
@@ -149,8 +149,8 @@ void polish(std::vector<Point>& x, int t, bool symmetric) {
   Evaluator e(t, symmetric);
   const int m = static_cast<int>(x.size()), rows = e.size(), cols = 2 * m;
   Eigen::VectorXd r = residual_vector(x, e);
-  double lambda = runtime::tolerance::kDampingStart;
-  // On to the rounding floor, not just below runtime::tolerance::kDesignResidual: integrals of polynomials weigh the
+  double lambda = zhf::tolerance::kDampingStart;
+  // On to the rounding floor, not just below zhf::tolerance::kDesignResidual: integrals of polynomials weigh the
   // residual by up to ~30 (4 pi over the SH normalisation).
   for (int iteration = 0; iteration < 100 && r.cwiseAbs().maxCoeff() > 0; ++iteration) {
     Eigen::MatrixXd j(rows, cols);
@@ -211,8 +211,8 @@ Design run_start(int t, int count, bool symmetric, int k, std::uint64_t seed) {
   EnergyProblem problem{count, Evaluator(t, symmetric)};
   nlopt::opt opt(nlopt::LD_LBFGS, 3 * count);
   opt.set_min_objective(energy, &problem);
-  opt.set_ftol_abs(runtime::tolerance::kDesignEnergyAbsolute);
-  opt.set_ftol_rel(runtime::tolerance::kDesignEnergyRelative);
+  opt.set_ftol_abs(zhf::tolerance::kDesignEnergyAbsolute);
+  opt.set_ftol_rel(zhf::tolerance::kDesignEnergyRelative);
   opt.set_maxeval(4000);
   std::vector<double> p;
   for (const Point& q : x) p.insert(p.end(), q.begin(), q.end());
@@ -230,7 +230,7 @@ Design run_start(int t, int count, bool symmetric, int k, std::uint64_t seed) {
   d.t = t;
   d.residual = design_residual(x, t);
   d.points = std::move(x);
-  d.start = d.residual <= runtime::tolerance::kDesignResidual ? k : -1;
+  d.start = d.residual <= zhf::tolerance::kDesignResidual ? k : -1;
   return d;
 }
 
@@ -407,7 +407,7 @@ Design run_orbit_start(int t, int count, int k, std::uint64_t seed, const OrbitG
     return r;
   };
   Eigen::VectorXd r = residual(g);
-  double lambda = runtime::tolerance::kDampingStart;
+  double lambda = zhf::tolerance::kDampingStart;
   Eigen::MatrixXd dy(rows, cols);  // the SH's derivatives at the generators, reused across steps
   double norm_at_check = r.norm();
   for (int iteration = 0; iteration < kOrbitIterations && r.cwiseAbs().maxCoeff() > 0; ++iteration) {
@@ -446,7 +446,7 @@ Design run_orbit_start(int t, int count, int k, std::uint64_t seed, const OrbitG
     for (const Point& p : g)
       for (std::size_t q = half * per_half; q < (half + 1) * per_half; ++q) d.points.push_back(turned(group.rotations[q].data(), p));
   d.residual = design_residual(d.points, t);
-  d.start = d.residual <= runtime::tolerance::kDesignResidual ? k : -1;
+  d.start = d.residual <= zhf::tolerance::kDesignResidual ? k : -1;
   return d;
 }
 
@@ -574,7 +574,7 @@ std::vector<Point> read_points(const std::string& path) {
     const std::vector<runtime::json::Field> xyz = item.items(3);
     const Point p{xyz[0].number(), xyz[1].number(), xyz[2].number()};
     const double norm = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
-    if (!(norm > runtime::tolerance::kShortestDirection) || !std::isfinite(norm)) item.fail("not a direction (length " + std::to_string(norm) + ")");
+    if (!(norm > zhf::tolerance::kShortestDirection) || !std::isfinite(norm)) item.fail("not a direction (length " + std::to_string(norm) + ")");
     points.push_back(normalized(p));
   }
   return points;

@@ -9,7 +9,7 @@
 
 #include "zhf/frames/limits.h"
 #include "zhf/runtime/sh_eval.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 
 namespace zhf::frames {
 namespace {
@@ -35,7 +35,7 @@ Eigen::MatrixXd analysis(const std::vector<Point>& directions, int lmin, int lma
 
 }  // namespace
 
-bool FrameBounds::parseval() const { return tight() && std::abs(lower - 1) <= runtime::tolerance::kTightFrame && std::abs(upper - 1) <= runtime::tolerance::kTightFrame; }
+bool FrameBounds::parseval() const { return tight() && std::abs(lower - 1) <= zhf::tolerance::kTightFrame && std::abs(upper - 1) <= zhf::tolerance::kTightFrame; }
 
 double FrameBounds::condition() const {
   return frame() ? std::sqrt(upper / lower) : std::numeric_limits<double>::infinity();

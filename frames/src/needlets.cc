@@ -10,7 +10,7 @@
 #include "zhf/frames/limits.h"
 #include "zhf/frames/windows.h"
 #include "zhf/runtime/sh_eval.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 
@@ -47,7 +47,7 @@ void kronrod(double a, double b, double& estimate, double& error) {
 double integrate_to(double a, double b, double tolerance, int depth) {
   double whole = 0, error = 0;
   kronrod(a, b, whole, error);
-  if (error <= tolerance || error <= runtime::tolerance::kKronrodRounding * std::abs(whole) || depth >= 40) return whole;
+  if (error <= tolerance || error <= zhf::tolerance::kKronrodRounding * std::abs(whole) || depth >= 40) return whole;
   const double m = (a + b) / 2;
   return integrate_to(a, m, tolerance / 2, depth + 1) + integrate_to(m, b, tolerance / 2, depth + 1);
 }
@@ -56,7 +56,7 @@ double integrate_to(double a, double b, double tolerance, int depth) {
 double integrate(double a, double b) {
   double whole = 0, error = 0;
   kronrod(a, b, whole, error);
-  return integrate_to(a, b, runtime::tolerance::kKronrodRelative * std::abs(whole), 0);
+  return integrate_to(a, b, zhf::tolerance::kKronrodRelative * std::abs(whole), 0);
 }
 
 }  // namespace

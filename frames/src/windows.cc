@@ -10,7 +10,7 @@
 #include "zhf/frames/limits.h"
 #include "zhf/frames/needlets.h"
 #include "zhf/runtime/enum_names.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 
 namespace zhf::frames {
 namespace {
@@ -37,7 +37,7 @@ double spline_phi(double t, double dilation) { return spline_step(phi_argument(t
 // Mexican: b^2 falls below kWindowNegligible of its peak outside [low, high] in x.
 void mexican_support(int p, double& low, double& high) {
   const double peak = p * std::log(double(p)) - p;  // log b at x^2 = p
-  auto excess = [&](double x) { return 2 * (2 * p * std::log(x) - x * x - peak) - std::log(runtime::tolerance::kWindowNegligible); };
+  auto excess = [&](double x) { return 2 * (2 * p * std::log(x) - x * x - peak) - std::log(zhf::tolerance::kWindowNegligible); };
   auto bisect = [&](double a, double b) {  // excess(a) and excess(b) of opposite signs
     for (int i = 0; i < 200; ++i) {
       const double m = (a + b) / 2;
@@ -102,7 +102,7 @@ std::vector<WindowValue> window_values(const Window& w, int lmax) {
   if (lmax == 0) return out;
   double low = 0, high = 0;
   support(w, low, high);
-  const double floor_value = w.kind == WindowKind::kMexican ? std::sqrt(runtime::tolerance::kWindowNegligible) * window_value(w, std::sqrt(double(w.order))) : 0.0;
+  const double floor_value = w.kind == WindowKind::kMexican ? std::sqrt(zhf::tolerance::kWindowNegligible) * window_value(w, std::sqrt(double(w.order))) : 0.0;
   for (int j = levels_of_band(w, 1).first; j <= levels_of_band(w, lmax).last; ++j) {
     const BandRange bands = bands_of_level(w, j);
     for (int l = bands.first; l <= std::min(lmax, bands.last); ++l) {

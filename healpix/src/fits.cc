@@ -16,7 +16,7 @@
 #include "zhf/io/files.h"
 #include "zhf/io/signals.h"
 #include "zhf/runtime/read_file.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 
 namespace zhf::healpix {
 namespace {
@@ -167,13 +167,13 @@ Cards check_headers(const std::string& head, std::uint64_t file_bytes, const std
   if (head.size() >= 240 && head.compare(160, 10, "NAXIS   = ") == 0) {
     Cards third(source);
     third.add("NAXIS", head.substr(170, 70));
-    axes_claimed = third.integer("NAXIS", 0, 999).value_or(0);
+    axes_claimed = third.integer("NAXIS", 0, healpix::kMaxFitsAxes).value_or(0);
   }
   std::vector<std::string> leading = {"SIMPLE", "BITPIX", "NAXIS"};
-  for (long long k = 1; k <= std::min(axes_claimed, 999LL); ++k) leading.push_back("NAXIS" + std::to_string(k));
+  for (long long k = 1; k <= std::min(axes_claimed, healpix::kMaxFitsAxes); ++k) leading.push_back("NAXIS" + std::to_string(k));
   const Cards primary = header("primary", leading);
   const long long limit = static_cast<long long>(file_bytes);
-  const long long bits = primary.integer("BITPIX", -64, 64).value_or(8), axes = primary.integer("NAXIS", 0, 999).value_or(0);
+  const long long bits = primary.integer("BITPIX", -healpix::kMaxFitsBitpix, healpix::kMaxFitsBitpix).value_or(8), axes = primary.integer("NAXIS", 0, healpix::kMaxFitsAxes).value_or(0);
   if (axes != axes_claimed) fail("the primary header's NAXIS is malformed");
   long long data = axes > 0 ? std::abs(bits) / 8 : 0;
   for (long long k = 1; k <= axes; ++k) {
@@ -184,9 +184,9 @@ Cards check_headers(const std::string& head, std::uint64_t file_bytes, const std
   if (at >= head.size()) fail("no extension after the primary header within " + std::to_string(healpix::kMaxHealpixHeaderBytes) + " bytes");
   Cards table = header("extension", {"XTENSION", "BITPIX", "NAXIS", "NAXIS1", "NAXIS2", "PCOUNT", "GCOUNT", "TFIELDS"});
   if (table.text("XTENSION") != "BINTABLE") fail("the first extension is not a binary table");
-  if (table.integer("BITPIX", -64, 64) != 8 || table.integer("NAXIS", 0, 999) != 2 || table.integer("GCOUNT", 0, limit) != 1)
+  if (table.integer("BITPIX", -healpix::kMaxFitsBitpix, healpix::kMaxFitsBitpix) != 8 || table.integer("NAXIS", 0, healpix::kMaxFitsAxes) != 2 || table.integer("GCOUNT", 0, limit) != 1)
     fail("the table's BITPIX, NAXIS or GCOUNT is not 8, 2 and 1");
-  const long long fields = *table.integer("TFIELDS", 1, 999);
+  const long long fields = *table.integer("TFIELDS", 1, healpix::kMaxFitsFields);
   for (long long k = 1; k <= fields; ++k)
     if (!table.text("TFORM" + std::to_string(k))) fail("no TFORM" + std::to_string(k) + " keyword");
   const long long width = *table.integer("NAXIS1", 0, limit), rows = *table.integer("NAXIS2", 0, limit);
@@ -311,7 +311,7 @@ void check_map(const HealpixMap& map) {
 
 }  // namespace
 
-bool is_unseen(double value) { return std::abs(value - kHealpixUnseen) <= runtime::tolerance::kHealpixUnseenRelative * std::abs(kHealpixUnseen); }
+bool is_unseen(double value) { return std::abs(value - kHealpixUnseen) <= zhf::tolerance::kHealpixUnseenRelative * std::abs(kHealpixUnseen); }
 
 std::int64_t healpix_pixels(std::int64_t nside) { return 12 * nside * nside; }
 

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "zhf/io/errors.h"
+#include "zhf/io/limits.h"
 #include "zhf/io/private_dir.h"
 #include "zhf/io/signals.h"
 #include "zhf/runtime/read_file.h"
@@ -139,7 +140,7 @@ void PendingFile::commit(OnInterrupt on_interrupt) {
     return;
   }
   // A FIFO or device: its bytes go through it; it stays what it is.
-  const std::string text = runtime::read_file(temp_, size_t(1) << 40);
+  const std::string text = runtime::read_file(temp_, kMaxPassThroughBytes);
   const int out = ::open(destination_.c_str(), O_WRONLY | O_CLOEXEC);
   if (out < 0) throw OutputError(destination_ + ": cannot open for writing: " + error_text());
   try {

@@ -7,7 +7,7 @@
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/io/limits.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 
 namespace zhf::io {
 namespace {
@@ -117,7 +117,7 @@ std::string encode_hdr(const HdrImage& image) {
       const float* p = &image.rgb[(static_cast<std::size_t>(row) * w + x) * 3];
       const float largest = std::fmax(p[0], std::fmax(p[1], p[2]));
       int e = 0;
-      if (!(largest > runtime::tolerance::kRgbeBlack)) {
+      if (!(largest > zhf::tolerance::kRgbeBlack)) {
         scan[4 * x] = scan[4 * x + 1] = scan[4 * x + 2] = scan[4 * x + 3] = 0;
         continue;
       }

@@ -16,7 +16,7 @@
 #include "zhf/optimizer/objective.h"
 #include "zhf/runtime/parallel.h"
 #include "zhf/runtime/sh_eval.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/random.h"
 
 namespace zhf::optimizer {
@@ -79,7 +79,7 @@ StartResult descend_from(int order, std::vector<double> x, const AmplificationOp
     nlopt::opt opt(nlopt::LN_SBPLX, static_cast<unsigned>(x.size()));
     opt.set_min_objective(amplification_objective, &problem);
     opt.set_maxeval(options.max_evaluations_per_pass);
-    opt.set_xtol_rel(runtime::tolerance::kContinuousSearchStep);
+    opt.set_xtol_rel(zhf::tolerance::kContinuousSearchStep);
     double value = 0;
     try {
       opt.optimize(x, value);

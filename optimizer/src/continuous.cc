@@ -8,7 +8,7 @@
 
 #include "search_support.h"
 #include "zhf/runtime/sh_eval.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/random.h"
 
 namespace zhf::optimizer {
@@ -39,7 +39,7 @@ double log_sparsity(const std::vector<double>& x, const Problem& p) {
       for (int k = 0; k < size; ++k) y(d, k) = row[k];
     }
     Eigen::PartialPivLU<Eigen::MatrixXd> lu(y);
-    if (!(std::abs(lu.determinant()) > runtime::tolerance::kSearchSingularDeterminant)) return kSingularPenalty;
+    if (!(std::abs(lu.determinant()) > zhf::tolerance::kSearchSingularDeterminant)) return kSingularPenalty;
     const Eigen::MatrixXd a = lu.inverse();
     total += (a.cwiseAbs().array() + 1).log().sum() + (y.cwiseAbs().array() + 1).log().sum();
   }
@@ -65,7 +65,7 @@ std::vector<ContinuousStart> continuous_search(const LobeEvaluator& evaluator, c
     nlopt::opt opt(nlopt::LN_SBPLX, static_cast<unsigned>(x.size()));
     opt.set_min_objective(objective, const_cast<Problem*>(&problem));
     opt.set_maxeval(options.max_evaluations_per_start);
-    opt.set_xtol_rel(runtime::tolerance::kContinuousSearchStep);
+    opt.set_xtol_rel(zhf::tolerance::kContinuousSearchStep);
     double value = 0;
     try {
       opt.optimize(x, value);

@@ -9,7 +9,7 @@
 #include <Eigen/SVD>
 
 #include "zhf/runtime/sh_eval.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 
 namespace zhf::optimizer {
 
@@ -25,7 +25,7 @@ bool better(const Fitness& a, const Fitness& b, Ranking ranking) {
 }
 
 int zero_small_entries(Eigen::MatrixXd& inverse) {
-  const double threshold = runtime::tolerance::kZeroRelative * inverse.cwiseAbs().maxCoeff();
+  const double threshold = zhf::tolerance::kZeroRelative * inverse.cwiseAbs().maxCoeff();
   int zeros = 0;
   for (int i = 0; i < inverse.rows(); ++i)
     for (int j = 0; j < inverse.cols(); ++j)
@@ -45,7 +45,7 @@ int multiply_cost(const Eigen::MatrixXd& inverse) {
       if (inverse(i, j) != 0) magnitudes.push_back(std::abs(inverse(i, j)));
     std::sort(magnitudes.begin(), magnitudes.end());
     for (size_t k = 0; k < magnitudes.size(); ++k)
-      if (k == 0 || magnitudes[k] - magnitudes[k - 1] > runtime::tolerance::kSameMagnitude * magnitudes[k]) ++cost;
+      if (k == 0 || magnitudes[k] - magnitudes[k - 1] > zhf::tolerance::kSameMagnitude * magnitudes[k]) ++cost;
   }
   return cost;
 }
@@ -134,7 +134,7 @@ Fitness LobeEvaluator::evaluate(const Genome& genes) const {
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(gram, Eigen::EigenvaluesOnly);
     const double lo = eigen.eigenvalues()(0), hi = eigen.eigenvalues()(gram.rows() - 1);
     const double condition = lo > 0 ? std::sqrt(hi / lo) : INFINITY;
-    if (!(condition <= runtime::tolerance::kSingularCondition)) {
+    if (!(condition <= zhf::tolerance::kSingularCondition)) {
       fitness.invertible = false;
       fitness.feasible = false;
       fitness.worst_condition = INFINITY;
@@ -174,7 +174,7 @@ Fitness LobeEvaluator::fitness_of(const Genome& genes, const std::vector<BandAna
   Fitness fitness;
   fitness.invertible = true;
   for (const BandAnalysis& band : bands) {
-    if (!(band.condition <= runtime::tolerance::kSingularCondition)) fitness.invertible = false;
+    if (!(band.condition <= zhf::tolerance::kSingularCondition)) fitness.invertible = false;
     fitness.zeros += band.zeros;
     fitness.worst_condition = std::max(fitness.worst_condition, band.condition);
   }

@@ -29,6 +29,7 @@
 #include "zhf/runtime/rotator.h"
 #include "zhf/sh/analysis.h"
 #include "zhf/sh/limits.h"
+#include "zhf/tolerances/tolerances.h"
 
 namespace py = pybind11;
 namespace rt = zhf::runtime;
@@ -138,7 +139,7 @@ Array<T> output_array(std::optional<Array<T>>& into, std::size_t count, std::siz
 
 // Refuses anything but an orthogonal matrix (rotations and reflections), naming the vector.
 void check_rotation(const double* r, std::size_t v, bool many) {
-  const rt::RotationCheck check = rt::validate_rotation(r, rt::tolerance::kRotationDefect, rt::Handedness::kEither);
+  const rt::RotationCheck check = rt::validate_rotation(r, zhf::tolerance::kRotationDefect, rt::Handedness::kEither);
   if (!check.ok) throw rt::InputError(std::string("rotation") + (many ? " " + std::to_string(v) : "") + ": " + check.message);
 }
 
@@ -180,7 +181,7 @@ Array<T> rotate_each(const Array<T>& coeffs, const Array<double>& rotations, con
   {
     py::gil_scoped_release release;
     for (std::size_t v = 0; v < count; ++v)
-      if (!rt::rotation_accepted(r + 9 * v, rt::tolerance::kRotationDefect, rt::Handedness::kEither)) check_rotation(r + 9 * v, v, true);
+      if (!rt::rotation_accepted(r + 9 * v, zhf::tolerance::kRotationDefect, rt::Handedness::kEither)) check_rotation(r + 9 * v, v, true);
     const Rotation<T> rotation(order, table);
     rotate_checked(src, dst, count, n, threads, [&](std::size_t v, std::size_t part, const T* f, T* g) {
       if constexpr (std::is_same_v<T, double>) {
@@ -324,13 +325,13 @@ PYBIND11_MODULE(_zhf, m) {
   m.attr("max_table_order") = rt::kMaxTableOrder;
   m.attr("max_generated_order") = rt::kMaxGeneratedOrder;
   m.attr("max_threads") = rt::kMaxThreads;
-  m.attr("default_zonal_fit") = rt::tolerance::kDefaultZonalFit;
-  // The named tolerances the Python tests hold results to (runtime/tolerances.h).
+  m.attr("default_zonal_fit") = zhf::tolerance::kDefaultZonalFit;
+  // The named tolerances the Python tests hold results to (tolerances/tolerances.h).
   py::dict tolerances;
-  tolerances["double"] = rt::tolerance::kDouble;
-  tolerances["float_rotation"] = rt::tolerance::kFloatRotation;
-  tolerances["pointwise"] = rt::tolerance::kPointwise;
-  tolerances["rotation_defect"] = rt::tolerance::kRotationDefect;
+  tolerances["double"] = zhf::tolerance::kDouble;
+  tolerances["float_rotation"] = zhf::tolerance::kFloatRotation;
+  tolerances["pointwise"] = zhf::tolerance::kPointwise;
+  tolerances["rotation_defect"] = zhf::tolerance::kRotationDefect;
   m.attr("tolerances") = tolerances;
   py::register_exception_translator([](std::exception_ptr p) {
     try {

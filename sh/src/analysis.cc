@@ -1,4 +1,4 @@
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/analysis.h"
 
 #include <algorithm>
@@ -78,7 +78,7 @@ ZonalFit fit_zonal(const Eigen::VectorXd& f) {
   bool oriented = false;
   for (int l = 1; l < order && !oriented; l += 2) {
     const double w = weight(l);
-    if (std::abs(w) > runtime::tolerance::kOrientingWeight * std::sqrt(energy)) {
+    if (std::abs(w) > zhf::tolerance::kOrientingWeight * std::sqrt(energy)) {
       if (w < 0) fit.axis = -fit.axis;
       oriented = true;
     }

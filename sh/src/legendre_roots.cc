@@ -4,7 +4,7 @@
 
 #include "zhf/runtime/limits.h"
 #include "zhf/runtime/sh_eval.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/legendre.h"
 
 namespace zhf::sh {
@@ -21,7 +21,7 @@ double q_of_theta(int l, int m, double theta) { return runtime::legendre_q<doubl
 
 double polish_root(int l, int m, double lo, double hi) {
   double f_lo = q_of_theta(l, m, lo);
-  for (int it = 0; it < 200 && hi - lo > runtime::tolerance::kRootBracket; ++it) {
+  for (int it = 0; it < 200 && hi - lo > zhf::tolerance::kRootBracket; ++it) {
     const double mid = 0.5 * (lo + hi);
     const double f_mid = q_of_theta(l, m, mid);
     if ((f_mid < 0) == (f_lo < 0)) {
@@ -42,7 +42,7 @@ double polish_root(int l, int m, double lo, double hi) {
     const Wide df = -std::sin(theta) * derivative_scale * runtime::legendre_q<Wide>(l, m + 1, z);
     if (f == 0 || df == 0) break;
     const Wide step = f / df;
-    if (!(std::abs(step) < runtime::tolerance::kRootPolishStep)) break;  // only a polish: never leave the bracket
+    if (!(std::abs(step) < zhf::tolerance::kRootPolishStep)) break;  // only a polish: never leave the bracket
     theta -= step;
   }
   return static_cast<double>(theta);

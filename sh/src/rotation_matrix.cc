@@ -1,4 +1,4 @@
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/random.h"
 #include "zhf/sh/rotation_matrix.h"
 
@@ -51,7 +51,7 @@ std::vector<std::pair<std::string, RotationMatrix>> extreme_rotations(const std:
   // The turn carrying unit a onto unit b (none needed when they already agree).
   auto carry = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) -> std::pair<bool, RotationMatrix> {
     const Eigen::Vector3d axis = a.cross(b);
-    if (axis.norm() < runtime::tolerance::kParallelAxes) return {false, RotationMatrix::Identity()};
+    if (axis.norm() < zhf::tolerance::kParallelAxes) return {false, RotationMatrix::Identity()};
     return {true, rotation_about_axis(axis, std::acos(std::clamp(a.dot(b), -1.0, 1.0)))};
   };
   for (std::size_t d = 0; d < lobes.size() && d < 3; ++d) {

@@ -241,7 +241,7 @@ class GlbReader : public SceneReader {
     const std::string& version = asset.member("version").string();
     if (version.rfind("2.", 0) != 0) asset.member("version").fail("glTF " + io::excerpt(version) + "; zhf reads 2.x");
     if (std::optional<Field> required = root.find("extensionsRequired"))
-      for (const Field& e : required->items(0, 64))
+      for (const Field& e : required->items(0, kMaxGltfRequiredExtensions))
         if (e.string() != kExtension) e.fail("requires " + io::excerpt(e.string()) + ", which zhf does not read");
     // The one splat primitive.
     int mesh_index = -1;
@@ -306,7 +306,7 @@ class GlbReader : public SceneReader {
       const std::uint64_t view_offset = view.find("byteOffset") ? std::uint64_t(view.member("byteOffset").integer(0LL, (long long)buffer_bytes)) : 0;
       const std::uint64_t view_bytes = std::uint64_t(view.member("byteLength").integer(1LL, (long long)(buffer_bytes - view_offset)));
       a.element = std::uint64_t(spec.components) * component_bytes(a.type);
-      a.stride = view.find("byteStride") ? std::uint64_t(view.member("byteStride").integer(4, 252)) : a.element;
+      a.stride = view.find("byteStride") ? std::uint64_t(view.member("byteStride").integer(kMinGltfByteStride, kMaxGltfByteStride)) : a.element;
       if (a.stride < a.element || a.stride % 4 != 0) view.member("byteStride").fail("must be a multiple of 4 of at least " + std::to_string(a.element));
       const std::uint64_t offset = accessor.find("byteOffset") ? std::uint64_t(accessor.member("byteOffset").integer(0LL, (long long)view_bytes)) : 0;
       if ((n - 1) * a.stride + a.element > view_bytes - offset)

@@ -15,14 +15,14 @@
 #include "test_support.h"
 #include "zhf/codegen/kernels.h"
 #include "zhf/runtime/table_io.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 
 namespace zhf {
 namespace {
 
 namespace fs = std::filesystem;
 
-using namespace runtime::tolerance;
+using namespace zhf::tolerance;
 
 // The float tolerance of a lobe method: the runtime table path runs its lobe stage in double;
 // the generated kernels where `auto` put it.

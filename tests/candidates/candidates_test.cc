@@ -6,13 +6,13 @@
 
 #include "zhf/candidates/candidates.h"
 #include "test_support.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/slow_reference.h"
 
 namespace zhf::candidates {
 namespace {
 
-constexpr double kSourceResidual = runtime::tolerance::kRootResidual;
+constexpr double kSourceResidual = zhf::tolerance::kRootResidual;
 using test::kPaperLobeMatch;
 
 TEST(Candidates, Order3CountsDerivedByHand) {
@@ -68,11 +68,11 @@ TEST(Candidates, EveryPhiMakesItsSourceVanish) {
 
 TEST(Candidates, SortedUniqueAndUnit) {
   const CandidateSet set = enumerate_candidates(8);
-  for (size_t i = 1; i < set.thetas.size(); ++i) EXPECT_GT(set.thetas[i].value - set.thetas[i - 1].value, runtime::tolerance::kThetaMergeTolerance);
+  for (size_t i = 1; i < set.thetas.size(); ++i) EXPECT_GT(set.thetas[i].value - set.thetas[i - 1].value, zhf::tolerance::kThetaMergeTolerance);
   for (size_t i = 1; i < set.phis.size(); ++i) EXPECT_GT(set.phis[i].value, set.phis[i - 1].value);
   for (size_t i = 0; i < set.directions.size(); ++i) {
     const double* v = set.directions[i].xyz;
-    EXPECT_NEAR(v[0] * v[0] + v[1] * v[1] + v[2] * v[2], 1.0, runtime::tolerance::kExactToRounding) << "direction " << i;
+    EXPECT_NEAR(v[0] * v[0] + v[1] * v[1] + v[2] * v[2], 1.0, zhf::tolerance::kExactToRounding) << "direction " << i;
     for (size_t j = 0; j < i; ++j) {
       const double* w = set.directions[j].xyz;
       ASSERT_GT(std::abs(v[0] - w[0]) + std::abs(v[1] - w[1]) + std::abs(v[2] - w[2]), 1e-9)

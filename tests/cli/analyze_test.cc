@@ -8,7 +8,7 @@
 
 #include "test_support.h"
 #include "zhf/runtime/sh_eval.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
@@ -18,7 +18,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using runtime::kPi;
-constexpr double kAxis = runtime::tolerance::kZonalFit;
+constexpr double kAxis = zhf::tolerance::kZonalFit;
 
 // Coefficients of a zonal function about axis with the given y_l^0 weights.
 Eigen::VectorXd zonal_coefficients(const Eigen::Vector3d& axis, const std::vector<double>& weights) {
@@ -86,9 +86,9 @@ TEST(Analyze, ClampedCosineLobeIsZonalWithItsOrderAndZeroOddBands) {
   const test::TempDir dir;
   const Eigen::Vector3d axis = Eigen::Vector3d(0.2, -0.7, 0.4).normalized();
   const std::vector<double> w = clamped_cosine_weights(8);
-  EXPECT_NEAR(w[0], std::sqrt(kPi) / 2, runtime::tolerance::kSlowPathsAgreement);
-  EXPECT_NEAR(w[1], std::sqrt(kPi / 3), runtime::tolerance::kSlowPathsAgreement);
-  EXPECT_NEAR(w[3], 0.0, runtime::tolerance::kSlowPathsAgreement);
+  EXPECT_NEAR(w[0], std::sqrt(kPi) / 2, zhf::tolerance::kSlowPathsAgreement);
+  EXPECT_NEAR(w[1], std::sqrt(kPi / 3), zhf::tolerance::kSlowPathsAgreement);
+  EXPECT_NEAR(w[3], 0.0, zhf::tolerance::kSlowPathsAgreement);
   const Eigen::VectorXd f = zonal_coefficients(axis, w);
   // The expected order, from the closed-form weights alone (energy of band l is w_l^2).
   const double tolerance = 0.05;

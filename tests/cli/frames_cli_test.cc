@@ -10,7 +10,7 @@
 
 #include "test_support.h"
 #include "zhf/frames/designs.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 
 namespace zhf {
 namespace {
@@ -54,10 +54,10 @@ TEST(DesignsCli, ASymmetryWithoutACountPicksItsOwnCount) {
 
 TEST(FrameCli, DesignsAreTightAndTablesReportTheirBands) {
   const std::string design = test::source_path("generated/designs/t_6.json");
-  test::RunResult r = test::run_zhf("frame --points '" + design + "' --bands 0..3");
+  test::RunResult r = test::run_zhf("frame --directions '" + design + "' --bands 0..3");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("tight"), std::string::npos) << r.out;
-  r = test::run_zhf("frame --points '" + design + "' --bands 0..4");
+  r = test::run_zhf("frame --directions '" + design + "' --bands 0..4");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out.find("tight"), std::string::npos) << r.out;  // 24 points, 25 functions: not even a frame
   EXPECT_NE(r.out.find("not a frame"), std::string::npos) << r.out;
@@ -78,8 +78,8 @@ TEST(NeedletWindowCli, ReportsFrameBoundsAndLocalisationPerWindow) {
     if (std::string(window) == "mexican") {
       EXPECT_GT(most / least, 1.01) << "a Mexican frame is not tight";
     } else {
-      EXPECT_NEAR(least, 1.0, runtime::tolerance::kNeedletWindow) << window;
-      EXPECT_NEAR(most, 1.0, runtime::tolerance::kNeedletWindow) << window;
+      EXPECT_NEAR(least, 1.0, zhf::tolerance::kNeedletWindow) << window;
+      EXPECT_NEAR(most, 1.0, zhf::tolerance::kNeedletWindow) << window;
     }
     const nlohmann::json& caps = report["localisation"]["outside"];
     ASSERT_EQ(caps.size(), 4u);
@@ -106,10 +106,10 @@ TEST(FramesCli, BadInputGetsOneLineAndNoOutput) {
                         Case{"designs --t 23 --symmetric --tetrahedral --json '" + out + "'", 2, "not with --symmetric or --threefold"},
                         Case{"designs --t 23 --symmetric --threefold --count 280 --json '" + out + "'", 2, "multiple of 6 points"},
                         Case{"designs --t 12 --points 13 --starts 1 --json '" + out + "'", 1, "no 13-point 12-design"},
-                        Case{"frame --points '" + zero + "' --bands 0..1 --json '" + out + "'", 3, "[1]: not a direction"},
-                        Case{"frame --points '" + zero + "' --json '" + out + "'", 2, "--bands"},
-                        Case{"frame --bands 0..2 --json '" + out + "'", 2, "--points or --table"},
-                        Case{"frame --points '" + zero + "' --bands 0..64", 2, "--bands"}}) {
+                        Case{"frame --directions '" + zero + "' --bands 0..1 --json '" + out + "'", 3, "[1]: not a direction"},
+                        Case{"frame --directions '" + zero + "' --json '" + out + "'", 2, "--bands"},
+                        Case{"frame --bands 0..2 --json '" + out + "'", 2, "--directions or --table"},
+                        Case{"frame --directions '" + zero + "' --bands 0..64", 2, "--bands"}}) {
     const test::RunResult r = test::run_zhf(c.args);
     EXPECT_EQ(r.exit_code, c.exit_code) << c.args << ": " << r.err;
     EXPECT_EQ(test::line_count(r.err), 1) << c.args << ": " << r.err;
@@ -133,7 +133,7 @@ TEST(NeedletPrtCli, ReportsErrorsPerCoefficientCountAndRefusesBadOptions) {
   const nlohmann::json report = test::read_json(out);
   EXPECT_EQ(report["format"], "zhf-needlet-prt-1");
   ASSERT_EQ(report["rows"].size(), 3u);
-  EXPECT_LE(report["parseval_gap"].get<double>(), runtime::tolerance::kParsevalShading);
+  EXPECT_LE(report["parseval_gap"].get<double>(), zhf::tolerance::kParsevalShading);
   EXPECT_EQ(test::line_count(test::read_text(csv)), 4);
   const std::string images = test::read_text(shading);
   EXPECT_EQ(test::line_count(images), 5);  // a header and 2 x 2 vertices
@@ -141,7 +141,8 @@ TEST(NeedletPrtCli, ReportsErrorsPerCoefficientCountAndRefusesBadOptions) {
   for (const auto& [args, message] : std::vector<std::pair<std::vector<std::string>, std::string>>{
            {{"needlets", "prt", "--scene", "teapot"}, "--scene: 'teapot' is not sphere, corner or spheres"},
            {{"needlets", "prt", "--transfer", "mirror"}, "--transfer: 'mirror'"},
-           {{"needlets", "prt", "--order", "9", "--kept", "5000"}, "--kept: 5000 is more than the frame's"},
+           {{"needlets", "prt", "--order", "9", "--kept", "2000"}, "--kept: 2000 is more than the frame's"},
+           {{"needlets", "prt", "--order", "9", "--kept", "5000"}, "--kept: must be 1..4096"},  // the largest frame's size
            {{"needlets", "prt", "--side", "65"}, "--side"},
        }) {
     const test::RunResult bad = test::run_zhf(args);

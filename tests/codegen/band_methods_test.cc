@@ -12,7 +12,7 @@
 #include "zhf/codegen/kernels.h"
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/runtime/table_io.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
@@ -48,7 +48,7 @@ TEST(BandMethods, EachMethodForEveryBandMatchesTheReferenceAtExtremeRotations) {
       const codegen::Function& shade = find(module, codegen::KernelKind::kShade);
       const bool in_double = module.rotation_lobe_stage() == runtime::LobeStage::kDouble;
       const double float_tolerance = runtime::tolerance::float_rotation(order, table.worst_condition(), in_double);
-      const double float_shading = runtime::tolerance::float_shading(order, table.worst_condition(), in_double);
+      const double float_shading = zhf::tolerance::float_shading(order, table.worst_condition(), in_double);
       sh::Normal<> normal;
       for (const auto& [name, r] : rotations) {
         Eigen::VectorXd f(order * order), t(order * order);

@@ -16,7 +16,7 @@
 #include "zhf/frames/frame.h"
 #include "zhf/frames/limits.h"
 #include "zhf/runtime/table_io.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/random.h"
 
 namespace zhf::frames {
@@ -52,12 +52,12 @@ void expect_exact_to_degree(const std::vector<Point>& points, int t, std::mt1993
     for (int b = 0; a + b <= t; ++b)
       for (int c = 0; a + b + c <= t; ++c) {
         const long double got = rule(points, a, b, c), exact = monomial_integral(a, b, c);
-        EXPECT_NEAR(double(got), double(exact), runtime::tolerance::kDesignQuadrature) << "t " << t << ", x^" << a << " y^" << b << " z^" << c;
+        EXPECT_NEAR(double(got), double(exact), zhf::tolerance::kDesignQuadrature) << "t " << t << ", x^" << a << " y^" << b << " z^" << c;
         const double w = normal(rng);
         random_rule += w * got;
         random_exact += w * exact;
       }
-  EXPECT_NEAR(double(random_rule), double(random_exact), 10 * runtime::tolerance::kDesignQuadrature) << "t " << t;
+  EXPECT_NEAR(double(random_rule), double(random_exact), 10 * zhf::tolerance::kDesignQuadrature) << "t " << t;
 }
 
 TEST(Designs, ShippedDesignsIntegrateEveryPolynomialOfTheirDegree) {
@@ -69,7 +69,7 @@ TEST(Designs, ShippedDesignsIntegrateEveryPolynomialOfTheirDegree) {
     const int t = j.at("t");
     const std::vector<Point> points = read_points(entry.path().string());
     ASSERT_EQ(points.size(), j.at("count").get<size_t>()) << entry.path();
-    EXPECT_LE(design_residual(points, t), runtime::tolerance::kDesignResidual) << "t " << t;
+    EXPECT_LE(design_residual(points, t), zhf::tolerance::kDesignResidual) << "t " << t;
     if (t <= 21) {
       EXPECT_LE(points.size(), static_cast<size_t>(best_known_count(t))) << "t " << t << ": more points than the best known";
     }
@@ -102,7 +102,7 @@ TEST(Designs, SearchIsDeterministicWhateverTheThreads) {
   s.points = symmetric_count(9);  // 48, the smallest known count
   const Design antipodal = search_design(s);
   ASSERT_GE(antipodal.start, 0);
-  EXPECT_LE(design_residual(antipodal.points, 9), runtime::tolerance::kDesignResidual);
+  EXPECT_LE(design_residual(antipodal.points, 9), zhf::tolerance::kDesignResidual);
 }
 
 // The search on 1 and on 2 threads (the same design expected), and that design checked by every
@@ -114,7 +114,7 @@ Design search_on_one_and_two_threads(DesignSearch s) {
   const Design two = search_design(s);
   EXPECT_EQ(one.start, two.start);
   EXPECT_EQ(one.points, two.points);
-  EXPECT_LE(design_residual(one.points, s.t), runtime::tolerance::kDesignResidual);
+  EXPECT_LE(design_residual(one.points, s.t), zhf::tolerance::kDesignResidual);
   std::mt19937_64 rng(9);
   sh::Normal<> normal;
   expect_exact_to_degree(one.points, s.t, rng, normal);
@@ -149,7 +149,7 @@ void expect_threefold(const std::vector<Point>& points) {
     const Point turned{c * p[0] - sn * p[1], sn * p[0] + c * p[1], p[2]};
     double nearest = 1;
     for (const Point& q : points) nearest = std::min(nearest, std::hypot(q[0] - turned[0], q[1] - turned[1], q[2] - turned[2]));
-    EXPECT_LE(nearest, runtime::tolerance::kExactToRounding);
+    EXPECT_LE(nearest, zhf::tolerance::kExactToRounding);
   }
 }
 
@@ -271,7 +271,7 @@ TEST(Frames, DesignsMakeTightFramesUpToHalfTheirStrength) {
     std::vector<Point> same = d;
     const FrameBounds one_band = frame_bounds(same, t / 2, t / 2);
     EXPECT_TRUE(one_band.tight()) << "t " << t;
-    EXPECT_NEAR(one_band.condition(), 1.0, runtime::tolerance::kTightFrame) << "t " << t;
+    EXPECT_NEAR(one_band.condition(), 1.0, zhf::tolerance::kTightFrame) << "t " << t;
   }
 }
 
@@ -282,7 +282,7 @@ TEST(Frames, LobeTablesAreFramesWithTheirConditionNumbers) {
       std::vector<Point> lobes;
       for (int d : band.lobes) lobes.push_back({table.lobes[d].xyz[0], table.lobes[d].xyz[1], table.lobes[d].xyz[2]});
       const FrameBounds b = frame_bounds(lobes, band.l, band.l);
-      EXPECT_NEAR(b.condition(), band.condition, runtime::tolerance::kTableConditionRelative * band.condition)
+      EXPECT_NEAR(b.condition(), band.condition, zhf::tolerance::kTableConditionRelative * band.condition)
           << "order " << order << ", band " << band.l;
       EXPECT_EQ(b.redundancy(), 1.0);
     }

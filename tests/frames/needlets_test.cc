@@ -12,15 +12,15 @@
 #include "zhf/frames/limits.h"
 #include "zhf/frames/needlets.h"
 #include "zhf/runtime/sh_eval.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/random.h"
 #include "zhf/sh/rotation_matrix.h"
 
 namespace zhf::frames {
 namespace {
 
-using runtime::tolerance::kNeedletFrame;
-using runtime::tolerance::kNeedletWindow;
+using zhf::tolerance::kNeedletFrame;
+using zhf::tolerance::kNeedletWindow;
 
 // int_{a}^{b} exp(-1/(1-t^2)) dt by the tanh-sinh rule in long double: a path sharing nothing with
 // the adaptive Gauss-Kronrod of the library.
@@ -60,7 +60,7 @@ TEST(NeedletWindow, SmallWeightsKeepTheirRelativePrecision) {
     const long double reference =
         std::sqrt(tanh_sinh(argument(x, c.dilation), argument(x / c.dilation, c.dilation)) / tanh_sinh(-1, 1));
     ASSERT_GT(reference, 0) << "B " << c.dilation << ", level " << c.j << ", band " << c.l;
-    EXPECT_NEAR(needlet_window(x, c.dilation) / double(reference), 1.0, runtime::tolerance::kNeedletWindowRelative)
+    EXPECT_NEAR(needlet_window(x, c.dilation) / double(reference), 1.0, zhf::tolerance::kNeedletWindowRelative)
         << "B " << c.dilation << ", level " << c.j << ", band " << c.l << ": reference " << double(reference);
   }
 }
@@ -244,7 +244,7 @@ TEST(NeedletTables, NodesAreExactAndQuadraticsReproduced) {
     const double t = -1 + 2.0 * i / 8;
     EXPECT_DOUBLE_EQ(square(t, Interpolation::kLinear), 3 * t * t - t + 0.5) << "node " << i;
   }
-  for (double t = -1; t <= 1; t += 0.013) EXPECT_NEAR(square(t, Interpolation::kQuadratic), 3 * t * t - t + 0.5, runtime::tolerance::kQuadraticTableExact) << "t " << t;
+  for (double t = -1; t <= 1; t += 0.013) EXPECT_NEAR(square(t, Interpolation::kQuadratic), 3 * t * t - t + 0.5, zhf::tolerance::kQuadraticTableExact) << "t " << t;
   EXPECT_THROW(UniformTable([](double) { return 0.0; }, 2), std::invalid_argument);
 }
 
@@ -268,7 +268,7 @@ TEST(NeedletLocalisation, UncutKernelsAndCapEnergies) {
       all += e;
       if (theta > cap) outside += e;
     }
-    EXPECT_NEAR(localisation(delta, lmax, cap).outside_energy, outside / all, runtime::tolerance::kCapEnergyMidpoint) << "lmax " << lmax;
+    EXPECT_NEAR(localisation(delta, lmax, cap).outside_energy, outside / all, zhf::tolerance::kCapEnergyMidpoint) << "lmax " << lmax;
     EXPECT_NEAR(localisation(delta, lmax, runtime::kPi).outside_energy, 0.0, kNeedletFrame) << "lmax " << lmax;
     EXPECT_NEAR(delta(1), (lmax + 1) * (lmax + 1) / (4 * runtime::kPi), kNeedletFrame) << "lmax " << lmax;
   }

@@ -4,12 +4,12 @@
 #include <gtest/gtest.h>
 
 #include "zhf/frames/prt.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 
 namespace zhf::frames {
 namespace {
 
-namespace tol = runtime::tolerance;
+namespace tol = zhf::tolerance;
 
 TEST(Prt, NeedletShadingWithEveryCoefficientIsTheShSum) {
   const NeedletFrame frame(2.0, 12);

@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "zhf/frames/tight_frame_rotation.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
@@ -15,8 +15,8 @@
 namespace zhf::frames {
 namespace {
 
-using runtime::tolerance::kFloatRotation;
-using runtime::tolerance::kTightFrameRotation;
+using zhf::tolerance::kFloatRotation;
+using zhf::tolerance::kTightFrameRotation;
 
 template <class T>
 double worst_error(const TightFrameRotator<T>& rotator, const sh::RotationMatrix& r, std::mt19937_64& rng) {

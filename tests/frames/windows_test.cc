@@ -11,12 +11,12 @@
 #include "zhf/frames/limits.h"
 #include "zhf/frames/windows.h"
 #include "zhf/runtime/conventions.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 
 namespace zhf::frames {
 namespace {
 
-using runtime::tolerance::kNeedletWindow;
+using zhf::tolerance::kNeedletWindow;
 
 // The centred cubic B-spline on [-2, 2].
 double cubic_bspline(double s) {
@@ -37,7 +37,7 @@ TEST(Windows, SplineStepIsTheIntegralOfTheCubicBSpline) {
       for (int i = 1; i < 2000; ++i) sum += cubic_bspline(a + i * h) * (i % 2 ? 4 : 2);
       integral += sum * h / 3;
     }
-    EXPECT_NEAR(spline_step(u), integral, runtime::tolerance::kSplineStepAgainstSimpson) << "u " << u;
+    EXPECT_NEAR(spline_step(u), integral, zhf::tolerance::kSplineStepAgainstSimpson) << "u " << u;
     EXPECT_NEAR(spline_step(u) + spline_step(-u), 1.0, kNeedletWindow) << "u " << u;
   }
   EXPECT_EQ(spline_step(-1), 0.0);
@@ -73,10 +73,10 @@ TEST(Windows, MexicanSquareSumsAreFrameBoundsNotOne) {
         if (x < 100) plain += std::pow(x, 4 * p) * std::exp(-2 * x * x);  // beyond: below 1e-4000
       }
       const double sum = window_square_sum(w, l);
-      ASSERT_NEAR(sum / plain, 1.0, runtime::tolerance::kWindowSquareSum) << "p " << p << ", band " << l;
+      ASSERT_NEAR(sum / plain, 1.0, zhf::tolerance::kWindowSquareSum) << "p " << p << ", band " << l;
       // With B = 2 the levels of band 2l are band l's shifted by one: the same sum.
       if (2 * l <= 1000) {
-        ASSERT_NEAR(window_square_sum(w, 2 * l) / sum, 1.0, runtime::tolerance::kWindowSquareSum) << "p " << p << ", band " << l;
+        ASSERT_NEAR(window_square_sum(w, 2 * l) / sum, 1.0, zhf::tolerance::kWindowSquareSum) << "p " << p << ", band " << l;
       }
       least = std::min(least, sum);
       most = std::max(most, sum);
@@ -119,7 +119,7 @@ TEST(Windows, KernelEnergyOutsideACapMatchesAFineRuleInTheAngle) {
     const double total = energy_beyond(0);
     for (double radius : {0.1, 0.3, 1.0}) {
       const double expected = energy_beyond(radius) / total;
-      EXPECT_NEAR(kernel_energy_outside(w, j, radius) / expected, 1.0, runtime::tolerance::kCapEnergyAgainstMidpoint) << window_kind_name(kind) << ", radius " << radius;
+      EXPECT_NEAR(kernel_energy_outside(w, j, radius) / expected, 1.0, zhf::tolerance::kCapEnergyAgainstMidpoint) << window_kind_name(kind) << ", radius " << radius;
     }
     EXPECT_EQ(kernel_energy_outside(w, j, runtime::kPi), 0.0) << window_kind_name(kind);
   }

@@ -9,12 +9,12 @@
 #include "zhf/healpix/fits.h"
 #include "zhf/healpix/maps.h"
 #include "zhf/runtime/sh_eval.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 
 namespace zhf::healpix {
 namespace {
 
-namespace tol = runtime::tolerance;
+namespace tol = zhf::tolerance;
 
 // Bands 0..order-1 with fixed, uneven values.
 std::vector<double> known_sh(int order) {

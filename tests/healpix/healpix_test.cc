@@ -14,13 +14,13 @@
 #include "zhf/healpix/maps.h"
 #include "zhf/io/errors.h"
 #include "zhf/runtime/sh_eval.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/random.h"
 
 namespace zhf::healpix {
 namespace {
 
-namespace tol = runtime::tolerance;
+namespace tol = zhf::tolerance;
 
 std::vector<double> random_values(std::size_t n, std::uint64_t seed) {
   std::mt19937_64 rng(seed);

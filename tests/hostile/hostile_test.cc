@@ -276,7 +276,7 @@ TEST(Hostile, DeeplyNestedJsonIsRefusedEverywhere) {
   refused("verify --generated", box, {"verify", "--generated", box.path("tree"), "--langs", "cpp"}, 3, depth);
   refused("analyze --coeffs", box, {"analyze", "--coeffs", box.path("deep.json")}, 3, depth);
   refused("product --lhs", box, {"product", "--lhs", box.path("deep.json"), "--rhs", box.path("c9.json"), "--out", box.path("p.json")}, 3, depth);
-  refused("frame --points", box, {"frame", "--points", box.path("deep.json"), "--bands", "0..2"}, 3, depth);
+  refused("frame --directions", box, {"frame", "--directions", box.path("deep.json"), "--bands", "0..2"}, 3, depth);
   EXPECT_THROW(runtime::read_lobe_table(box.path("deep.json")), runtime::InputError);
 }
 
@@ -665,7 +665,7 @@ TEST(Hostile, EveryReaderRefusesEveryMalformedDocument) {
         {"rotate --tables", {"rotate", "--coeffs", box.path("c9.json"), "--tables", box.path("tables9"), "--zyz", "1 2 3", "--out", box.path("r.json")}},
         {"product --lhs", {"product", "--lhs", box.path("bad.json"), "--rhs", box.path("c9.json"), "--out", box.path("p.json")}},
         {"product --rhs", {"product", "--lhs", box.path("c9.json"), "--rhs", box.path("bad.json"), "--out", box.path("p.json")}},
-        {"frame --points", {"frame", "--points", box.path("bad.json"), "--bands", "0..2", "--json", box.path("f.json")}},
+        {"frame --directions", {"frame", "--directions", box.path("bad.json"), "--bands", "0..2", "--json", box.path("f.json")}},
     };
     for (const auto& [reader, args] : readers) {
       const std::string file = reader == "verify --generated" ? "manifest.json"

@@ -10,7 +10,7 @@
 
 #include "zhf/io/errors.h"
 #include "zhf/io/rotation_text.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/rotation_matrix.h"
 
 namespace zhf {
@@ -32,9 +32,9 @@ TEST(RotationText, EveryFormGivesTheReferenceMatrix) {
   const auto q2 = io::parse_rotation(xyz + " " + w, io::RotationForm::kQuaternionXyzw, "--quat-xyzw");
   const auto e = io::parse_rotation("0.4 1.2 -2.0", io::RotationForm::kEuler, "--euler", {"ZYZ", false}).matrix;
   for (int i = 0; i < 9; ++i) {
-    EXPECT_NEAR(a[i], zyz(i / 3, i % 3), runtime::tolerance::kExactToRounding) << "zyz entry " << i;
-    EXPECT_NEAR(b[i], turn(i / 3, i % 3), runtime::tolerance::kExactToRounding) << "axis-angle entry " << i;
-    EXPECT_NEAR(e[i], zyz(i / 3, i % 3), runtime::tolerance::kExactToRounding) << "euler entry " << i;
+    EXPECT_NEAR(a[i], zyz(i / 3, i % 3), zhf::tolerance::kExactToRounding) << "zyz entry " << i;
+    EXPECT_NEAR(b[i], turn(i / 3, i % 3), zhf::tolerance::kExactToRounding) << "axis-angle entry " << i;
+    EXPECT_NEAR(e[i], zyz(i / 3, i % 3), zhf::tolerance::kExactToRounding) << "euler entry " << i;
     // to_string keeps 6 decimals.
     EXPECT_NEAR(q1.matrix[i], turn(i / 3, i % 3), test::kSixDecimals) << "quaternion wxyz entry " << i;
     EXPECT_EQ(q1.matrix[i], q2.matrix[i]) << "quaternion xyzw entry " << i;

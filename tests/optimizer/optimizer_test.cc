@@ -12,7 +12,7 @@
 #include "zhf/optimizer/genetic.h"
 #include "zhf/optimizer/local_search.h"
 #include "zhf/runtime/table_io.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/random.h"
 #include "zhf/sh/slow_reference.h"
 
@@ -23,7 +23,7 @@ using runtime::lobe_count;
 using runtime::lobe_index;
 using test::kPaperConditionRelative;
 using test::kPaperLobeMatch;
-using runtime::tolerance::kZeroInLongDouble;
+using zhf::tolerance::kZeroInLongDouble;
 
 const candidates::CandidateSet& candidate_set(int order) {
   static std::map<int, candidates::CandidateSet> sets;

@@ -22,7 +22,7 @@
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/rotator.h"
 #include "zhf/runtime/soa_batch.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
@@ -34,7 +34,7 @@
 namespace zhf {
 namespace {
 
-using namespace runtime::tolerance;
+using namespace zhf::tolerance;
 
 // count unit vectors of order N, flat.
 template <class T>

@@ -15,7 +15,7 @@
 #include "zhf/runtime/orthogonal.h"
 #include "zhf/runtime/rotator.h"
 #include "zhf/runtime/sh_eval.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/random.h"
 #include "zhf/sh/rotation_matrix.h"
 #include "zhf_kernels.h"
@@ -23,7 +23,7 @@
 namespace zhf {
 namespace {
 
-using namespace runtime::tolerance;
+using namespace zhf::tolerance;
 using runtime::Matrix3;
 
 std::vector<double> random_unit(int order, std::mt19937_64& rng) {

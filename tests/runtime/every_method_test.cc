@@ -16,7 +16,7 @@
 #include "zhf/runtime/rotator.h"
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/runtime/table_io.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/runtime/zonal.h"
 #include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
@@ -27,7 +27,7 @@
 namespace zhf {
 namespace {
 
-using namespace runtime::tolerance;
+using namespace zhf::tolerance;
 
 struct Extreme {
   std::string name;

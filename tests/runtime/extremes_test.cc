@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "zhf/runtime/rotator.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
@@ -26,7 +26,7 @@ std::vector<float> to_float(const sh::RotationMatrix& m) {
 // 10^4 successive 0.01 rad rotations about random axes of one order-4 vector through the scalar
 // float kernel, against one rotation by the composed matrix in double (runtime/tolerances.h,
 // kFloatChain, has what the drift is and is not).
-constexpr double kChainTolerance = runtime::tolerance::kFloatChain;
+constexpr double kChainTolerance = zhf::tolerance::kFloatChain;
 
 TEST(Extremes, LongChainOfSmallRotationsInFloat) {
   constexpr int kOrder = 4, kSteps = 10000;
@@ -89,7 +89,7 @@ TEST(Extremes, HugeTinyAndZeroMagnitudesInFloat) {
       for (int i = 0; i < f.size(); ++i) in[i] = static_cast<float>(f[i] * scale);
       rotator.rotate(r.data(), in.data(), out.data());
       for (int i = 0; i < f.size(); ++i)
-        EXPECT_NEAR(out[i] / scale, g[i], runtime::tolerance::kFloatExtremeScale) << "order " << order << " scale " << scale << " index " << i;
+        EXPECT_NEAR(out[i] / scale, g[i], zhf::tolerance::kFloatExtremeScale) << "order " << order << " scale " << scale << " index " << i;
     }
     std::vector<float> zero(f.size(), 0.0f), out(f.size(), 1.0f);
     rotator.rotate(r.data(), zero.data(), out.data());
@@ -111,7 +111,7 @@ TEST(Extremes, RotationAcceptedAgreesWithValidate) {
     for (int i = 0; i < 3; ++i) changed[i] = -changed[i];  // a reflection
     matrices.push_back(changed);
     changed = r;
-    const double defect = runtime::tolerance::kRotationDefect * std::ldexp(1.0, k % 5 - 2);  // 1/4 to 4 times the tolerance
+    const double defect = zhf::tolerance::kRotationDefect * std::ldexp(1.0, k % 5 - 2);  // 1/4 to 4 times the tolerance
     changed[k % 9] += defect;
     matrices.push_back(changed);
     changed = r;
@@ -125,8 +125,8 @@ TEST(Extremes, RotationAcceptedAgreesWithValidate) {
   }
   for (std::size_t k = 0; k < matrices.size(); ++k)
     for (const runtime::Handedness h : {runtime::Handedness::kProper, runtime::Handedness::kEither}) {
-      const bool validated = runtime::validate_rotation(matrices[k].data(), runtime::tolerance::kRotationDefect, h).ok;
-      ASSERT_EQ(runtime::rotation_accepted(matrices[k].data(), runtime::tolerance::kRotationDefect, h), validated)
+      const bool validated = runtime::validate_rotation(matrices[k].data(), zhf::tolerance::kRotationDefect, h).ok;
+      ASSERT_EQ(runtime::rotation_accepted(matrices[k].data(), zhf::tolerance::kRotationDefect, h), validated)
           << "matrix " << k << (h == runtime::Handedness::kEither ? ", either handedness" : ", proper only");
     }
 }
@@ -141,14 +141,14 @@ TEST(Extremes, ValidateMeasuresTheDefectAndNearestRotationRepairs) {
     std::copy(r, r + 9, bent);
     bent[1] += defect;
     const runtime::RotationCheck check = runtime::validate_rotation(bent);
-    EXPECT_EQ(check.ok, defect < runtime::tolerance::kRotationDefect) << defect;
+    EXPECT_EQ(check.ok, defect < zhf::tolerance::kRotationDefect) << defect;
     EXPECT_GT(check.orthonormality, 0.5 * defect) << defect;
     if (!check.ok) {
       EXPECT_NE(check.message.find("not orthonormal"), std::string::npos) << check.message;
     }
     double fixed[9];
     ASSERT_TRUE(runtime::nearest_rotation(bent, fixed));
-    const runtime::RotationCheck repaired = runtime::validate_rotation(fixed, runtime::tolerance::kDouble);
+    const runtime::RotationCheck repaired = runtime::validate_rotation(fixed, zhf::tolerance::kDouble);
     EXPECT_TRUE(repaired.ok) << repaired.message;
   }
   double reflection[9];
@@ -156,7 +156,7 @@ TEST(Extremes, ValidateMeasuresTheDefectAndNearestRotationRepairs) {
   for (int j = 0; j < 3; ++j) reflection[j] = -reflection[j];
   const runtime::RotationCheck check = runtime::validate_rotation(reflection);
   EXPECT_FALSE(check.ok);
-  EXPECT_NEAR(check.determinant, -1.0, runtime::tolerance::kDouble);
+  EXPECT_NEAR(check.determinant, -1.0, zhf::tolerance::kDouble);
   EXPECT_NE(check.message.find("reflection"), std::string::npos);
   double nan_matrix[9];
   std::copy(r, r + 9, nan_matrix);
@@ -173,7 +173,7 @@ TEST(Extremes, OrdersOneAndTwoNeedNoLobes) {
   for (int i = 0; i < 9; ++i) r[i] = m(i / 3, i % 3);
   rotator.rotate(r, in, out);
   const Eigen::VectorXd g = sh::apply_band_matrices(sh::ivanic_ruedenberg(m, 2), Eigen::Map<Eigen::VectorXd>(in, 4));
-  for (int i = 0; i < 4; ++i) EXPECT_NEAR(out[i], g[i], runtime::tolerance::kExactToRounding) << "index " << i;
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(out[i], g[i], zhf::tolerance::kExactToRounding) << "index " << i;
   const sh::BandMatrices one = sh::ivanic_ruedenberg(m, 1);
   ASSERT_EQ(one.size(), 1u);
   EXPECT_EQ(one[0](0, 0), 1.0);

@@ -6,7 +6,7 @@
 
 #include "zhf/runtime/gaunt.h"
 #include "zhf/runtime/limits.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/slow_reference.h"
@@ -79,11 +79,11 @@ TEST(Gaunt, SymmetricAndBandZeroIsTheIdentity) {
   constexpr int kN = 36;
   for (int a = 0; a < kN; ++a)
     for (int b = 0; b < kN; ++b) {
-      EXPECT_NEAR(real_gaunt(0, a, b), a == b ? kInvSqrt4Pi : 0.0, runtime::tolerance::kGauntSymmetry) << "indices 0 " << a << " " << b;
+      EXPECT_NEAR(real_gaunt(0, a, b), a == b ? kInvSqrt4Pi : 0.0, zhf::tolerance::kGauntSymmetry) << "indices 0 " << a << " " << b;
       for (int c = 0; c < kN; ++c) {
         const double g = real_gaunt(a, b, c);
         ASSERT_EQ(g, real_gaunt(b, a, c)) << a << " " << b << " " << c;
-        ASSERT_NEAR(g, real_gaunt(c, b, a), runtime::tolerance::kGauntSymmetry) << a << " " << b << " " << c;
+        ASSERT_NEAR(g, real_gaunt(c, b, a), zhf::tolerance::kGauntSymmetry) << a << " " << b << " " << c;
       }
     }
 }

@@ -13,7 +13,7 @@
 #include "zhf/runtime/rotator.h"
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/runtime/table_io.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
@@ -26,9 +26,9 @@ constexpr int kTrials = 1000;
 // Kernels vs the Ivanic-Ruedenberg reference on unit-norm vectors: 1e-12 in double, 1e-6 in float
 // at every order (orders whose float model misses it run their lobe stage in double); at the worst
 // unit input, kernels whose lobe stage runs (partly) in float get kFloatLobeStageWorstUnitInput.
-constexpr double kDoubleTolerance = runtime::tolerance::kDouble;
-constexpr double kFloatTolerance = runtime::tolerance::kFloatRotation;
-constexpr double kFloatLobeStageWorstUnitVector = runtime::tolerance::kFloatLobeStageWorstUnitInput;
+constexpr double kDoubleTolerance = zhf::tolerance::kDouble;
+constexpr double kFloatTolerance = zhf::tolerance::kFloatRotation;
+constexpr double kFloatLobeStageWorstUnitVector = zhf::tolerance::kFloatLobeStageWorstUnitInput;
 // Variants that do the same arithmetic in another arrangement (RGB, batch) vs the scalar kernel
 // agree exactly where there is no FMA; where there is, the compiler contracts the vectorised batch
 // loop otherwise than the scalar kernel (aarch64: 1e-16 apart on unit inputs), so a few roundings
@@ -210,7 +210,7 @@ void check_eval() {
     std::vector<double> expected(N * N), got(N * N);
     runtime::eval_sh(N, d.data(), expected.data());
     Kernels<N>::template sh_eval<double>(d.data(), got.data());
-    for (int i = 0; i < N * N; ++i) EXPECT_NEAR(got[i], expected[i], runtime::tolerance::kGeneratedVsRecurrence) << "sh_eval order " << N << " index " << i;
+    for (int i = 0; i < N * N; ++i) EXPECT_NEAR(got[i], expected[i], zhf::tolerance::kGeneratedVsRecurrence) << "sh_eval order " << N << " index " << i;
   }
 }
 

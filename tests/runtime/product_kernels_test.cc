@@ -9,7 +9,7 @@
 
 #include "zhf/runtime/product.h"
 #include "zhf/runtime/sh_eval.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
@@ -18,8 +18,8 @@
 namespace zhf {
 namespace {
 
-using runtime::tolerance::kDouble;
-using runtime::tolerance::kFloatProduct;
+using zhf::tolerance::kDouble;
+using zhf::tolerance::kFloatProduct;
 
 // Unit-norm inputs: random ones, and truncated deltas (f = y(w) / |y(w)|: every coefficient in
 // phase at w, the largest values a unit vector reaches, the Gauss-Fourier kernels' worst case).
@@ -89,7 +89,7 @@ void check_shading() {
   constexpr int n = N * N;
   const auto inputs = unit_inputs(N, 80 + N);
   std::mt19937_64 rng(90 + N);
-  const double tolerance = N * runtime::tolerance::kFloatLobeStageWorstUnitInput;
+  const double tolerance = N * zhf::tolerance::kFloatLobeStageWorstUnitInput;
   for (size_t k = 0; k + 1 < inputs.size(); ++k) {
     const sh::RotationMatrix r = sh::random_rotation(rng);
     const Eigen::VectorXd light = Eigen::Map<const Eigen::VectorXd>(inputs[k].data(), n);

@@ -7,7 +7,7 @@
 
 #include "test_support.h"
 #include "zhf/runtime/sh_eval.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/slow_reference.h"
@@ -16,7 +16,7 @@
 namespace zhf::runtime {
 namespace {
 
-using namespace tolerance;
+using namespace zhf::tolerance;
 namespace slow = sh::slow;
 
 struct Angles {

@@ -18,7 +18,7 @@
 #include "zhf/runtime/lanes.h"
 #include "zhf/runtime/rotator.h"
 #include "zhf/runtime/table_io.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
@@ -52,11 +52,11 @@ TEST(ZxzxzOrders, EveryOrderToTheLimitMatchesTheReference) {
     for (const auto& [name, r] : rotations) {
       int at = 0;
       const double float_error = worst_error(rf, r, rng, at);
-      EXPECT_LE(float_error, runtime::tolerance::kRuntimeOrdersFloat)
+      EXPECT_LE(float_error, zhf::tolerance::kRuntimeOrdersFloat)
           << "float, order " << order << ", rotation '" << name << "', band " << runtime::band_of(at) << ", index " << at;
       const double double_error = worst_error(rd, r, rng, at);
-      EXPECT_LE(double_error, order <= runtime::kMaxDoubleAccurateZxzxzOrder ? runtime::tolerance::kDouble
-                                                                              : runtime::tolerance::kHighOrderZxzxzDouble)
+      EXPECT_LE(double_error, order <= runtime::kMaxDoubleAccurateZxzxzOrder ? zhf::tolerance::kDouble
+                                                                              : zhf::tolerance::kHighOrderZxzxzDouble)
           << "double, order " << order << ", rotation '" << name << "', band " << runtime::band_of(at) << ", index " << at;
       if (order == runtime::kMaxZxzxzOrder && name == "random 0")
         ::testing::Test::RecordProperty("float_error_order128", std::to_string(float_error));
@@ -74,7 +74,7 @@ void check_float_kernels(const runtime::KernelSet<float>& kernels, const std::st
   for (int k = 0; k < 200; ++k) rotations.push_back({"random " + std::to_string(k), sh::random_rotation(rng)});
   for (const auto& [name, r] : rotations) {
     int at = 0;
-    EXPECT_LE(worst_error(rotator, r, rng, at), runtime::tolerance::kFloatRotation)
+    EXPECT_LE(worst_error(rotator, r, rng, at), zhf::tolerance::kFloatRotation)
         << path << ", order " << N << ", rotation '" << name << "', band " << runtime::band_of(at) << ", index " << at;
   }
   // The worst unit input, at a few rotations of each kind, against the random-input target times
@@ -86,7 +86,7 @@ void check_float_kernels(const runtime::KernelSet<float>& kernels, const std::st
     int row = 0;
     const double e = sh::worst_unit_input_error<float>(
         sh::ivanic_ruedenberg(r, N), [&](const float* in, float* out) { rotator.rotate(rf.data(), in, out); }, &row);
-    EXPECT_LE(e, runtime::tolerance::kWorstUnitInputFactor * runtime::tolerance::kFloatRotation)
+    EXPECT_LE(e, zhf::tolerance::kWorstUnitInputFactor * zhf::tolerance::kFloatRotation)
         << path << ", order " << N << ", rotation '" << rotations[k].first << "', band " << runtime::band_of(row) << ", index "
         << row << ": worst unit input";
   }

@@ -4,14 +4,14 @@
 
 #include "zhf/runtime/limits.h"
 #include "zhf/runtime/sh_eval.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/legendre.h"
 #include "zhf/sh/slow_reference.h"
 
 namespace zhf::sh {
 namespace {
 
-constexpr double kRootResidualSlow = runtime::tolerance::kRootResidual;
+constexpr double kRootResidualSlow = zhf::tolerance::kRootResidual;
 using runtime::kMaxShOrder;
 
 TEST(LegendreRoots, CountIsLMinusMForAllUpTo64) {

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "zhf/runtime/sh_eval.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
@@ -15,9 +15,9 @@ namespace {
 
 using runtime::coefficient_count;
 using runtime::eval_sh;
-using runtime::tolerance::kExactToRounding;
-using runtime::tolerance::kPointwise;
-using runtime::tolerance::kReferenceAgreement;
+using zhf::tolerance::kExactToRounding;
+using zhf::tolerance::kPointwise;
+using zhf::tolerance::kReferenceAgreement;
 
 Eigen::VectorXd random_coefficients(int order, std::mt19937_64& rng) {
   sh::Normal<> normal(0, 1);

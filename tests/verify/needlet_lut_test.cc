@@ -11,7 +11,7 @@
 #include "test_support.h"
 #include "zhf/codegen/limits.h"
 #include "zhf/codegen/needlet_lut.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/verify/needlets.h"
 
 namespace zhf {
@@ -34,7 +34,7 @@ TEST(NeedletLut, EveryLanguageMatchesItsMirrorAndTablesConverge) {
       ASSERT_EQ(results.size(), codegen::needlet_lut_languages().size());
       for (const verify::NeedletLutResult& r : results) {
         EXPECT_TRUE(r.pass) << r.language << ", " << name << ", size " << size << ": " << r.vs_mirror << " " << r.error;
-        EXPECT_LE(r.vs_mirror, runtime::tolerance::kNeedletLutFloat) << r.language << ", " << name << ", size " << size;
+        EXPECT_LE(r.vs_mirror, zhf::tolerance::kNeedletLutFloat) << r.language << ", " << name << ", size " << size;
       }
       // The table error is the mirror's, the same for every language.
       EXPECT_LT(results.front().table_error, previous) << name << ", size " << size;

@@ -9,7 +9,7 @@
 
 #include "zhf/io/limits.h"
 #include "zhf/runtime/sh_eval.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 
 namespace zhf::verify {
 namespace {
@@ -22,13 +22,13 @@ using codegen::KernelKind;
 double ulp_distance(float a, float b) {
   if (a == b) return 0;
   if (!std::isfinite(a) || !std::isfinite(b)) return INFINITY;
-  const float scale = std::max({std::abs(a), std::abs(b), float(runtime::tolerance::kUlpFloor)});
+  const float scale = std::max({std::abs(a), std::abs(b), float(zhf::tolerance::kUlpFloor)});
   const double ulp = static_cast<double>(std::nextafter(scale, INFINITY)) - scale;
   return std::abs(static_cast<double>(a) - static_cast<double>(b)) / ulp;
 }
 
 double tolerance_for(const Mode& mode, const std::string& precision, int order, const Conditioning& c) {
-  using namespace runtime::tolerance;
+  using namespace zhf::tolerance;
   if (precision == "double") return kDouble;
   if (mode.kind == KernelKind::kShEval || mode.kind == KernelKind::kZonal) return kFloatEvaluation;
   if (mode.kind == KernelKind::kLobeWeights || mode.kind == KernelKind::kFromSamples) return kFloatSparse;
@@ -54,10 +54,10 @@ FunctionResult compare(const Inputs& in, const Conditioning& conditioning, const
   FunctionResult r;
   const bool sums = mode.kind == KernelKind::kProduct || mode.kind == KernelKind::kSquare || mode.kind == KernelKind::kShade ||
                     mode.kind == KernelKind::kShadeLobes;
-  r.ulp_limit = sums ? runtime::tolerance::kSumShaderUlps
+  r.ulp_limit = sums ? zhf::tolerance::kSumShaderUlps
                 : language == "hlsl" || mode.kind == KernelKind::kApplyMatrices
-                    ? runtime::tolerance::hlsl_ulps(in.order, conditioning.worst_condition)
-                    : runtime::tolerance::kGlslUlps;
+                    ? zhf::tolerance::hlsl_ulps(in.order, conditioning.worst_condition)
+                    : zhf::tolerance::kGlslUlps;
   r.order = in.order;
   r.language = language;
   r.precision = precision;
@@ -94,7 +94,7 @@ bool VerifyReport::pass() const {
 }
 
 nlohmann::ordered_json VerifyReport::to_json() const {
-  using namespace runtime::tolerance;
+  using namespace zhf::tolerance;
   nlohmann::ordered_json j;
   j["format"] = "zhf-verify-1";
   j["pass"] = pass();

@@ -8,7 +8,7 @@
 
 #include "../c_family_printer.h"
 #include "zhf/runtime/table_io.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 
 namespace zhf::codegen {
 namespace {
@@ -130,10 +130,10 @@ EmittedFile emit_lanes_tables(const Module& module, const EmitOptions& options) 
   derivation.push_back(amplification + ".");
   char model[160];
   std::snprintf(model, sizeof model, "Float error model eps_f (N - 1) a_max = %.2g; with margins %.2g (float) and %.3g",
-                lanes_float_error_model(table), runtime::tolerance::kLanesFloatMargin,
-                runtime::tolerance::kLanesLobesInDoubleMargin);
+                lanes_float_error_model(table), zhf::tolerance::kLanesFloatMargin,
+                zhf::tolerance::kLanesLobesInDoubleMargin);
   derivation.push_back(model);
-  derivation.push_back(std::string("(") + runtime::lobe_stage_name(runtime::LobeStage::kDoubleRotation) + ") against the " + runtime::format_number(runtime::tolerance::kFloatRotation) + " target, the lobe stage is " +
+  derivation.push_back(std::string("(") + runtime::lobe_stage_name(runtime::LobeStage::kDoubleRotation) + ") against the " + runtime::format_number(zhf::tolerance::kFloatRotation) + " target, the lobe stage is " +
                        runtime::lobe_stage_name(module.lobe_stage) + ".");
   out << commented(derivation);
   out << "template <int N>\nstruct LanesTables;\ntemplate <>\nstruct LanesTables<" << n << "> {\n";

@@ -313,7 +313,7 @@ std::vector<std::uint32_t> compile_spirv(const ShaderDialect& dialect, const std
   }
   if (!io::run_process({"spirv-val", spirv}, dir + "/validate.log").ok())
     throw RunFailure("spirv-val failed: " + io::log_excerpt(dir + "/validate.log", 3));
-  const std::string bytes = io::read_text_file(spirv, std::size_t(1) << 30);
+  const std::string bytes = io::read_text_file(spirv, kMaxSpirvBytes);
   std::vector<std::uint32_t> words(bytes.size() / 4);
   std::memcpy(words.data(), bytes.data(), words.size() * 4);
   return words;

@@ -24,4 +24,12 @@ inline constexpr std::size_t kMaxTabulatedValues = std::size_t(1) << 27;
 // A search's local phase gets at least this much of a time limit (seconds).
 inline constexpr double kMinSearchSeconds = 1e-3;
 
+// zhf optimize's search: GA population, generations, stalls (GA and local search), continuous
+// starts and the time limit in seconds (generous; the bounds keep counts in an int).
+inline constexpr int kMinPopulation = 4, kMaxPopulation = 1000000;
+inline constexpr int kMaxGenerations = 100000000;
+inline constexpr int kMaxStall = 1000000;
+inline constexpr int kMaxSearchStarts = 1000000;
+inline constexpr double kMaxSearchTimeLimit = 1e7;
+
 }  // namespace zhf::candidates

@@ -32,4 +32,9 @@ inline constexpr std::size_t kMaxManifestBytes = std::size_t(4) << 20;
 inline constexpr std::size_t kMaxManifestFiles = 4096;
 inline constexpr std::size_t kMaxManifestFunctions = 256;
 
+// An emitted file already at the target, read to compare before it is replaced (the largest
+// generated header is a few megabytes); a function's operation counts in a manifest.
+inline constexpr std::size_t kMaxEmittedFileBytes = std::size_t(1) << 30;
+inline constexpr long long kMaxFunctionOps = 1LL << 30;
+
 }  // namespace zhf::codegen

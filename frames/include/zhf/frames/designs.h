@@ -9,7 +9,7 @@
 // directions, on the residual's coordinates in an orthonormal basis of those harmonics.
 //
 // Accuracy: a design is accepted when its residual, max_{l,m} |sum_i y_l^m(x_i)| / M, is at most
-// runtime::tolerance::kDesignResidual (1e-14). Cost per start: O(M t^2) per energy evaluation and gradient, O(M^3) per
+// zhf::tolerance::kDesignResidual (1e-14). Cost per start: O(M t^2) per energy evaluation and gradient, O(M^3) per
 // Levenberg-Marquardt step (M ~ t^2 / 2; for orbits O(M t^2 / |G| + M t^3 / |G|^2 + (M / |G|)^3),
 // and the basis once, O(|G| t^3) for the band matrices and O(t^4) for their eigenvectors).
 #pragma once
@@ -21,7 +21,7 @@
 #include <vector>
 #include "zhf/frames/limits.h"
 #include "zhf/runtime/limits.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 
 namespace zhf::frames {
 

@@ -16,7 +16,7 @@
 
 #include "zhf/frames/designs.h"
 #include "zhf/frames/limits.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 
 namespace zhf::frames {
 
@@ -26,8 +26,8 @@ struct FrameBounds {
   int directions = 0;       // M
   int dimension = 0;        // D
   double lower = 0, upper = 0;  // A, B
-  bool frame() const { return lower > runtime::tolerance::kSpanning * upper; }
-  bool tight() const { return upper > 0 && (upper - lower) <= runtime::tolerance::kTightFrame * upper; }
+  bool frame() const { return lower > zhf::tolerance::kSpanning * upper; }
+  bool tight() const { return upper > 0 && (upper - lower) <= zhf::tolerance::kTightFrame * upper; }
   bool parseval() const;
   double redundancy() const { return double(directions) / dimension; }
   double condition() const;  // sqrt(B / A); infinite when not a frame

@@ -42,4 +42,7 @@ inline constexpr int kMaxMexicanOrder = 8;
 // zhf needlets prt: vertices per side of the ground grid (64^2 = 4096 vertices: about 80 s here).
 inline constexpr int kMaxPrtSide = 64;
 
+// zhf needlets prt --kept: coefficient counts per vertex, each at most the frame's size.
+inline constexpr int kMaxPrtKeptCounts = 16;
+
 }  // namespace zhf::frames

@@ -43,7 +43,7 @@ double spline_step(double u);
 double window_value(const Window& w, double x);
 
 // The levels j (any integer) at which band l's window is not negligible: b > 0 for the compact
-// windows, b^2 above runtime::tolerance::kWindowNegligible of the sum's for the Mexican one.
+// windows, b^2 above zhf::tolerance::kWindowNegligible of the sum's for the Mexican one.
 struct LevelRange {
   int first, last;
 };

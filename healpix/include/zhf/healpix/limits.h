@@ -18,4 +18,7 @@ inline constexpr std::size_t kMaxHealpixHeaderBytes = std::size_t(1) << 20;
 // Jacobi steps of a map's analysis (healpy's iter; 3 is its default and usually enough).
 inline constexpr int kMaxHealpixIterations = 20;
 
+// The FITS standard's ranges: NAXIS and TFIELDS up to 999, BITPIX +-8..64.
+inline constexpr long long kMaxFitsAxes = 999, kMaxFitsFields = 999, kMaxFitsBitpix = 64;
+
 }  // namespace zhf::healpix

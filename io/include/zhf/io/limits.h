@@ -36,4 +36,7 @@ inline constexpr long long kMaxHdrPixels = 1LL << 25;
 // temporaries and ends it (work that polls stops well within this).
 inline constexpr int kInterruptGraceSeconds = 3;
 
+// An output bound for a FIFO or device, read back from its temporary to be written through.
+inline constexpr std::size_t kMaxPassThroughBytes = std::size_t(1) << 40;
+
 }  // namespace zhf::io

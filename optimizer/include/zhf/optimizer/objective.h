@@ -12,7 +12,7 @@
 #include "zhf/candidates/candidates.h"
 #include "zhf/candidates/limits.h"
 #include "zhf/runtime/lobe_table.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 
 namespace zhf::optimizer {
 

@@ -14,14 +14,17 @@
 #include <utility>
 #include <vector>
 
+#include "zhf/runtime/limits.h"
+
 namespace zhf::runtime {
 
 // Below this many vectors a batch runs on the calling thread.
 inline constexpr std::size_t kParallelBatchThreshold = 4096;
 
-// A thread-count option: 0 means all cores.
+// A thread-count option: 0 means all cores; never more than kMaxThreads.
 inline int worker_count(int threads) {
-  return threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int asked = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  return std::min(asked, kMaxThreads);
 }
 
 // Calls work(i) for i in [0, count) on `workers` threads, each taking the next index; results must

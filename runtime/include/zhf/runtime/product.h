@@ -16,7 +16,8 @@
 //                               (one slot), stored once like C^D: int = sum T_ijk x_i y_j w_k
 //   product projected to order N: h = P_N(f g), h_c = sum_ab G_abc f_a g_b.
 // Either Y may be a Y_R in every line. Accuracy: double rounding of sums of at most N^4 terms
-// (within kProductAgainstIntegration of numerical integration, tests/runtime/product_test.cc).
+// (within kProductAgainstIntegration of numerical integration, tests/runtime/product_test.cc);
+// in float within kFloatProduct.
 #pragma once
 
 #include <cstddef>

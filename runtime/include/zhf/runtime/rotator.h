@@ -12,12 +12,16 @@
 // Where the kernels come from:
 //   Rotator<T>::of<N>()                   the generated kernels of order N (include zhf_orderN.h);
 //   Rotator<T>::with(gen::fastest_kernels<T>(order))
-//                                         any generated order at run time, on the fastest verified
-//                                         path for the instruction set compiled for (zhf_kernels.h);
+//                                         any generated order (kMinGeneratedOrder..kMaxGeneratedOrder)
+//                                         at run time, on the fastest verified path for the
+//                                         instruction set compiled for (zhf_kernels.h);
 //   Rotator<T>::from_table(table)         any order up to 32 from a lobe table: below
 //                                         kZxzxzFromOrder the lobes (table_rotation.h), from it zxzxz
 //                                         (zxzxz_rotation.h), the faster by measurement;
 //   Rotator<T>::zxzxz(order)              any order up to 128, no table (zxzxz_rotation.h).
+// Accuracy: double within tolerance::kDouble (zxzxz above kMaxDoubleAccurateZxzxzOrder:
+// kHighOrderZxzxzDouble); float generated kernels within kFloatRotation on
+// random unit inputs, the run-time orders (from_table, zxzxz) within kRuntimeOrdersFloat.
 // Both run float orders kBandRowsMinOrder..kBandRowsMaxOrder through the band rows (band_rows.h:
 // zxzxz across AVX2 lanes), and order 2 through its bands 0 and 1 in one register, in builds that
 // have them.

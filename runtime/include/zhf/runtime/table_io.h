@@ -68,10 +68,12 @@ inline LobeTable parse_lobe_table(std::string_view text, const std::string& sour
     table.lobes.push_back(std::move(t));
   }
   const std::vector<json::Field> bands = top.member("bands").items(std::max(0, table.order - 2));
+  long long stored = 0;  // entries of the stored inverses: the bound of the zero and entry counts
   for (std::size_t b = 0; b < bands.size(); ++b) {
     const json::Field& band = bands[b];
     band.allow_only({"l", "lobes", "inverse", "zeros", "condition"});
     const int size = band_size(int(b) + 2);
+    stored += static_cast<long long>(size) * size;
     TableBand t;
     t.l = band.member("l").integer(2, kMaxTableOrder - 1);
     for (const json::Field& index : band.member("lobes").items(size)) t.lobes.push_back(index.integer(0, lobe_total - 1));
@@ -85,8 +87,8 @@ inline LobeTable parse_lobe_table(std::string_view text, const std::string& sour
     t.condition = band.member("condition").number();
     table.bands.push_back(std::move(t));
   }
-  table.zeros = top.member("zeros").integer(0, 1 << 30);
-  table.entries = top.member("entries").integer(0, 1 << 30);
+  table.zeros = static_cast<int>(top.member("zeros").integer(0LL, stored));
+  table.entries = static_cast<int>(top.member("entries").integer(0LL, stored));
   const json::Field provenance = top.member("provenance");
   provenance.expect(json::Value::Kind::kObject);
   table.provenance = json::compact_text(provenance.value());

@@ -25,7 +25,8 @@
 // 32, double to 16), and scatters the group back.
 //
 // Convention as Rotator. Accuracy: X to ~1e-15 (the recurrence), T's rounding over two band
-// products and three turns: float below 1e-6 on unit inputs at order 32 (tested). Cost per call:
+// products and three turns: float within tolerance::zxzxz_float(order) (4 N eps_f), below 1e-6 on
+// unit inputs at order 32 (tested). Cost per call:
 // 2 sum_l h ceil(4h/lanes) pack multiply-adds (h = l/2 + 1 quads), 6 sum_l ceil(4h/lanes) pack
 // operations for the turns, three quad angle additions per quad of the largest band for their
 // factors, one square root; no allocation.

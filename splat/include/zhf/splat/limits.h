@@ -24,4 +24,8 @@ inline constexpr int kMaxGlbObjects = 1 << 16;
 // zhf splat --scale: a factor in [kMinSplatScale, kMaxSplatScale].
 inline constexpr double kMinSplatScale = 1e-30, kMaxSplatScale = 1e30;
 
+// A .glb's extensionsRequired; a buffer view's byteStride (the glTF specification's range).
+inline constexpr int kMaxGltfRequiredExtensions = 64;
+inline constexpr long long kMinGltfByteStride = 4, kMaxGltfByteStride = 252;
+
 }  // namespace zhf::splat

@@ -17,4 +17,7 @@ inline constexpr int kMaxVerifyRotations = 1000000;
 // before it is stopped and the order reported as failed.
 inline constexpr double kShaderCompileSeconds = 300;
 
+// A shader's SPIR-V read back from its compiler (an order-8 kernel's is about a megabyte).
+inline constexpr std::size_t kMaxSpirvBytes = std::size_t(1) << 30;
+
 }  // namespace zhf::verify
