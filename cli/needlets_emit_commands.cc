@@ -12,12 +12,13 @@
 #include "commands.h"
 #include "needlets.h"
 #include "options.h"
+#include "progress.h"
 #include "zhf/frames/limits.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/io/signals.h"
 #include "zhf/pipeline/project.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/verify/needlets.h"
 
 namespace zhf::cli {
@@ -65,11 +66,17 @@ int run_needlet_verify(const NeedletOptions& o) {
   }
   v.compiler = o.compiler;
   v.naga_wasm = pipeline::project().naga_wasm();
+  Progress progress("needlets verify", o.quiet, o.verbose);
+  v.checkpoint = [&progress](std::size_t done, std::size_t languages) {
+    io::throw_if_interrupted();
+    progress.update(double(done), double(languages), "languages compiled and run");
+  };
   std::unique_ptr<io::PendingFile> out;
   if (!o.out.empty()) out = std::make_unique<io::PendingFile>(o.out);
   const frames::NeedletFrame frame = needlet_frame(dilation, lmax, o.gauss);
   const std::vector<verify::NeedletLutResult> results = verify::verify_needlet_lut(frame, lut, v);
   io::throw_if_interrupted();
+  progress.done();
   std::printf("needlet frame B = %g, bands 0..%d, %d coefficients; %d-entry tables, %s\n", dilation, lmax, frame.size(), lut.table_size,
               o.interpolation.c_str());
   std::printf("%-6s %14s %14s  %s\n", "lang", "vs mirror", "table error", "result");
@@ -89,7 +96,7 @@ int run_needlet_verify(const NeedletOptions& o) {
                                                     {"lmax", lmax},
                                                     {"size", lut.table_size},
                                                     {"interpolation", o.interpolation},
-                                                    {"tolerance", runtime::tolerance::kNeedletLutFloat},
+                                                    {"tolerance", zhf::tolerance::kNeedletLutFloat},
                                                     {"results", rows}}));
     out->commit();
   }

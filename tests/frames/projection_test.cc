@@ -12,12 +12,12 @@
 #include "zhf/frames/projection.h"
 #include "zhf/io/hdr.h"
 #include "zhf/runtime/sh_eval.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 
 namespace zhf::frames {
 namespace {
 
-using runtime::tolerance::kExactProjection;
+using zhf::tolerance::kExactProjection;
 
 TEST(Projection, ExactCubaturesProjectBandLimitedFunctionsExactly) {
   const std::string designs = std::string(ZHF_SOURCE_DIR) + "/generated/designs";
@@ -40,7 +40,7 @@ TEST(Projection, CapCoefficientsMatchAOneDimensionalIntegral) {
     constexpr int kSteps = 100000;
     double sum = 0;
     for (int i = 0; i < kSteps; ++i) sum += runtime::legendre_q<double>(l, 0, edge + (1 - edge) * (i + 0.5) / kSteps);
-    EXPECT_NEAR(exact[runtime::index(l, 0)], 2 * runtime::kPi * sum * (1 - edge) / kSteps, runtime::tolerance::kCapCoefficientMidpoint) << "band " << l;
+    EXPECT_NEAR(exact[runtime::index(l, 0)], 2 * runtime::kPi * sum * (1 - edge) / kSteps, zhf::tolerance::kCapCoefficientMidpoint) << "band " << l;
     for (int m = 1; m <= l; ++m) EXPECT_EQ(exact[runtime::index(l, m)], 0.0) << "band " << l << ", m " << m;
   }
 }
@@ -51,12 +51,34 @@ TEST(Projection, EqualAngleGridsHaveExactSolidAnglesAndConverge) {
     const Cubature grid = equirectangular_nodes(2 * height, height);
     double total = 0;
     for (double w : grid.weights) total += w;
-    EXPECT_NEAR(total, 4 * runtime::kPi, runtime::tolerance::kDouble) << "height " << height;
+    EXPECT_NEAR(total, 4 * runtime::kPi, zhf::tolerance::kDouble) << "height " << height;
     const double error = projection_error(grid, 8).band_limited;
     EXPECT_LT(error, previous / 4) << "height " << height;  // midpoint in theta: ~h^2
     previous = error;
   }
   EXPECT_THROW(project_samples(equirectangular_nodes(4, 2), std::vector<double>(3), 1, 2), std::invalid_argument);
+}
+
+TEST(Projection, TheSumIsTheSameOnAnyThreadCountAndTheCheckpointSeesEverySample) {
+  // 128 x 64 pixels: two blocks of samples; 7 threads: more workers than blocks.
+  const Cubature grid = equirectangular_nodes(128, 64);
+  std::vector<double> values;
+  for (const Point& p : grid.points) values.insert(values.end(), {test_function(TestFunction::kBandLimited, p), p[2]});
+  std::vector<std::size_t> seen;
+  const auto one = project_samples(grid, values, 2, 8, 1, [&](std::size_t done, std::size_t samples) {
+    EXPECT_EQ(samples, grid.points.size());
+    seen.push_back(done);
+  });
+  EXPECT_EQ(seen.back(), grid.points.size());
+  EXPECT_EQ(seen.size(), 1u) << "one worker sums both blocks in one round";
+  for (int threads : {2, 3, 7}) EXPECT_EQ(project_samples(grid, values, 2, 8, threads), one) << threads << " threads";
+  // Against a plain sum over the samples: the blocks only regroup it.
+  std::vector<double> y(64), plain(64, 0.0);
+  for (std::size_t k = 0; k < grid.points.size(); ++k) {
+    runtime::eval_sh(8, grid.points[k].data(), y.data());
+    for (int i = 0; i < 64; ++i) plain[i] += grid.weights[k] * values[2 * k] * y[i];
+  }
+  for (int i = 0; i < 64; ++i) EXPECT_NEAR(one[0][i], plain[i], kExactProjection) << "index " << i;
 }
 
 TEST(Projection, ARadianceImageBecomesRgbCoefficients) {
@@ -75,10 +97,10 @@ TEST(Projection, ARadianceImageBecomesRgbCoefficients) {
   const double scale[3] = {1.0, 0.5, 2.0};
   for (int c = 0; c < 3; ++c) {
     // A constant: only y_0^0, with weight 4 pi / sqrt(4 pi); odd bands and m != 0 vanish by symmetry.
-    EXPECT_NEAR(j[0][c][0].get<double>(), scale[c] * std::sqrt(4 * runtime::kPi), runtime::tolerance::kFloatProjection) << "channel " << c;
+    EXPECT_NEAR(j[0][c][0].get<double>(), scale[c] * std::sqrt(4 * runtime::kPi), zhf::tolerance::kFloatProjection) << "channel " << c;
     for (int i = 1; i < 9; ++i) {
       if (i == runtime::index(2, 0)) continue;  // the grid's midpoint rule in theta leaves y_2^0 a little
-      EXPECT_NEAR(j[0][c][i].get<double>(), 0.0, runtime::tolerance::kFloatProjection) << "channel " << c << ", index " << i;
+      EXPECT_NEAR(j[0][c][i].get<double>(), 0.0, zhf::tolerance::kFloatProjection) << "channel " << c << ", index " << i;
     }
   }
   test::write_text(path, io::encode_hdr(image) + "x");

@@ -17,7 +17,7 @@
 #include "zhf/io/process.h"
 #include "zhf/runtime/limits.h"
 #include "zhf/runtime/sh_eval.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 
 namespace zhf::verify {
 namespace {
@@ -206,6 +206,7 @@ std::vector<NeedletLutResult> verify_needlet_lut(const frames::NeedletFrame& fra
   std::string no_device;
   std::vector<NeedletLutResult> results;
   for (Language language : options.languages) {
+    if (options.checkpoint) options.checkpoint(results.size(), options.languages.size());
     NeedletLutResult r;
     r.language = codegen::language_name(language);
     r.table_error = table_error;
@@ -226,12 +227,13 @@ std::vector<NeedletLutResult> verify_needlet_lut(const frames::NeedletFrame& fra
         const double error = std::abs(got[i] - c.mirror[i]) / magnitude;
         r.vs_mirror = std::isfinite(error) ? std::max(r.vs_mirror, error) : INFINITY;
       }
-      r.pass = r.vs_mirror <= runtime::tolerance::kNeedletLutFloat;
+      r.pass = r.vs_mirror <= zhf::tolerance::kNeedletLutFloat;
     } catch (const RunFailure& e) {
       r.error = e.what();
     }
     results.push_back(r);
   }
+  if (options.checkpoint) options.checkpoint(results.size(), options.languages.size());
   return results;
 }
 

@@ -13,6 +13,9 @@
 #include <string>
 #include <vector>
 
+#include <cstddef>
+#include <functional>
+
 #include "zhf/frames/cubature.h"
 #include "zhf/frames/limits.h"
 
@@ -21,8 +24,14 @@ namespace zhf::frames {
 
 // values: channels per node, node-major (values[k * channels + c]). Returns channels vectors of
 // N^2 coefficients. Throws std::invalid_argument for an order outside 1..frames::kMaxProjectionOrder or
-// values of the wrong length.
-std::vector<std::vector<double>> project_samples(const Cubature& nodes, const std::vector<double>& values, int channels, int order);
+// values of the wrong length. The samples are summed in fixed blocks on `threads` (0: all cores),
+// each block in sample order and the blocks in block order: the result is the same on any thread
+// count. checkpoint(samples done, samples) (which may throw) runs on the calling thread between
+// rounds of blocks, a fraction of a second apart. Cost: one SH evaluation and channels N^2
+// multiply-adds per sample.
+std::vector<std::vector<double>> project_samples(const Cubature& nodes, const std::vector<double>& values, int channels, int order,
+                                                 int threads = 1,
+                                                 const std::function<void(std::size_t, std::size_t)>& checkpoint = {});
 
 // The W x H equirectangular grid's pixel centres and solid angles (degree 0: not an exact rule).
 Cubature equirectangular_nodes(int width, int height);
@@ -41,6 +50,6 @@ struct ProjectionError {
   int samples = 0;
   double band_limited = 0, cap = 0;
 };
-ProjectionError projection_error(const Cubature& nodes, int order);
+ProjectionError projection_error(const Cubature& nodes, int order, int threads = 1);
 
 }  // namespace zhf::frames

@@ -5,13 +5,15 @@
 // tables' own error.
 #pragma once
 
+#include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "zhf/codegen/backend.h"
 #include "zhf/codegen/needlet_lut.h"
 #include "zhf/frames/needlets.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 
 namespace zhf::verify {
 
@@ -31,6 +33,8 @@ struct NeedletLutVerify {
   int directions = 512;
   std::string compiler;   // as for zhf verify
   std::string naga_wasm;  // the naga-wasm package directory (WGSL), as for zhf verify
+  // Called before each language and at the end (languages done, languages; it may throw).
+  std::function<void(std::size_t, std::size_t)> checkpoint;
 };
 
 // Shader languages are reported as failed with the reason when no Vulkan device can run them.
