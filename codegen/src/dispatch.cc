@@ -105,30 +105,25 @@ std::string list(const std::vector<int>& values) {
 
 }  // namespace
 
-EmittedFile emit_dispatch_header(const std::vector<int>& orders, const std::vector<int>& lanes_orders,
-                                 const std::vector<PathTable>& tables, const std::string& command) {
+EmittedFile emit_paths_header(const std::vector<int>& orders, const std::vector<int>& lanes_orders, const std::vector<PathTable>& tables,
+                              const std::string& command) {
   std::ostringstream out;
-  out << banner(command, {}) << "//   (none: dispatch only)\n";
-  out << "// Every generated order (" << list(orders) << ") reachable at run time, and the fastest verified\n"
-      << "// rotation path of each for the instruction set this header is compiled for.\n";
-  out << "#pragma once\n\n#include <stdexcept>\n#include <string>\n#include <type_traits>\n\n";
+  out << banner(command, {}) << "//   (none: the path choice only)\n";
+  out << "// The fastest verified rotation path of each generated order (" << list(orders) << ")\n"
+      << "// for the instruction set this header is compiled for, and the kernels and rotator of one order\n"
+      << "// on it. Include it with the orders you use (zhf_orderN.h); zhf_kernels.h includes it with\n"
+      << "// every order.\n";
+  out << "#pragma once\n\n#include <type_traits>\n\n";
   out << "#include \"zhf/runtime/band_rows.h\"\n#include \"zhf/runtime/lanes.h\"\n#include \"zhf/runtime/rotator.h\"\n";
-  for (int n : orders) out << "#include \"zhf_order" << n << ".h\"\n";
+  out << "// The lanes path's tables: constants only, a few kilobytes an order.\n";
   for (int n : lanes_orders) out << "#include \"zhf_lanes_order" << n << ".h\"\n";
   out << "\nnamespace zhf::gen {\n\n";
-  out << "// Calls f(std::integral_constant<int, N>{}) for the generated order N equal to order; throws\n"
-      << "// std::invalid_argument for any other order.\n"
-      << "template <class F>\ndecltype(auto) with_order(int order, F&& f) {\n  switch (order) {\n";
-  for (int n : orders) out << "    case " << n << ": return f(std::integral_constant<int, " << n << ">{});\n";
-  out << "    default: break;\n  }\n"
-      << "  throw std::invalid_argument(\"zhf: order \" + std::to_string(order) + \" has no generated kernels (" << list(orders)
-      << ")\");\n}\n\n";
   out << "// Whether order N has lanes tables (zhf_lanes_orderN.h).\n"
       << "template <int N>\ninline constexpr bool kHasLanes = false;\n";
   for (int n : lanes_orders) out << "template <>\ninline constexpr bool kHasLanes<" << n << "> = true;\n";
   out << "\n" << path_choice(tables);
-  out << "// The fastest verified rotation path of generated order N. One branch is instantiated per order\n"
-      << "// and type: only the kernels chosen are compiled.\n"
+  out << "// The fastest verified rotation path of generated order N (its zhf_orderN.h included). One\n"
+      << "// branch is instantiated per order and type: only the kernels chosen are compiled.\n"
       << "template <int N, class T>\nruntime::KernelSet<T> fastest_kernels() {\n"
       << "  constexpr Path path = fastest_path<T>(N);\n"
       << "  if constexpr (path == Path::kBands01) {\n"
@@ -140,8 +135,31 @@ EmittedFile emit_dispatch_header(const std::vector<int>& orders, const std::vect
       << "  } else {\n"
       << "    return runtime::scalar_kernels<N, T>();\n"
       << "  }\n}\n\n";
-  out << "// The same for an order chosen at run time: every generated order's kernels are compiled (throws\n"
-      << "// for any other order).\n"
+  out << "// A rotator of generated order N on that path.\n"
+      << "template <int N, class T>\nruntime::Rotator<T> fastest_rotator() {\n"
+      << "  return runtime::Rotator<T>::with(fastest_kernels<N, T>());\n}\n\n";
+  out << "}  // namespace zhf::gen\n";
+  return {"zhf_paths.h", out.str(), {}};
+}
+
+EmittedFile emit_dispatch_header(const std::vector<int>& orders, const std::string& command) {
+  std::ostringstream out;
+  out << banner(command, {}) << "//   (none: dispatch only)\n";
+  out << "// Every generated order (" << list(orders) << ") reachable at run time, on the fastest verified\n"
+      << "// rotation path of each for the instruction set this header is compiled for (zhf_paths.h).\n";
+  out << "#pragma once\n\n#include <stdexcept>\n#include <string>\n#include <type_traits>\n\n";
+  for (int n : orders) out << "#include \"zhf_order" << n << ".h\"\n";
+  out << "#include \"zhf_paths.h\"\n";
+  out << "\nnamespace zhf::gen {\n\n";
+  out << "// Calls f(std::integral_constant<int, N>{}) for the generated order N equal to order; throws\n"
+      << "// std::invalid_argument for any other order.\n"
+      << "template <class F>\ndecltype(auto) with_order(int order, F&& f) {\n  switch (order) {\n";
+  for (int n : orders) out << "    case " << n << ": return f(std::integral_constant<int, " << n << ">{});\n";
+  out << "    default: break;\n  }\n"
+      << "  throw std::invalid_argument(\"zhf: order \" + std::to_string(order) + \" has no generated kernels (" << list(orders)
+      << ")\");\n}\n\n";
+  out << "// fastest_kernels<N, T>() for an order chosen at run time: every generated order's kernels are\n"
+      << "// compiled (throws for any other order).\n"
       << "template <class T>\nruntime::KernelSet<T> fastest_kernels(int order) {\n"
       << "  return with_order(order, [](auto n) { return fastest_kernels<decltype(n)::value, T>(); });\n}\n\n";
   out << "// The fastest rotator of any order 1..runtime::kMaxZxzxzOrder for the instruction set this header\n"

@@ -247,9 +247,10 @@ GenerateResult generate(const GenerateOptions& options) {
   }
   if (full_tree && wants_cpp) {
     const std::vector<PathTable> tables = read_path_tables(options.paths_dir, options.orders, lanes_orders);
-    const EmittedFile dispatch = emit_dispatch_header(options.orders, lanes_orders, tables, options.command);
-    tree.add("cpp/" + dispatch.file_name, dispatch.text,
-             code_entry(FileKind::kDispatch, Language::kCpp, 0, FilePrecision::kTemplate, nullptr, dispatch, nullptr));
+    for (const EmittedFile& header : {emit_paths_header(options.orders, lanes_orders, tables, options.command),
+                                      emit_dispatch_header(options.orders, options.command)})
+      tree.add("cpp/" + header.file_name, header.text,
+               code_entry(FileKind::kDispatch, Language::kCpp, 0, FilePrecision::kTemplate, nullptr, header, nullptr));
   }
   tree.files.emplace_back("manifest.json", io::json_text(manifest_json(tree.manifest)));
   commit(options.out_dir, tree, options.stop, result.interrupted);

@@ -1,6 +1,21 @@
 // Any order on one instruction-set path (isa_unit.h): the generated orders through their units
 // (isa_order.cc), zxzxz beyond them; and the members of the path's backend, compiled here once.
 #include "isa_unit.h"
+#include "zhf_kernels.h"
+
+namespace zhf::dispatch_unit {
+namespace {
+
+// Any order: the generated orders through their own units, zxzxz elsewhere (order 1 included).
+template <class T>
+std::unique_ptr<api::Backend<T>> any_order(int order) {
+  if (order >= runtime::kMinGeneratedOrder && order <= runtime::kMaxGeneratedOrder)
+    return gen::with_order(order, [](auto n) { return api::make_generated<kIsa, decltype(n)::value, T>(); });
+  return std::make_unique<IsaBackend<T>>(runtime::Rotator<T>::zxzxz(order));
+}
+
+}  // namespace
+}  // namespace zhf::dispatch_unit
 
 template <>
 std::unique_ptr<zhf_dispatch_api::Backend<float>> zhf_dispatch_api::make_backend<zhf::dispatch_unit::kIsa, float>(int order) {

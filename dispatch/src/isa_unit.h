@@ -34,7 +34,7 @@
 #include "zhf/runtime/orthogonal.h"
 #include "zhf/runtime/parallel.h"
 #include "zhf/runtime/rotator.h"
-#include "zhf_kernels.h"
+#include "zhf_paths.h"
 
 namespace zhf::dispatch_unit {
 
@@ -81,18 +81,11 @@ class IsaBackend final : public api::Backend<T> {
 extern template class IsaBackend<float>;
 extern template class IsaBackend<double>;
 
-// The fastest kernels of generated order N (zhf_kernels.h's choice for this instruction set).
+// The fastest kernels of generated order N (zhf_paths.h's choice for this instruction set; the
+// unit includes zhf_orderN.h).
 template <int N, class T>
 std::unique_ptr<api::Backend<T>> generated() {
   return std::make_unique<IsaBackend<T>>(runtime::Rotator<T>::with(gen::fastest_kernels<N, T>()));
-}
-
-// Any order: the generated orders through their own units, zxzxz elsewhere (order 1 included).
-template <class T>
-std::unique_ptr<api::Backend<T>> any_order(int order) {
-  if (order >= 2 && order <= runtime::kMaxGeneratedOrder)
-    return gen::with_order(order, [](auto n) { return api::make_generated<kIsa, decltype(n)::value, T>(); });
-  return std::make_unique<IsaBackend<T>>(runtime::Rotator<T>::zxzxz(order));
 }
 
 }  // namespace zhf::dispatch_unit

@@ -2,17 +2,14 @@
 // Do not edit: change the generator or the lobe table and run `zhf generate`.
 // Operations per call (multiplies, adds; a vector operation counts once):
 //   (none: dispatch only)
-// Every generated order (2, 3, 4, 5, 6, 7, 8) reachable at run time, and the fastest verified
-// rotation path of each for the instruction set this header is compiled for.
+// Every generated order (2, 3, 4, 5, 6, 7, 8) reachable at run time, on the fastest verified
+// rotation path of each for the instruction set this header is compiled for (zhf_paths.h).
 #pragma once
 
 #include <stdexcept>
 #include <string>
 #include <type_traits>
 
-#include "zhf/runtime/band_rows.h"
-#include "zhf/runtime/lanes.h"
-#include "zhf/runtime/rotator.h"
 #include "zhf_order2.h"
 #include "zhf_order3.h"
 #include "zhf_order4.h"
@@ -20,12 +17,7 @@
 #include "zhf_order6.h"
 #include "zhf_order7.h"
 #include "zhf_order8.h"
-#include "zhf_lanes_order3.h"
-#include "zhf_lanes_order4.h"
-#include "zhf_lanes_order5.h"
-#include "zhf_lanes_order6.h"
-#include "zhf_lanes_order7.h"
-#include "zhf_lanes_order8.h"
+#include "zhf_paths.h"
 
 namespace zhf::gen {
 
@@ -46,136 +38,8 @@ decltype(auto) with_order(int order, F&& f) {
   throw std::invalid_argument("zhf: order " + std::to_string(order) + " has no generated kernels (2, 3, 4, 5, 6, 7, 8)");
 }
 
-// Whether order N has lanes tables (zhf_lanes_orderN.h).
-template <int N>
-inline constexpr bool kHasLanes = false;
-template <>
-inline constexpr bool kHasLanes<3> = true;
-template <>
-inline constexpr bool kHasLanes<4> = true;
-template <>
-inline constexpr bool kHasLanes<5> = true;
-template <>
-inline constexpr bool kHasLanes<6> = true;
-template <>
-inline constexpr bool kHasLanes<7> = true;
-template <>
-inline constexpr bool kHasLanes<8> = true;
-
-// The rotation path of each generated order, by instruction set, from the measured tables in
-// generated/paths (bench/path_bench.cc writes them, zhf generate turns them into what follows); a
-// build whose instruction set has no table follows the one below it whose kernels it runs, or,
-// with none, the scalar kernels.
-enum class Path { kScalar, kLanes, kBandRows, kBands01 };
-
-// The name KernelSet::path gives a path.
-constexpr const char* path_name(Path path) {
-  return path == Path::kLanes ? "lanes" : path == Path::kBandRows ? "band_rows" : path == Path::kBands01 ? "bands01" : "scalar";
-}
-
-#if defined(__AVX512F__) && ZHF_RUNTIME_AVX2_FMA
-inline constexpr char kBuildIsa[] = "avx512";
-// avx512: no table of its own; avx2's, generated/paths/avx2.json, measured on
-// AMD EPYC, g++ 12.2.0 -O3 -march=x86-64-v3, 2026-11-29, 1024 rotations, best of 101.
-// The fastest path, with each path's ns per rotation, float; double:
-//   order 2: bands01 (scalar 2.83, bands01 2.36); scalar (scalar 3.12)
-//   order 3: scalar (scalar 9.95, lanes 11.3); scalar (scalar 9.97, lanes 25.5)
-//   order 4: lanes (scalar 41.3, lanes 21, band_rows 28.5); lanes (scalar 44.6, lanes 41.9)
-//   order 5: band_rows (scalar 58, lanes 76.6, band_rows 41.5); scalar (scalar 60.5, lanes 107)
-//   order 6: band_rows (scalar 82, lanes 125, band_rows 54.2); scalar (scalar 88.4, lanes 187)
-//   order 7: band_rows (scalar 120, lanes 287, band_rows 61.9); scalar (scalar 126, lanes 307)
-//   order 8: band_rows (scalar 150, lanes 303, band_rows 78.7); scalar (scalar 177, lanes 419)
-template <class T>
-constexpr Path fastest_path(int order) {
-  [[maybe_unused]] constexpr bool is_float = std::is_same_v<T, float>, is_double = std::is_same_v<T, double>;
-  switch (order) {
-    case 2: return is_float ? Path::kBands01 : Path::kScalar;
-    case 4: return is_float || is_double ? Path::kLanes : Path::kScalar;
-    case 5: return is_float ? Path::kBandRows : Path::kScalar;
-    case 6: return is_float ? Path::kBandRows : Path::kScalar;
-    case 7: return is_float ? Path::kBandRows : Path::kScalar;
-    case 8: return is_float ? Path::kBandRows : Path::kScalar;
-    default: return Path::kScalar;
-  }
-}
-#elif ZHF_RUNTIME_AVX2_FMA
-inline constexpr char kBuildIsa[] = "avx2";
-// avx2: generated/paths/avx2.json, measured on
-// AMD EPYC, g++ 12.2.0 -O3 -march=x86-64-v3, 2026-11-29, 1024 rotations, best of 101.
-// The fastest path, with each path's ns per rotation, float; double:
-//   order 2: bands01 (scalar 2.83, bands01 2.36); scalar (scalar 3.12)
-//   order 3: scalar (scalar 9.95, lanes 11.3); scalar (scalar 9.97, lanes 25.5)
-//   order 4: lanes (scalar 41.3, lanes 21, band_rows 28.5); lanes (scalar 44.6, lanes 41.9)
-//   order 5: band_rows (scalar 58, lanes 76.6, band_rows 41.5); scalar (scalar 60.5, lanes 107)
-//   order 6: band_rows (scalar 82, lanes 125, band_rows 54.2); scalar (scalar 88.4, lanes 187)
-//   order 7: band_rows (scalar 120, lanes 287, band_rows 61.9); scalar (scalar 126, lanes 307)
-//   order 8: band_rows (scalar 150, lanes 303, band_rows 78.7); scalar (scalar 177, lanes 419)
-template <class T>
-constexpr Path fastest_path(int order) {
-  [[maybe_unused]] constexpr bool is_float = std::is_same_v<T, float>, is_double = std::is_same_v<T, double>;
-  switch (order) {
-    case 2: return is_float ? Path::kBands01 : Path::kScalar;
-    case 4: return is_float || is_double ? Path::kLanes : Path::kScalar;
-    case 5: return is_float ? Path::kBandRows : Path::kScalar;
-    case 6: return is_float ? Path::kBandRows : Path::kScalar;
-    case 7: return is_float ? Path::kBandRows : Path::kScalar;
-    case 8: return is_float ? Path::kBandRows : Path::kScalar;
-    default: return Path::kScalar;
-  }
-}
-#elif defined(__x86_64__) || defined(_M_X64)
-inline constexpr char kBuildIsa[] = "sse2";
-// sse2: generated/paths/sse2.json, measured on
-// AMD EPYC, g++ 12.2.0 -O3, 2026-11-29, 1024 rotations, best of 101.
-// The fastest path, with each path's ns per rotation, float; double:
-//   order 2: scalar (scalar 3.01); scalar (scalar 2.92)
-//   order 3: scalar (scalar 13.7, lanes 23.2); scalar (scalar 9.47, lanes 26.8)
-//   order 4: lanes (scalar 38.1, lanes 36.5); scalar (scalar 43.6, lanes 62.5)
-//   order 5: scalar (scalar 65.4, lanes 112); scalar (scalar 69.8, lanes 177)
-//   order 6: scalar (scalar 105, lanes 171); scalar (scalar 113, lanes 307)
-//   order 7: scalar (scalar 161, lanes 426); scalar (scalar 165, lanes 456)
-//   order 8: scalar (scalar 166, lanes 605); scalar (scalar 266, lanes 717)
-template <class T>
-constexpr Path fastest_path(int order) {
-  [[maybe_unused]] constexpr bool is_float = std::is_same_v<T, float>, is_double = std::is_same_v<T, double>;
-  switch (order) {
-    case 4: return is_float ? Path::kLanes : Path::kScalar;
-    default: return Path::kScalar;
-  }
-}
-#elif defined(__aarch64__)
-inline constexpr char kBuildIsa[] = "neon";
-// neon: no table measured; the scalar kernels.
-template <class T>
-constexpr Path fastest_path(int) {
-  return Path::kScalar;
-}
-#else
-inline constexpr char kBuildIsa[] = "generic";
-template <class T>
-constexpr Path fastest_path(int) {
-  return Path::kScalar;
-}
-#endif
-
-// The fastest verified rotation path of generated order N. One branch is instantiated per order
-// and type: only the kernels chosen are compiled.
-template <int N, class T>
-runtime::KernelSet<T> fastest_kernels() {
-  constexpr Path path = fastest_path<T>(N);
-  if constexpr (path == Path::kBands01) {
-    return runtime::bands01_kernels();
-  } else if constexpr (path == Path::kBandRows) {
-    return runtime::band_rows_kernels<N>();
-  } else if constexpr (path == Path::kLanes) {
-    return runtime::lanes_kernels<N, T>();
-  } else {
-    return runtime::scalar_kernels<N, T>();
-  }
-}
-
-// The same for an order chosen at run time: every generated order's kernels are compiled (throws
-// for any other order).
+// fastest_kernels<N, T>() for an order chosen at run time: every generated order's kernels are
+// compiled (throws for any other order).
 template <class T>
 runtime::KernelSet<T> fastest_kernels(int order) {
   return with_order(order, [](auto n) { return fastest_kernels<decltype(n)::value, T>(); });

@@ -320,7 +320,7 @@ TEST(PathTables, RefusedInOneLineNamingFileAndField) {
   test::write_text(file, table("sse2", scalar, order3));
   test::write_text((fs::path(dir) / "avx2.json").string(),
                    table("avx2", R"({"fastest": "bands01", "ns": {"scalar": 2, "bands01": 1}})", order3));
-  const std::string header = emit_dispatch_header(orders, {}, read_path_tables(dir, orders, {}), "test").text;
+  const std::string header = emit_paths_header(orders, {}, read_path_tables(dir, orders, {}), "test").text;
   EXPECT_NE(header.find("// avx512: no table of its own; avx2's, generated/paths/avx2.json"), std::string::npos) << header;
   EXPECT_NE(header.find("case 2: return is_float ? Path::kBands01 : Path::kScalar;"), std::string::npos) << header;
   EXPECT_NE(header.find("// neon: no table measured; the scalar kernels."), std::string::npos) << header;

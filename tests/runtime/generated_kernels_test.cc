@@ -256,12 +256,14 @@ void check_worst_unit_vectors() {
   }
 }
 
-// The Rotator on the fastest path zhf_kernels.h picks (its measured table for this build's
-// instruction set), held to the same targets.
+// The Rotator on the fastest path zhf_paths.h picks (its measured table for this build's
+// instruction set), held to the same targets; fastest_rotator<N, T>() and the run-time
+// fastest_rotator<T>(order) of zhf_kernels.h are the same rotator.
 template <int N>
 void check_fastest_path() {
-  const auto rotator = runtime::Rotator<float>::with(gen::fastest_kernels<N, float>());
+  const auto rotator = gen::fastest_rotator<N, float>();
   EXPECT_EQ(rotator.path(), gen::path_name(gen::fastest_path<float>(N))) << "order " << N << ", table of " << gen::kBuildIsa;
+  EXPECT_EQ(gen::fastest_rotator<float>(N).path(), rotator.path()) << "order " << N;
   double worst = 0;
   for (const Case& c : cases(N, 200, 600 + N)) {
     const auto r = to<float>(c.r);

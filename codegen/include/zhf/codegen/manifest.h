@@ -9,7 +9,7 @@
 //               "functions": [{"name": "rotate_order3", "kind": "rotate", "channels": 1,
 //                              "multiplies": 70, "adds": 65}, ...],
 //               "fnv1a64": "..."}, ...]}
-// kind: kernels, lanes-tables (the constants of runtime/lanes.h), dispatch (zhf_kernels.h), or
+// kind: kernels, lanes-tables (the constants of runtime/lanes.h), dispatch (zhf_paths.h, zhf_kernels.h), or
 // lobe-table (lobes/*.json: only path, kind, order and fnv1a64).
 // precision: template (C++), float or double (shaders).
 // Every file zhf wrote is listed with its hash: generate replaces a file only when it is listed
