@@ -83,6 +83,7 @@ void add_needlets_command(CLI::App& app, Action& action, const std::string& comm
   tc->add_option("--sizes", t->sizes, "Table sizes, e.g. 64,256,1024 (" + kTableSizeRange + "; default 64,256,1024,4096,16384)");
   tc->add_flag("--gauss", t->gauss, "Gauss product cubatures at every level instead of the shipped designs");
   keep_old_spelling(tc, tc->add_option("--out", t->out, "Write the tables here (zhf-needlet-tables-1)"), "--json", t->out);
+  add_progress_flags(tc, t->quiet, t->verbose);
   tc->callback([t, &action] { action = [t] { return run_needlet_tables(*t); }; });
   auto pr = std::make_shared<NeedletOptions>();
   CLI::App* pc = nc->add_subcommand("profile", "One level's needlet against the SH delta of its top band: energy and side lobes outside caps");

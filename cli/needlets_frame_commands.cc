@@ -12,6 +12,7 @@
 #include "commands.h"
 #include "needlets.h"
 #include "options.h"
+#include "progress.h"
 #include "zhf/frames/limits.h"
 #include "zhf/frames/needlet_studies.h"
 #include "zhf/frames/windows.h"
@@ -88,7 +89,13 @@ int run_needlet_tables(const NeedletOptions& o) {
                       {"cubature", level.cubature.name}});
   }
   const char* const how_names[] = {"linear", "quadratic"};
-  const frames::TableStudy study = frames::needlet_table_study(frame, sizes, io::throw_if_interrupted);
+  Progress progress("needlets tables", o.quiet, o.verbose);
+  std::size_t rotations = 0;  // two a size: linear and quadratic
+  const frames::TableStudy study = frames::needlet_table_study(frame, sizes, [&] {
+    io::throw_if_interrupted();
+    progress.update(double(++rotations), 2.0 * double(sizes.size()), "tabulated rotations");
+  });
+  progress.done();
 
   // Kernel tables: the worst level's error relative to its peak.
   nlohmann::ordered_json kernel_rows = nlohmann::ordered_json::array();

@@ -26,8 +26,8 @@ struct TableStudy {
   double exact_seconds = 0;  // the exact path's rotation of the same signal
   std::vector<TableSizeErrors> sizes;
 };
-// poll() is called between sizes (an interrupt check may throw from it). Cost: per size, one table
-// per level and one tabulated rotation.
+// poll() is called after each tabulated rotation, two per size (an interrupt check may throw from
+// it). Cost: per size and interpolation, one table per level and one tabulated rotation.
 TableStudy needlet_table_study(const NeedletFrame& frame, const std::vector<int>& sizes, const std::function<void()>& poll);
 
 // The frame bounds of a window over bands 1..lmax: the least and the greatest sum over the levels
