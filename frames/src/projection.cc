@@ -47,8 +47,9 @@ std::vector<std::vector<double>> project_samples(const Cubature& nodes, const st
   const std::size_t blocks = (samples + kProjectionBlock - 1) / kProjectionBlock;
   const int workers = runtime::worker_count(threads);
   const runtime::TabulatedLegendreCoefficients legendre_coefficients(order);
-  // One round sums 2 blocks per worker into their own slots; the slots are added in block order.
-  std::vector<std::vector<double>> block_sums(std::min(blocks, std::size_t(2) * workers), std::vector<double>(channels * n));
+  // One round sums a block per worker into its own slot (channels N^2 doubles: a transfer projection
+  // of thousands of channels holds one a worker); the slots are added in block order.
+  std::vector<std::vector<double>> block_sums(std::min(blocks, std::size_t(workers)), std::vector<double>(channels * n));
   std::vector<std::vector<double>> out(channels, std::vector<double>(n, 0.0));
   for (std::size_t first = 0; first < blocks; first += block_sums.size()) {
     const std::size_t round = std::min(block_sums.size(), blocks - first);
