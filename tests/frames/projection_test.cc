@@ -102,6 +102,20 @@ TEST(Projection, ARadianceImageBecomesRgbCoefficients) {
       EXPECT_NEAR(j[0][c][i].get<double>(), 0.0, zhf::tolerance::kFloatProjection) << "channel " << c << ", index " << i;
     }
   }
+  // 256 x 128 pixels: 8 blocks of samples; the file is the same bytes on 1 and 3 threads.
+  image.width = 256;
+  image.height = 128;
+  image.rgb.clear();
+  for (int i = 0; i < image.width * image.height; ++i) image.rgb.insert(image.rgb.end(), {float(i % 7), 0.5f, float(i % 3)});
+  test::write_text(path, io::encode_hdr(image));
+  std::string bytes[2];
+  for (int threads : {1, 3}) {
+    const test::RunResult run = test::run_zhf("project --image '" + path + "' --order 6 --threads " + std::to_string(threads) + " --out '" + out + "'");
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    bytes[threads == 3] = test::read_text(out);
+  }
+  EXPECT_EQ(bytes[0], bytes[1]);
+  EXPECT_EQ(test::run_zhf("project --image '" + path + "' --threads 257 --out '" + out + "'").exit_code, 2);
   test::write_text(path, io::encode_hdr(image) + "x");
   const test::RunResult bad = test::run_zhf("project --image '" + path + "' --order 3 --out '" + out + "'");
   EXPECT_EQ(bad.exit_code, 3);
