@@ -25,7 +25,7 @@ struct VerifyCommandOptions {
   std::string work_dir;
   std::string compiler;
   bool quiet = false, verbose = false;
-  std::string rotations = "1000";
+  std::string rotations = "1000", threads = "0";
 };
 
 std::string language_names() {
@@ -60,6 +60,7 @@ int run_verify_command(const VerifyCommandOptions& o) {
   options.runtime_include = project.runtime_include;
   options.naga_wasm = project.naga_wasm();
   options.compiler = o.compiler;
+  options.threads = threads_option(o.threads);
   Progress progress("verify", o.quiet, o.verbose);
   options.progress = [&](int done, int total, const std::string& what) { progress.update(done, total, what); };
   // Refuse an unwritable report before the work, not after it.
@@ -91,8 +92,8 @@ void add_verify_command(CLI::App& app, Action& action) {
   c->add_option("--langs", o->languages, "Languages, comma separated (default: every language, " + language_names() + ")");
   keep_old_spelling(c, c->add_option("--out", o->out, "Write the report as JSON here"), "--json", o->out);
   c->add_option("--compiler", o->compiler, "C++ compiler and leading arguments (default $CXX, else c++)");
-  c->add_flag("--quiet", o->quiet, "No progress line");
-  c->add_flag("--verbose", o->verbose, "A progress line per step also when stderr is not a terminal");
+  add_threads_option(c, o->threads);
+  add_progress_flags(c, o->quiet, o->verbose);
   c->add_option("--work-dir", o->work_dir, "Keep the harnesses, shaders and logs here (default: a private temp dir, removed)");
   c->add_option("--rotations", o->rotations, "Random rotations besides the fixed extreme set, 1.." + std::to_string(verify::kMaxVerifyRotations) + " (default 1000)");
   c->callback([o, &action] { action = [o] { return run_verify_command(*o); }; });

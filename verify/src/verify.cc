@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <exception>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -22,6 +23,7 @@
 #include "zhf/io/errors.h"
 #include "zhf/io/private_dir.h"
 #include "zhf/io/signals.h"
+#include "zhf/runtime/parallel.h"
 #include "zhf/runtime/table_io.h"
 
 namespace zhf::verify {
@@ -143,72 +145,134 @@ VerifyReport run_verify(const VerifyOptions& options) {
   std::vector<codegen::Language> languages = languages_wanted;
   std::stable_partition(languages.begin(), languages.end(), [](codegen::Language l) { return l == codegen::Language::kCpp; });
   const int steps = static_cast<int>(orders.size() * languages.size());
-  int step = 0;
-  for (int order : orders) {
-    const std::string o = "order " + std::to_string(order);
+
+  // Each order's inputs, reference table and files, read in order; an order the manifest lacks is
+  // reported where its turn comes.
+  struct OrderWork {
+    int order = 0;
+    std::string missing;  // the error line of an order the manifest lacks
+    std::optional<runtime::LobeTable> table;
+    std::optional<Inputs> in;
+    bool has_lanes = false;
+    const ManifestFile* cpp_file = nullptr;
+  };
+  std::vector<OrderWork> work_of(orders.size());
+  for (std::size_t k = 0; k < orders.size(); ++k) {
+    OrderWork& w = work_of[k];
+    w.order = orders[k];
     const ManifestFile* any = nullptr;
     for (codegen::Language language : codegen::all_languages())
-      if (!any) any = manifest.kernels(order, language);
+      if (!any) any = manifest.kernels(w.order, language);
     if (!any) {
-      report.errors.push_back(o + ": not in " + (generated / "manifest.json").string());
+      w.missing = "order " + std::to_string(w.order) + ": not in " + (generated / "manifest.json").string();
       continue;
     }
-    const runtime::LobeTable table =
-        order == 2 ? runtime::lobe_free_table()
-                   : runtime::read_lobe_table(runtime::table_path((generated / "lobes").string(), order), order);
-    const Inputs in = make_inputs(order, options.rotations, table, any->zero_bands);
-    const bool has_lanes = std::any_of(manifest.files.begin(), manifest.files.end(), [&](const ManifestFile& f) {
-      return f.kind == codegen::FileKind::kLanesTables && f.order == order;
+    w.table = w.order == 2 ? runtime::lobe_free_table()
+                           : runtime::read_lobe_table(runtime::table_path((generated / "lobes").string(), w.order), w.order);
+    w.in = make_inputs(w.order, options.rotations, *w.table, any->zero_bands);
+    w.has_lanes = std::any_of(manifest.files.begin(), manifest.files.end(), [&](const ManifestFile& f) {
+      return f.kind == codegen::FileKind::kLanesTables && f.order == w.order;
     });
+    w.cpp_file = manifest.kernels(w.order, codegen::Language::kCpp);
+  }
+
+  // One language's run of one order: its request, and its outputs or why it did not run.
+  struct LanguageRun {
+    bool skipped = true;  // nothing of this language to run at this order
+    RunRequest request;
+    RunOutputs outputs;
+    std::string error;
+  };
+  const auto run_language = [&](const OrderWork& w, codegen::Language language) {
+    LanguageRun run;
+    const ManifestFile* file = manifest.kernels(w.order, language);
+    if (!file || file->precision == codegen::FilePrecision::kDouble) return run;  // shaders are run in float
+    const std::string name = codegen::language_name(language);
+    const std::unique_ptr<Runner> runner = make_runner(language);
+    if (runner->needs_vulkan() && !device) return run;
+    run.skipped = false;
+    if (runner->needs_vulkan() && file->lobe_stage != runtime::LobeStage::kFloat && !device->float64()) {
+      run.error = file->path + " runs its lobe stage in double and " + device->description() +
+                  " lacks shaderFloat64; emit it with --lobe-stage float for such devices";
+      return run;
+    }
+    RunRequest& request = run.request;
+    request.order = w.order;
+    request.kernel_file = (generated / file->path).string();
+    request.runtime_include = options.runtime_include;
+    request.naga_wasm = options.naga_wasm;
+    request.inputs = &*w.in;
+    for (const Mode& mode : modes_of(*file))
+      if (runner->runs(mode)) request.modes.push_back(mode);
+    if (w.has_lanes && language == codegen::Language::kCpp && w.order >= 3)
+      request.modes.push_back({KernelKind::kRotate, 1, "rotate_lanes_order" + std::to_string(w.order), true});
+    if (request.modes.empty()) {
+      run.skipped = true;
+      return run;
+    }
+    request.work_dir = work.sub("order_" + std::to_string(w.order) + "/" + name);
+    request.device = device.get();
+    request.compiler = compiler_argv(options.compiler);
+    try {
+      run.outputs = runner->run(request);
+    } catch (const RunFailure& e) {
+      run.error = e.what();
+    }
+    return run;
+  };
+
+  // The C++ files of every order first, on options.threads (a compiler and a program each; the
+  // shaders share one Vulkan device and run after, one at a time). What each run gives is kept by
+  // order, so the report is the same on any thread count.
+  std::vector<LanguageRun> cpp_runs(orders.size());
+  const bool wants_cpp = std::find(languages.begin(), languages.end(), codegen::Language::kCpp) != languages.end();
+  if (wants_cpp) {
+    if (options.progress) options.progress(0, steps, "C++ kernel files (" + std::to_string(orders.size()) + " orders)");
+    std::vector<std::exception_ptr> failures(orders.size());
+    runtime::parallel_for(static_cast<int>(orders.size()), runtime::worker_count(options.threads), [&](int k) {
+      try {
+        if (work_of[k].missing.empty()) cpp_runs[k] = run_language(work_of[k], codegen::Language::kCpp);
+      } catch (...) {
+        failures[k] = std::current_exception();
+      }
+    });
+    for (const std::exception_ptr& failure : failures)
+      if (failure) std::rethrow_exception(failure);
+  }
+
+  int step = 0;
+  for (std::size_t k = 0; k < orders.size(); ++k) {
+    const OrderWork& w = work_of[k];
+    if (!w.missing.empty()) {
+      report.errors.push_back(w.missing);
+      continue;
+    }
+    const std::string o = "order " + std::to_string(w.order);
     std::map<std::string, std::vector<double>> cpp_float;  // by function name
     // Shaders are held to the C++ float kernel in ulps only where both run the lobe stage alike
     // (a WGSL file runs it in float where the C++ one may use double).
-    const ManifestFile* cpp_file = manifest.kernels(order, codegen::Language::kCpp);
     for (codegen::Language language : languages) {
-      if (options.progress) options.progress(step, steps, "kernel files (order " + std::to_string(order) + ")");
+      const bool cpp = language == codegen::Language::kCpp;
+      if (options.progress && !cpp) options.progress(step, steps, "kernel files (order " + std::to_string(w.order) + ")");
       ++step;
-      const ManifestFile* file = manifest.kernels(order, language);
-      if (!file || file->precision == codegen::FilePrecision::kDouble) continue;  // shaders are run in float
+      const LanguageRun run = cpp ? std::move(cpp_runs[k]) : run_language(w, language);
+      if (run.skipped) continue;
       const std::string name = codegen::language_name(language);
       const std::string tag = o + ", " + name;
-      const std::unique_ptr<Runner> runner = make_runner(language);
-      if (runner->needs_vulkan() && !device) continue;
-      if (runner->needs_vulkan() && file->lobe_stage != runtime::LobeStage::kFloat && !device->float64()) {
-        report.errors.push_back(tag + ": " + file->path + " runs its lobe stage in double and " + device->description() +
-                                " lacks shaderFloat64; emit it with --lobe-stage float for such devices");
+      if (!run.error.empty()) {
+        report.errors.push_back(tag + ": " + run.error);
         continue;
       }
-      RunRequest request;
-      request.order = order;
-      request.kernel_file = (generated / file->path).string();
-      request.runtime_include = options.runtime_include;
-      request.naga_wasm = options.naga_wasm;
-      request.inputs = &in;
-      for (const Mode& mode : modes_of(*file))
-        if (runner->runs(mode)) request.modes.push_back(mode);
-      if (has_lanes && language == codegen::Language::kCpp && order >= 3)
-        request.modes.push_back({KernelKind::kRotate, 1, "rotate_lanes_order" + std::to_string(order), true});
-      if (request.modes.empty()) continue;
-      request.work_dir = work.sub("order_" + std::to_string(order) + "/" + name);
-      request.device = device.get();
-      request.compiler = compiler_argv(options.compiler);
-      const std::vector<std::vector<double>> expected = reference_outputs(in, table, request.modes);
-      RunOutputs outputs;
-      try {
-        outputs = runner->run(request);
-      } catch (const RunFailure& e) {
-        report.errors.push_back(tag + ": " + e.what());
-        continue;
-      }
-      const Conditioning conditioning{table.order > 2 ? table.worst_condition() : 1.0, file->lobe_stage};
-      for (size_t p = 0; p < outputs.precisions.size(); ++p)
-        for (size_t m = 0; m < request.modes.size(); ++m) {
-          const std::vector<double>& got = outputs.outputs[p][m];
-          const bool cpp = language == codegen::Language::kCpp;
-          if (cpp && outputs.precisions[p] == "float") cpp_float[request.modes[m].function] = got;
-          const auto reference = cpp_float.find(request.modes[m].function);
-          const bool comparable = !cpp && reference != cpp_float.end() && cpp_file && cpp_file->lobe_stage == file->lobe_stage;
-          report.results.push_back(compare(in, conditioning, request.modes[m], got, expected[m], name, outputs.precisions[p],
+      const ManifestFile* file = manifest.kernels(w.order, language);
+      const std::vector<std::vector<double>> expected = reference_outputs(*w.in, *w.table, run.request.modes);
+      const Conditioning conditioning{w.table->order > 2 ? w.table->worst_condition() : 1.0, file->lobe_stage};
+      for (size_t p = 0; p < run.outputs.precisions.size(); ++p)
+        for (size_t m = 0; m < run.request.modes.size(); ++m) {
+          const std::vector<double>& got = run.outputs.outputs[p][m];
+          if (cpp && run.outputs.precisions[p] == "float") cpp_float[run.request.modes[m].function] = got;
+          const auto reference = cpp_float.find(run.request.modes[m].function);
+          const bool comparable = !cpp && reference != cpp_float.end() && w.cpp_file && w.cpp_file->lobe_stage == file->lobe_stage;
+          report.results.push_back(compare(*w.in, conditioning, run.request.modes[m], got, expected[m], name, run.outputs.precisions[p],
                                            comparable ? &reference->second : nullptr));
         }
     }

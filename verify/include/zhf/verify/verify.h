@@ -25,7 +25,11 @@ struct VerifyOptions {
   std::string work_dir;        // kept scratch (made if missing); empty: a private temp dir, removed afterwards
   std::string runtime_include; // runtime/include, for the lanes kernels
   std::string naga_wasm;       // the naga-wasm package (WGSL to SPIR-V under Node), for WGSL
-  // Told before each order and language is run: how many of how many, and which.
+  // Threads for the C++ files (0: all cores): each order's compiler and program run beside the
+  // others; the report is the same on any count.
+  int threads = 1;
+  // Told on the calling thread before the C++ files and before each shader file: how many of how
+  // many steps, and which.
   std::function<void(int done, int total, const std::string& what)> progress;
 };
 
