@@ -47,7 +47,12 @@ int run_splat(const SplatOptions& o) {
   if (!convention)
     throw UsageError("--convention: '" + runtime::excerpt(o.convention) + "' is not one of " + runtime::convention_names());
   splat::Transform t;
-  if (!o.identity) t.r = transform_matrix(o.transform, o.quiet);
+  // No rotation given: a conversion (translate and scale still apply). --identity says so
+  // explicitly, and with a rotation it would drop it: refused.
+  if (transform_given(o.transform)) {
+    if (o.identity) throw UsageError("--identity: a rotation is given too; give one or the other");
+    t.r = transform_matrix(o.transform, o.quiet);
+  }
   t.scale = number_option("--scale", o.scale, splat::kMinSplatScale, splat::kMaxSplatScale);
   t.translation = translation(o.translate);
   t.convention = convention;
@@ -96,7 +101,7 @@ void add_splat_command(CLI::App& app, Action& action) {
   c->add_option("--spz-version", o->spz_version, "A .spz output's version: 4 (zstd, default) or 3 (gzip, for older readers)");
   c->add_option("--in-format", o->in_format, "The input's format, " + splat::file_format_names() + " (default: --in's extension and header, else ply)");
   add_transform_options(c, o->transform);
-  c->add_flag("--identity", o->identity, "No rotation (with --translate or --scale alone)");
+  c->add_flag("--identity", o->identity, "No rotation, the default when none is given (refused with one)");
   c->add_option("--translate", o->translate, "x y z: added after rotating and scaling");
   c->add_option("--scale", o->scale, "Uniform scale s > 0 (positions times s, log-scales plus log s); non-uniform is not a similarity");
   c->add_option("--convention", o->convention,

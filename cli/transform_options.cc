@@ -72,6 +72,11 @@ std::array<double, 9> transform_matrix(const TransformOptions& o, bool quiet) {
 }
 
 
+bool transform_given(const TransformOptions& o) {
+  return !o.matrix.empty() || !o.zyz.empty() || !o.axis_angle.empty() || !o.quat.empty() || !o.quat_xyzw.empty() ||
+         !o.euler.empty() || !o.euler_order.empty() || o.column_major || o.intrinsic || o.extrinsic || o.repair;
+}
+
 void add_transform_options(CLI::App* c, TransformOptions& o) {
   c->add_option("--matrix", o.matrix, "Rotation or reflection: 9 numbers, row-major (maps v to R v)");
   c->add_flag("--column-major", o.column_major, "--matrix lists its 9 numbers column by column");

@@ -22,5 +22,7 @@ void add_transform_options(CLI::App* command, TransformOptions& o);
 // Throws UsageError naming the option. Notes on stderr (a quaternion normalised, the nearest
 // rotation used) unless quiet.
 std::array<double, 9> transform_matrix(const TransformOptions& o, bool quiet = false);
+// Whether any of the options above was given (a rotation, or a word about one).
+bool transform_given(const TransformOptions& o);
 
 }  // namespace zhf::cli

@@ -235,6 +235,18 @@ TEST(Splat, TheIdentityRewritesABinaryFileByteForByte) {
   const test::RunResult run = test::run_zhf("splat --in '" + in + "' --out '" + out + "' --identity --quiet --threads 2");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(test::read_text(in), test::read_text(out));
+  // A plain conversion needs no --identity; --identity beside a rotation would drop it: refused,
+  // nothing written.
+  const std::string plain = (dir / "plain.ply").string();
+  const test::RunResult conversion = test::run_zhf("splat --in '" + in + "' --out '" + plain + "' --quiet");
+  ASSERT_EQ(conversion.exit_code, 0) << conversion.err;
+  EXPECT_EQ(test::read_text(in), test::read_text(plain));
+  const std::string dropped = (dir / "dropped.ply").string();
+  const test::RunResult both = test::run_zhf("splat --in '" + in + "' --out '" + dropped + "' --identity --zyz '0 1 0' --quiet");
+  EXPECT_EQ(both.exit_code, 2);
+  EXPECT_NE(both.err.find("--identity: a rotation is given too"), std::string::npos) << both.err;
+  EXPECT_FALSE(std::filesystem::exists(dropped));
+  EXPECT_EQ(test::run_zhf("splat --in '" + in + "' --out '" + dropped + "' --repair --quiet").exit_code, 2);  // a word about no rotation
 }
 
 TEST(Splat, MalformedScenesAreRefusedAndNothingIsWritten) {
@@ -274,7 +286,8 @@ TEST(Splat, MalformedScenesAreRefusedAndNothingIsWritten) {
            {"--zyz '1 2 3' --scale '1 2 3'", "--scale"},
            {"--zyz '1 2 3' --translate '1 2'", "--translate: expected 3 numbers, found 2"},
            {"--zyz '1 2 3' --convention nope", "--convention: 'nope' is not one of"},
-           {"", "give exactly one of --matrix"},
+           {"--repair", "give exactly one of --matrix"},  // a word about a rotation, without one
+           {"--identity --axis-angle '0 0 1 1'", "--identity: a rotation is given too"},
        }) {
     const test::RunResult run = test::run_zhf("splat --in '" + good + "' --out '" + (dir / "out.ply").string() + "' " + options);
     EXPECT_EQ(run.exit_code, 2) << options << ": " << run.err;
