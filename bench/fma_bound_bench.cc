@@ -26,8 +26,7 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
+#include "zhf/codegen/manifest.h"
 #include "zhf/dispatch/rotator.h"
 #include "zhf/sh/random.h"
 #include "zhf/sh/rotation_matrix.h"
@@ -57,18 +56,17 @@ struct Counts {
 };
 
 // rotate_orderN's counts from the manifest zhf generate writes.
-Counts generated_counts(const nlohmann::json& manifest, int order) {
+Counts generated_counts(const zhf::codegen::Manifest& manifest, int order) {
   const std::string name = "rotate_order" + std::to_string(order);
-  for (const auto& file : manifest.at("files"))
-    if (file.value("language", "") == "cpp" && file.value("kind", "") == "kernels")
-      for (const auto& f : file.value("functions", nlohmann::json::array()))
-        if (f.at("name") == name) return {f.at("multiplies").get<long>(), f.at("adds").get<long>()};
+  if (const zhf::codegen::ManifestFile* file = manifest.kernels(order, zhf::codegen::Language::kCpp))
+    for (const zhf::codegen::EmittedFunction& f : file->functions)
+      if (f.name == name) return {f.ops.multiplies, f.ops.adds};
   std::fprintf(stderr, "zhf_fma_bound_bench: generated/manifest.json has no %s\n", name.c_str());
   std::exit(1);
 }
 
 // Vector instructions of the bound for one rotation of the order.
-double bound_instructions(const nlohmann::json& manifest, int order, Width w) {
+double bound_instructions(const zhf::codegen::Manifest& manifest, int order, Width w) {
   if (order <= 8) {
     const Counts c = generated_counts(manifest, order);
     return double(w.fma ? std::max(c.multiplies, c.adds) : c.multiplies + c.adds) / w.lanes;
@@ -133,8 +131,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "zhf_fma_bound_bench: no clock rate: give --ghz\n");
     return 2;
   }
-  std::ifstream file(std::string(ZHF_SOURCE_DIR) + "/generated/manifest.json");
-  const nlohmann::json manifest = nlohmann::json::parse(file);
+  const zhf::codegen::Manifest manifest = zhf::codegen::read_manifest(std::string(ZHF_SOURCE_DIR) + "/generated/manifest.json");
   std::printf("clock %.2f GHz, two vector instructions per cycle; best of %d calls of rotate_batch, one thread\n", ghz, reps);
   const std::vector<Isa> supported = zhf::dispatch::supported_isas();
 #if defined(__x86_64__)

@@ -16,7 +16,7 @@
 #include "zhf/io/files.h"
 #include "zhf/io/limits.h"
 #include "zhf/io/signals.h"
-#include "zhf/runtime/json.h"
+#include "zhf/io/json.h"
 
 namespace zhf::cli {
 
@@ -73,17 +73,17 @@ int run_needlet_synthesize(const NeedletOptions& o) {
   if (ordering == healpix::HealpixOrdering::kNested && (nside & (nside - 1)) != 0)
     throw UsageError("--nside: " + std::to_string(nside) + " is not a power of two, as --ordering nested needs");
   io::PendingFile out(o.out);
-  const runtime::json::Value root = io::read_json_file(o.in, io::kMaxCoefficientBytes);
-  const runtime::json::Field top(root, o.in);
+  const io::json::Json root = io::json::read_file(o.in, io::kMaxCoefficientBytes);
+  const io::json::Field top(root, o.in);
   top.allow_only({"format", "B", "lmax", "nodes", "levels", "beta"});
-  const runtime::json::Field format = top.member("format");
+  const io::json::Field format = top.member("format");
   if (format.string() != kNeedletCoefficientsFormat) format.fail("'" + io::excerpt(format.string()) + "' is not " + kNeedletCoefficientsFormat);
   const double dilation = top.member("B").number(frames::kMinDilation, frames::kMaxDilation);
   const int lmax = top.member("lmax").integer(1, frames::kMaxNeedletFrameBand);
   const bool gauss = top.member("nodes").one_of({"design", "gauss"}) == "gauss";
   const frames::NeedletFrame frame = needlet_frame(dilation, lmax, gauss);
   std::vector<double> beta;
-  for (const runtime::json::Field& b : top.member("beta").items(frame.size())) beta.push_back(b.number());
+  for (const io::json::Field& b : top.member("beta").items(frame.size())) beta.push_back(b.number());
   const std::vector<double> ring = healpix::synthesize_map(nside, frame.synthesize(beta), io::throw_if_interrupted);
   out.write(healpix::encode_healpix_map(healpix::map_from_ring(nside, ring, ordering)));
   out.commit();

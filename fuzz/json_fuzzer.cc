@@ -1,4 +1,4 @@
-// The one JSON reader (runtime/json.h) on arbitrary bytes: it may refuse, never crash or run
+// The runtime's JSON reader (runtime/json.h) on arbitrary bytes: it may refuse, never crash or run
 // past its limits; every message is one line.
 #include <cstddef>
 #include <cstdint>

@@ -9,7 +9,7 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {
-    const zhf::runtime::json::Value root = zhf::runtime::json::parse(std::string(reinterpret_cast<const char*>(data), size), "fuzz.json");
+    const zhf::io::json::Json root = zhf::io::json::parse(std::string(reinterpret_cast<const char*>(data), size), "fuzz.json");
     for (const zhf::codegen::ManifestFile& f : zhf::codegen::parse_manifest(root, "fuzz.json").files)
       if (f.path.empty() || f.path[0] == '/' || f.path.find("..") != std::string::npos) std::abort();
   } catch (const zhf::runtime::InputError&) {

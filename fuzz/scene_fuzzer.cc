@@ -12,7 +12,7 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {
-    const zhf::runtime::json::Value json = zhf::runtime::json::parse(std::string(reinterpret_cast<const char*>(data), size), "fuzz.json");
+    const zhf::io::json::Json json = zhf::io::json::parse(std::string(reinterpret_cast<const char*>(data), size), "fuzz.json");
     const zhf::codegen::Scene scene = zhf::codegen::parse_scene(json, "fuzz.json");
     for (const auto& [order, options] : scene.module_options()) {
       if (order < zhf::runtime::kMinGeneratedOrder || order > zhf::codegen::kMaxEmitOrder) std::abort();

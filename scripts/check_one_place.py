@@ -27,8 +27,9 @@ Each rule names its home; a finding prints file:line and the rule, and the exit 
 - Enum names: an enumeration's names are written once, in its runtime::EnumName table
   (runtime/enum_names.h), which gives its names, parsing and choices; no switch returns a name
   per case.
-- JSON values: runtime::json::Value lives in the readers only (runtime/json.h and the files that
-  read JSON); nothing keeps one in a data type or builds one.
+- JSON reading: the tools parse JSON in io/src/json.cc only (io::json::parse, nlohmann-json with
+  zhf's checks); the runtime's own parser (runtime::json) serves the runtime's lobe-table reader,
+  its fuzzer and its tests only.
 """
 import os
 import re
@@ -81,9 +82,10 @@ CHECKED_READ = re.compile(r"\b(integer_option|orders_option|integer|items|read_t
 LITERAL_BOUND = re.compile(r"(?<![\w.])(\d{3,}|[2-9]\d|1[7-9])(?![\w.])|<<")
 HELP_RANGE = re.compile(r'add_(option|flag|subcommand)\(.*"[^"]*\b\d+\.\.\d{2,}')
 NAME_SWITCH = re.compile(r'case [\w:]+:\s*return "[a-z][\w -]*";')
-JSON_VALUE = re.compile(r"json::Value\b")
-JSON_READERS = ("runtime/include/zhf/runtime/", "io/", "codegen/", "frames/src/", "python/src/", "cli/",
-                "tests/", "fuzz/", "verify/src/", "splat/src/", "bench/src/")
+JSON_PARSE = re.compile(r"\b(nlohmann::(ordered_)?json|Json)::parse\b")
+JSON_PARSER = "io/src/json.cc"
+RUNTIME_JSON = re.compile(r"runtime::json::|zhf/runtime/json\.h")
+RUNTIME_JSON_USERS = ("runtime/include/zhf/runtime/", "fuzz/json_fuzzer.cc", "tests/")
 
 
 def check(path, findings):
@@ -118,8 +120,10 @@ def check(path, findings):
             findings.append(f"{where}: pi written out; use runtime::kPi or kPiLong ({SH_EVAL})")
         if cpp and not test and NAME_SWITCH.search(line):
             findings.append(f"{where}: a name returned per case; write the names in a runtime::EnumName table")
-        if cpp and JSON_VALUE.search(line) and not path.startswith(JSON_READERS):
-            findings.append(f"{where}: a runtime::json::Value outside a reader")
+        if cpp and not test and path != JSON_PARSER and JSON_PARSE.search(line):
+            findings.append(f"{where}: JSON parsed outside {JSON_PARSER}; read it with io::json (io/json.h)")
+        if cpp and RUNTIME_JSON.search(line) and not path.startswith(RUNTIME_JSON_USERS):
+            findings.append(f"{where}: the runtime's JSON parser outside the runtime; read JSON with io::json (io/json.h)")
 
 
 FLOOR_ENTRY = re.compile(r"^inline (?:constexpr [\w: ]+?|double) (k\w+|\w+)(?: =|\()")
@@ -156,7 +160,7 @@ def main():
     if findings:
         print(f"check_one_place: {len(findings)} finding(s)", file=sys.stderr)
         return 1
-    print("check_one_place: limits, tolerances, the runtime's floor, table and design paths, threads, random draws, enum names, JSON values and pi each in one place")
+    print("check_one_place: limits, tolerances, the runtime's floor, table and design paths, threads, random draws, enum names, JSON reading and pi each in one place")
     return 0
 
 

@@ -8,7 +8,7 @@
 
 #include "zhf/bench/suite.h"
 #include "zhf/io/files.h"
-#include "zhf/runtime/json.h"
+#include "zhf/io/json.h"
 #include "zhf/bench/limits.h"
 #include "zhf/runtime/limits.h"
 
@@ -39,16 +39,16 @@ nlohmann::ordered_json SuiteReport::to_json() const {
 }
 
 SuiteReport read_report(const std::string& path) {
-  const runtime::json::Value root = io::read_json_file(path, kMaxReportBytes);
-  const runtime::json::Field top(root, path);
+  const io::json::Json root = io::json::read_file(path, kMaxReportBytes);
+  const io::json::Field top(root, path);
   if (top.member("format").string() != "zhf-bench-1") top.member("format").fail("expected \"zhf-bench-1\"");
   SuiteReport report;
   report.cpu = top.member("cpu").string();
   report.compiler = top.member("compiler").string();
   report.flags = top.member("flags").string();
   report.date = top.member("date").string();
-  for (const runtime::json::Field& note : top.member("notes").items(0, kMaxReportNotes)) report.notes.push_back(note.string());
-  for (const runtime::json::Field& row : top.member("rows").items(0, kMaxReportRows)) {
+  for (const io::json::Field& note : top.member("notes").items(0, kMaxReportNotes)) report.notes.push_back(note.string());
+  for (const io::json::Field& row : top.member("rows").items(0, kMaxReportRows)) {
     Row r;
     r.method = row.member("method").string();
     r.scenario = row.member("scenario").string();

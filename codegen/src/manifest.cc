@@ -74,8 +74,8 @@ nlohmann::ordered_json manifest_json(const Manifest& manifest) {
   return j;
 }
 
-Manifest parse_manifest(const runtime::json::Value& root, const std::string& source) {
-  using runtime::json::Field;
+Manifest parse_manifest(const io::json::Json& root, const std::string& source) {
+  using io::json::Field;
   const Field top(root, source);
   top.allow_only({"format", "generator", "command", "scene", "files"});
   const Field format = top.member("format");
@@ -84,7 +84,7 @@ Manifest parse_manifest(const runtime::json::Value& root, const std::string& sou
   Manifest manifest;
   manifest.generator = top.member("generator").string();
   manifest.command = top.member("command").string();
-  if (const auto scene = top.find("scene")) manifest.scene = io::to_ordered_json(scene->value());
+  if (const auto scene = top.find("scene")) manifest.scene = scene->value();
   for (const Field& f : top.member("files").items(0, codegen::kMaxManifestFiles)) {
     ManifestFile file;
     const Field path = f.member("path");
@@ -129,12 +129,12 @@ Manifest parse_manifest(const runtime::json::Value& root, const std::string& sou
 }
 
 Manifest read_manifest(const std::string& path) {
-  return parse_manifest(io::read_json_file(path, codegen::kMaxManifestBytes), path);
+  return parse_manifest(io::json::read_file(path, codegen::kMaxManifestBytes), path);
 }
 
 std::map<std::string, std::string> read_manifest_hashes(const std::string& path) {
-  using runtime::json::Field;
-  const runtime::json::Value root = io::read_json_file(path, codegen::kMaxManifestBytes);
+  using io::json::Field;
+  const io::json::Json root = io::json::read_file(path, codegen::kMaxManifestBytes);
   const Field top(root, path);
   const std::string& format = top.member("format").one_of({kManifestFormat, "zhf-manifest-1"});
   std::map<std::string, std::string> hashes;

@@ -10,13 +10,13 @@
 #include "zhf/runtime/band_rows.h"
 #include "zhf/runtime/enum_names.h"
 #include "zhf/runtime/errors.h"
-#include "zhf/runtime/json.h"
+#include "zhf/io/json.h"
 
 namespace zhf::codegen {
 namespace {
 
 namespace fs = std::filesystem;
-using runtime::json::Field;
+using io::json::Field;
 
 constexpr runtime::EnumName<RotationPath> kPathNames[] = {{RotationPath::kScalar, "scalar"},
                                                            {RotationPath::kLanes, "lanes"},
@@ -51,7 +51,7 @@ PathTimes parse_times(const Field& f, const std::string& isa, bool is_float, int
     fastest.fail(std::string(rotation_path_name(times.fastest)) + " does not exist for " + isa + ", " +
                  (is_float ? "float" : "double") + ", order " + std::to_string(order));
   const Field ns = f.member("ns");
-  ns.expect(runtime::json::Value::Kind::kObject);
+  ns.expect(io::json::Kind::kObject);
   for (const auto& [p, name] : kPathNames)
     if (const auto t = ns.find(name)) {
       if (!path_exists(p, isa, is_float, order, lanes_orders)) t->fail("a path that does not exist here");
@@ -67,7 +67,7 @@ PathTimes parse_times(const Field& f, const std::string& isa, bool is_float, int
 
 PathTable read_table(const std::string& file, const std::string& isa, const std::vector<int>& orders,
                      const std::vector<int>& lanes_orders) {
-  const runtime::json::Value root = io::read_json_file(file, codegen::kMaxPathTableBytes);
+  const io::json::Json root = io::json::read_file(file, codegen::kMaxPathTableBytes);
   const Field top(root, file);
   top.allow_only({"format", "isa", "measured_on", "orders"});
   const Field format = top.member("format");

@@ -75,8 +75,8 @@ nlohmann::ordered_json Scene::to_json() const {
   return j;
 }
 
-Scene parse_scene(const runtime::json::Value& root, const std::string& source) {
-  using runtime::json::Field;
+Scene parse_scene(const io::json::Json& root, const std::string& source) {
+  using io::json::Field;
   const Field top(root, source);
   top.allow_only({"format", "targets", "precision", "lobe_stage", "method", "signals"});
   const Field format = top.member("format");
@@ -142,7 +142,7 @@ Scene parse_scene(const runtime::json::Value& root, const std::string& source) {
 }
 
 Scene read_scene(const std::string& path) {
-  return parse_scene(io::read_json_file(path, codegen::kMaxSceneBytes), path);
+  return parse_scene(io::json::read_file(path, codegen::kMaxSceneBytes), path);
 }
 
 }  // namespace zhf::codegen

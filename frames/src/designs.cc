@@ -13,7 +13,7 @@
 #include "zhf/runtime/band_recurrence.h"
 #include "zhf/runtime/enum_names.h"
 #include "zhf/runtime/errors.h"
-#include "zhf/runtime/json.h"
+#include "zhf/io/json.h"
 #include "zhf/runtime/limits.h"
 #include "zhf/runtime/parallel.h"
 #include "zhf/runtime/read_file.h"
@@ -562,16 +562,16 @@ Design search_design(const DesignSearch& s) {
 }
 
 std::vector<Point> read_points(const std::string& path) {
-  const runtime::json::Value root = runtime::json::parse(runtime::read_file(path, runtime::kMaxTableBytes), path);
-  runtime::json::Field top(root, path);
-  if (top.is(runtime::json::Value::Kind::kObject)) {
-    const runtime::json::Field format = top.member("format");
+  const io::json::Json root = io::json::read_file(path, runtime::kMaxTableBytes);
+  io::json::Field top(root, path);
+  if (top.is(io::json::Kind::kObject)) {
+    const io::json::Field format = top.member("format");
     if (format.string() != kDesignFormat) format.fail("'" + runtime::excerpt(format.string()) + "' is not " + kDesignFormat);
     top = top.member("points");
   }
   std::vector<Point> points;
-  for (const runtime::json::Field& item : top.items(1, frames::kMaxDesignPoints)) {
-    const std::vector<runtime::json::Field> xyz = item.items(3);
+  for (const io::json::Field& item : top.items(1, frames::kMaxDesignPoints)) {
+    const std::vector<io::json::Field> xyz = item.items(3);
     const Point p{xyz[0].number(), xyz[1].number(), xyz[2].number()};
     const double norm = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
     if (!(norm > zhf::tolerance::kShortestDirection) || !std::isfinite(norm)) item.fail("not a direction (length " + std::to_string(norm) + ")");

@@ -7,6 +7,7 @@
 
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
+#include "zhf/io/json.h"
 #include "zhf/io/limits.h"
 #include "zhf/io/numbers.h"
 #include "zhf/runtime/limits.h"
@@ -49,21 +50,21 @@ double checked(double x, const std::string& where) {
 }
 
 CoefficientFile parse_json(const std::string& text, const std::string& source, int channels) {
-  const runtime::json::Value root = runtime::json::parse(text, source);
-  const runtime::json::Field top(root, source);
-  top.expect(runtime::json::Value::Kind::kArray);
-  if (root.items.empty()) throw InputError(source + ": no coefficient vectors");
+  const json::Json root = json::parse(text, source);
+  const json::Field top(root, source);
+  top.expect(json::Kind::kArray);
+  if (root.empty()) throw InputError(source + ": no coefficient vectors");
   CoefficientFile out;
-  const std::vector<runtime::json::Field> vectors = top.items(1, root.items.size());
+  const std::vector<json::Field> vectors = top.items(1, root.size());
   for (size_t v = 0; v < vectors.size(); ++v) {
-    const runtime::json::Field& vec = vectors[v];
-    vec.expect(runtime::json::Value::Kind::kArray);
-    if (vec.value().items.empty()) vec.fail("must be a non-empty array");
+    const json::Field& vec = vectors[v];
+    vec.expect(json::Kind::kArray);
+    if (vec.value().empty()) vec.fail("must be a non-empty array");
     std::vector<std::vector<double>> parts;
-    const bool multi = vec.value().items.front().kind == runtime::json::Value::Kind::kArray;
-    for (const runtime::json::Field& part : multi ? vec.items(1, kMaxChannels) : std::vector<runtime::json::Field>{vec}) {
+    const bool multi = vec.value().front().is_array();
+    for (const json::Field& part : multi ? vec.items(1, kMaxChannels) : std::vector<json::Field>{vec}) {
       parts.emplace_back();
-      for (const runtime::json::Field& x : part.items(1, kMaxCoefficientCount)) parts.back().push_back(checked(x.number(), source + ": " + x.where()));
+      for (const json::Field& x : part.items(1, kMaxCoefficientCount)) parts.back().push_back(checked(x.number(), source + ": " + x.where()));
     }
     const std::string where = source + ": vector " + std::to_string(v);
     if (channels > 0 && static_cast<int>(parts.size()) != channels)

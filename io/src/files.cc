@@ -7,7 +7,6 @@
 
 #include <cerrno>
 #include <cmath>
-#include <charconv>
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
@@ -67,10 +66,6 @@ mode_t creation_mode() {
 }  // namespace
 
 std::string read_text_file(const std::string& path, std::size_t max_bytes) { return runtime::read_file(path, max_bytes); }
-
-runtime::json::Value read_json_file(const std::string& path, std::size_t max_bytes) {
-  return runtime::json::parse(read_text_file(path, max_bytes), path);
-}
 
 PendingFile::PendingFile(const std::string& destination) : destination_(resolve_symlinks(destination)) {
   struct stat st {};
@@ -157,32 +152,6 @@ void write_file_atomically(const std::string& path, const std::string& content, 
   PendingFile file(path);
   file.write(content);
   file.commit(on_interrupt);
-}
-
-nlohmann::ordered_json to_ordered_json(const runtime::json::Value& value) {
-  using Kind = runtime::json::Value::Kind;
-  switch (value.kind) {
-    case Kind::kNull: return nullptr;
-    case Kind::kBool: return value.boolean;
-    case Kind::kNumber: {
-      long long integer = 0;
-      const auto [end, error] = std::from_chars(value.text.data(), value.text.data() + value.text.size(), integer);
-      if (value.integral && error == std::errc() && end == value.text.data() + value.text.size()) return integer;
-      return value.number;
-    }
-    case Kind::kString: return value.text;
-    case Kind::kArray: {
-      nlohmann::ordered_json out = nlohmann::ordered_json::array();
-      for (const auto& item : value.items) out.push_back(to_ordered_json(item));
-      return out;
-    }
-    case Kind::kObject: {
-      nlohmann::ordered_json out = nlohmann::ordered_json::object();
-      for (const auto& [key, item] : value.members) out[key] = to_ordered_json(item);
-      return out;
-    }
-  }
-  return nullptr;
 }
 
 namespace {

@@ -1,6 +1,7 @@
 #include "zhf/io/lobe_table_writer.h"
 
 #include "zhf/io/files.h"
+#include "zhf/io/json.h"
 
 namespace zhf::io {
 
@@ -42,7 +43,8 @@ nlohmann::ordered_json lobe_table_json(const runtime::LobeTable& table) {
   out["zeros"] = table.zeros;
   out["entries"] = table.entries;
   // Keys sorted (nlohmann::json's object order), so a table's bytes do not depend on who built it.
-  out["provenance"] = nlohmann::ordered_json::parse(nlohmann::json::parse(table.provenance).dump());
+  const nlohmann::json sorted = json::parse(table.provenance, "provenance");
+  out["provenance"] = nlohmann::ordered_json(sorted);
   return out;
 }
 

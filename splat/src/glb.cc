@@ -32,7 +32,7 @@
 #include "splat_math.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/limits.h"
-#include "zhf/runtime/json.h"
+#include "zhf/io/json.h"
 #include "zhf/runtime/rotation.h"
 #include "zhf/splat/limits.h"
 
@@ -40,7 +40,7 @@ namespace zhf::splat {
 namespace {
 
 using io::InputError;
-using runtime::json::Field;
+using io::json::Field;
 
 constexpr std::uint32_t kGlbMagic = 0x46546c67, kJsonChunk = 0x4e4f534a, kBinChunk = 0x004e4942;
 constexpr std::uint64_t kGlbHeaderBytes = 12, kChunkHeaderBytes = 8;
@@ -168,7 +168,7 @@ Affine local_transform(const Field& node) {
     const std::vector<Field> v = f->items(3);
     for (int i = 0; i < 3; ++i) s[i] = v[i].number();
   }
-  runtime::Matrix3 r;
+  runtime::Matrix3 r{};
   runtime::rotation_from_quaternion(q[3], q[0], q[1], q[2], r);  // glTF stores x y z w
   Affine a = kIdentity;
   for (int i = 0; i < 3; ++i) {
@@ -208,7 +208,7 @@ class GlbReader : public SceneReader {
       if (chunk == 1 && get_uint32(chunk_header + 4) == kBinChunk) bin_at = at + kChunkHeaderBytes, bin_bytes = bytes;
       at += kChunkHeaderBytes + bytes;
     }
-    const runtime::json::Value json = runtime::json::parse(text, path + ": JSON chunk", kJsonLimits);
+    const io::json::Json json = io::json::parse(text, path + ": JSON chunk", kJsonLimits);
     interpret(Field(json, path), bin_at, bin_bytes);
   }
 
@@ -228,7 +228,7 @@ class GlbReader : public SceneReader {
   void finish() override {}  // the header's length is the file's: nothing follows
 
  private:
-  static constexpr runtime::json::Limits kJsonLimits{32, std::size_t(1) << 20, 1 << 16, 64};
+  static constexpr io::json::Limits kJsonLimits{32, std::size_t(1) << 20, 1 << 16};
 
   void fill(std::uint64_t offset, unsigned char* to, std::uint64_t bytes) {
     file_.seekg(std::streamoff(offset));
@@ -267,11 +267,11 @@ class GlbReader : public SceneReader {
 
     // Attributes: the required ones, SH degrees complete from 0 up, nothing unknown of the extension's.
     const Field attributes = primitive->member("attributes");
-    attributes.expect(runtime::json::Value::Kind::kObject);
+    attributes.expect(io::json::Kind::kObject);
     degree_ = 0;
     while (degree_ < 3 && attributes.find(sh_name(degree_ + 1, 0))) ++degree_;
     const auto names = attribute_names(degree_);
-    for (const auto& [key, value] : attributes.value().members) {
+    for (const auto& [key, value] : attributes.value().items()) {
       if (key.rfind(std::string(kExtension) + ":", 0) != 0) continue;  // POSITION, COLOR_0, ...: glTF's own
       bool known = false;
       for (const auto& name : names) known = known || name.first == key;

@@ -24,7 +24,7 @@
 #include <nlohmann/json.hpp>
 
 #include "zhf/codegen/backend.h"
-#include "zhf/runtime/json.h"
+#include "zhf/io/json.h"
 #include "zhf/runtime/lobe_stage.h"
 
 namespace zhf::codegen {
@@ -62,7 +62,7 @@ struct Manifest {
 
 nlohmann::ordered_json manifest_json(const Manifest& manifest);
 // Throws InputError naming the source and the field that is wrong.
-Manifest parse_manifest(const runtime::json::Value& root, const std::string& source);
+Manifest parse_manifest(const io::json::Json& root, const std::string& source);
 Manifest read_manifest(const std::string& path);
 
 // What generate needs of an existing tree's manifest, in this or the previous format

@@ -31,7 +31,7 @@
 #include <nlohmann/json.hpp>
 
 #include "zhf/codegen/backend.h"
-#include "zhf/runtime/json.h"
+#include "zhf/io/json.h"
 #include "zhf/runtime/limits.h"
 
 namespace zhf::codegen {
@@ -60,7 +60,7 @@ inline constexpr const char* kSceneFormat = "zhf-scene-1";
 
 // Throws io::InputError naming the file and field, e.g. "scene.json: signals[1].channels: must
 // be 1, 3 or 4 (got 2)".
-Scene parse_scene(const runtime::json::Value& root, const std::string& source);
+Scene parse_scene(const io::json::Json& root, const std::string& source);
 Scene read_scene(const std::string& path);
 
 }  // namespace zhf::codegen

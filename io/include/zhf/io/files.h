@@ -1,6 +1,6 @@
 // Reading inputs and writing outputs by zhf's rules (docs/usage.md, "Files"):
-// - every input is read with a size bound for its kind (its reader's limits.h) and JSON through the
-//   one strict reader (runtime/json.h);
+// - every input is read with a size bound for its kind (its reader's limits.h), and JSON through
+//   the strict reader of json.h;
 // - an output is written whole or not at all: to a temporary file in the target's own directory,
 //   flushed, then renamed over the target; a symlink is resolved and the file it names replaced;
 //   a target that exists and is not a regular file (a FIFO, /dev/stdout, a device) is written
@@ -13,14 +13,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "zhf/runtime/json.h"
 
 namespace zhf::io {
 
 // The whole file, at most max_bytes (InputError otherwise).
 std::string read_text_file(const std::string& path, std::size_t max_bytes);
-// The file parsed as JSON (InputError naming the file, line and column otherwise).
-runtime::json::Value read_json_file(const std::string& path, std::size_t max_bytes);
 
 // Whether a commit goes ahead once SIGINT or SIGTERM has arrived (signals.h): by default it throws
 // Interrupted and the destination stays as it was; an output the interrupt itself asks for
@@ -66,8 +63,5 @@ void write_file_atomically(const std::string& path, const std::string& content,
 // (matrix rows stay readable), keys in insertion order, numbers round-trip exact, trailing
 // newline.
 std::string json_text(const nlohmann::ordered_json& value);
-// A value read by runtime/json.h, for writing back (integers stay integers, numbers keep their
-// value exactly).
-nlohmann::ordered_json to_ordered_json(const runtime::json::Value& value);
 
 }  // namespace zhf::io

@@ -1,5 +1,5 @@
-// zhf's one JSON reader: every JSON input (lobe tables, scenes, coefficients, manifests) is read
-// through it, in the runtime (which depends on the standard library alone) and in the tools.
+// The runtime's JSON reader, for the lobe tables it reads (table_io.h) with the standard library
+// alone. The tools read every other JSON file through nlohmann-json (io/json.h), to the same rules.
 //
 // Strict RFC 8259: no NaN or Infinity tokens, no comments, no trailing commas or characters,
 // control characters and lone surrogates refused, \u escapes decoded to UTF-8, duplicate keys
