@@ -20,8 +20,9 @@ namespace {
 struct SplatOptions {
   std::string in, out;
   TransformOptions transform;
-  std::string translate, scale = "1", convention = "3dgs", threads = "0", format, in_format, spz_version = "4";
-  bool identity = false, quiet = false;
+  std::string translate, scale = "1", convention = "3dgs", threads = "0", format, in_format, spz_version = "4", spz_axes = "raw";
+  std::string sh_degree, max_sh_error;
+  bool identity = false, quiet = false, drop_spz_extensions = false;
 };
 
 std::array<double, 3> translation(const std::string& text) {
@@ -57,8 +58,15 @@ int run_splat(const SplatOptions& o) {
   t.translation = translation(o.translate);
   t.convention = convention;
   const int threads = threads_option(o.threads);
-  splat::Formats formats{format_option("--in-format", o.in_format), format_option("--format", o.format)};
+  splat::Formats formats;
+  formats.in = format_option("--in-format", o.in_format);
+  formats.out = format_option("--format", o.format);
   formats.spz_version = static_cast<int>(integer_option("--spz-version", o.spz_version, 3, 4));
+  if (!splat::parse_spz_axes(o.spz_axes, formats.spz_axes)) throw UsageError("--spz-axes: '" + runtime::excerpt(o.spz_axes) + "' is not raw or rub");
+  formats.drop_spz_extensions = o.drop_spz_extensions;
+  if (!o.sh_degree.empty() && !o.max_sh_error.empty()) throw UsageError("--sh-degree: --max-sh-error is given too; give one or the other");
+  if (!o.sh_degree.empty()) formats.sh_degree = static_cast<int>(integer_option("--sh-degree", o.sh_degree, 0, splat::kMaxSplatShDegree));
+  if (!o.max_sh_error.empty()) formats.max_sh_error = number_option("--max-sh-error", o.max_sh_error, 0, 1);
   const bool bar = !o.quiet && isatty(STDERR_FILENO);
   const splat::Summary summary = splat::transform_file(o.in, o.out, t, threads, [bar](std::uint64_t done, std::uint64_t total) {
     if (bar) std::fprintf(stderr, "\rzhf splat: %3d%% (%llu of %llu splats)", int(100.0 * done / total), (unsigned long long)done,
@@ -69,6 +77,12 @@ int run_splat(const SplatOptions& o) {
   if (summary.dropped_degree > 0)
     std::fprintf(stderr, "zhf splat: %s: %s keeps SH degree 0 only; degrees 1..%d were dropped\n", io::excerpt(o.out).c_str(),
                  splat::file_format_extension(summary.out), summary.dropped_degree);
+  if (summary.antialiasing_dropped)
+    std::fprintf(stderr, "zhf splat: %s: the scene is marked antialiased, and %s has no such mark\n", io::excerpt(o.out).c_str(),
+                 splat::file_format_extension(summary.out));
+  if (summary.dropped_extensions > 0)
+    std::fprintf(stderr, "zhf splat: %s: %d .spz extension records left out (--drop-spz-extensions)\n", io::excerpt(o.out).c_str(),
+                 summary.dropped_extensions);
   if (summary.clamped > 0)
     std::fprintf(stderr, "zhf splat: %s: %llu values beyond the %s format's range were written as its nearest\n",
                  io::excerpt(o.out).c_str(), (unsigned long long)summary.clamped, splat::file_format_extension(summary.out));
@@ -78,9 +92,16 @@ int run_splat(const SplatOptions& o) {
     std::printf("transformed %llu splats (%s, SH degree %s) into %s (%s)\n", (unsigned long long)summary.splats, from.c_str(),
                 summary.sh_degree < 0 ? "none" : std::to_string(summary.sh_degree).c_str(), o.out.c_str(),
                 splat::file_format_extension(summary.out));
+    if (summary.kept_degree >= 0 && summary.kept_degree < summary.sh_degree && summary.dropped_degree < 0)
+      std::printf("kept SH degree %d of %d: dropped energy %.3g (relative L2, as zhf analyze), largest colour change %.3g over %d view "
+                  "directions, %llu bytes of SH left out\n",
+                  summary.kept_degree, summary.sh_degree, summary.dropped_energy_error, summary.dropped_colour_error,
+                  splat::kColourErrorDirections, (unsigned long long)summary.dropped_bytes);
+    if (!summary.spz_axes_source.empty()) std::printf(".spz axes: %s\n", summary.spz_axes_source.c_str());
+    if (summary.carried_extensions > 0) std::printf("%d .spz extension records carried unchanged\n", summary.carried_extensions);
     if (summary.sh_error[0] >= 0) {
       std::printf("the format's error in the colour, largest per SH band:");
-      for (int band = 0; band < 4 && summary.sh_error[band] >= 0; ++band) std::printf(" %d: %.3g", band, summary.sh_error[band]);
+      for (int band = 0; band < int(summary.sh_error.size()) && summary.sh_error[band] >= 0; ++band) std::printf(" %d: %.3g", band, summary.sh_error[band]);
       std::printf("\n");
     }
   }
@@ -99,6 +120,13 @@ void add_splat_command(CLI::App& app, Action& action) {
   c->add_option("--out", o->out, "Write the transformed scene here (.ply to .ply: same format, columns and comments)")->required();
   c->add_option("--format", o->format, "The output's format, " + splat::file_format_names() + " (default: --out's extension, else ply)");
   c->add_option("--spz-version", o->spz_version, "A .spz output's version: 4 (zstd, default) or 3 (gzip, for older readers)");
+  c->add_option("--spz-axes", o->spz_axes,
+                "A .spz's axes where it has no coordinate-system record, read and written: raw (the .ply's, default: the reference "
+                "library's default, splat-transform) or rub (x right, y up, z back: Scaniverse, three.js)");
+  c->add_flag("--drop-spz-extensions", o->drop_spz_extensions, "Leave out a .spz's extension records (else carried into a .spz, refused for other formats)");
+  c->add_option("--sh-degree", o->sh_degree, "Keep SH bands 0..K only (at most the scene's degree)");
+  c->add_option("--max-sh-error", o->max_sh_error,
+                "Keep the fewest SH bands whose dropped energy, relative L2 over the scene as zhf analyze measures it, is at most E");
   c->add_option("--in-format", o->in_format, "The input's format, " + splat::file_format_names() + " (default: --in's extension and header, else ply)");
   add_transform_options(c, o->transform);
   c->add_flag("--identity", o->identity, "No rotation, the default when none is given (refused with one)");

@@ -255,7 +255,6 @@ class CompressedPlyWriter : public SceneWriter {
     vertex_at_ += vertex_bytes_.size();
     sh_at_ += sh_bytes_.size();
   }
-  int kept_degree(int degree) const override { return degree; }
 
  private:
   // Group 0: position, 1: log-scale, 2: colour 0.5 + Y00 f_dc.

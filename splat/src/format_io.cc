@@ -47,10 +47,10 @@ std::uint32_t clamped_round(double x, std::uint32_t max, std::uint64_t& clamped)
 
 // About x (y, z -> -y, -z): cos(m phi) terms (-1)^(l + m), sin(|m| phi) terms -(-1)^(l + |m|).
 // About z (phi -> phi + pi): (-1)^m for both.
-const std::array<double, 15>& half_turn_signs(Axis axis) {
+const std::array<double, kMaxRestPerChannel>& half_turn_signs(Axis axis) {
   static const auto make = [](Axis about) {
-    std::array<double, 15> s{};
-    for (int k = 0; k < 15; ++k) {
+    std::array<double, kMaxRestPerChannel> s{};
+    for (int k = 0; k < kMaxRestPerChannel; ++k) {
       const int l = Canonical::band(k), m = k + 1 - l * (l + 1);
       const double odd_m = std::abs(m) % 2 == 0 ? 1 : -1;
       if (about == Axis::kZ) s[k] = odd_m;
@@ -58,7 +58,7 @@ const std::array<double, 15>& half_turn_signs(Axis axis) {
     }
     return s;
   };
-  static const std::array<double, 15> about_x = make(Axis::kX), about_z = make(Axis::kZ);
+  static const std::array<double, kMaxRestPerChannel> about_x = make(Axis::kX), about_z = make(Axis::kZ);
   return axis == Axis::kX ? about_x : about_z;
 }
 

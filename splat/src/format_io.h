@@ -9,6 +9,8 @@
 #include <fstream>
 #include <string>
 
+#include "zhf/splat/limits.h"
+
 namespace zhf::splat {
 
 // Where each field sits in the canonical record of one SH degree (formats.h).
@@ -20,8 +22,12 @@ struct Canonical {
   int scale() const { return kRest + rest + 1; }
   int rotation() const { return kRest + rest + 4; }
   int size() const { return kRest + rest + 8; }
-  // The SH band of f_rest value k of a channel (k + 1 = l (l + 1) + m; degrees to 3).
-  static int band(int k) { return k < 3 ? 1 : k < 8 ? 2 : 3; }
+  // The SH band of f_rest value k of a channel: k + 1 = l (l + 1) + m, so l = floor(sqrt(k + 1)).
+  static int band(int k) {
+    int l = 1;
+    while ((l + 1) * (l + 1) <= k + 1) ++l;
+    return l;
+  }
 };
 
 // The file opened for reading, or io::InputError.
@@ -51,9 +57,9 @@ inline std::uint32_t get_uint32(const unsigned char* at) {
 }
 
 // The sign a half turn about an axis gives each f_rest coefficient k of a channel (band l, order
-// m, k + 1 = l (l + 1) + m; degrees to 3): the frame changes at the formats' edges.
+// m, k + 1 = l (l + 1) + m): the frame changes at the formats' edges.
 enum class Axis { kX, kZ };
-const std::array<double, 15>& half_turn_signs(Axis axis);
+const std::array<double, kMaxRestPerChannel>& half_turn_signs(Axis axis);
 
 // The logistic function and its inverse (3DGS stores opacity as a logit).
 double sigmoid(double x);

@@ -107,7 +107,6 @@ class PlyWriter : public SceneWriter {
       }
     out_.write(reinterpret_cast<const char*>(buffer_.data()), buffer_.size());
   }
-  int kept_degree(int degree) const override { return degree; }
 
  private:
   io::PendingFile& out_;
@@ -129,20 +128,20 @@ ply::Header canonical_header(int degree, std::uint64_t splats) {
   return ply::read_header(in, "canonical header");
 }
 
-std::unique_ptr<SceneReader> open_reader(FileFormat format, const std::string& path) {
+std::unique_ptr<SceneReader> open_reader(FileFormat format, const std::string& path, SpzAxes spz_axes) {
   if (format == FileFormat::kSplat) return open_splat_reader(path);
   if (format == FileFormat::kCompressedPly) return open_compressed_ply_reader(path);
-  if (format == FileFormat::kSpz) return open_spz_reader(path);
+  if (format == FileFormat::kSpz) return open_spz_reader(path, spz_axes);
   if (format == FileFormat::kGlb) return open_glb_reader(path);
   return std::make_unique<PlyReader>(path);
 }
 
-std::unique_ptr<SceneWriter> open_writer(FileFormat format, io::PendingFile& out, int degree, std::uint64_t splats, int spz_version) {
-  if (format == FileFormat::kSplat) return open_splat_writer(out, degree);
-  if (format == FileFormat::kCompressedPly) return open_compressed_ply_writer(out, degree, splats);
-  if (format == FileFormat::kSpz) return open_spz_writer(out, degree, splats, spz_version);
-  if (format == FileFormat::kGlb) return open_glb_writer(out, degree, splats);
-  return std::make_unique<PlyWriter>(out, degree, splats);
+std::unique_ptr<SceneWriter> open_writer(FileFormat format, io::PendingFile& out, const WriteOptions& o) {
+  if (format == FileFormat::kSplat) return open_splat_writer(out, o.degree);
+  if (format == FileFormat::kCompressedPly) return open_compressed_ply_writer(out, o.degree, o.splats);
+  if (format == FileFormat::kSpz) return open_spz_writer(out, o);
+  if (format == FileFormat::kGlb) return open_glb_writer(out, o.degree, o.splats);
+  return std::make_unique<PlyWriter>(out, o.degree, o.splats);
 }
 
 }  // namespace zhf::splat

@@ -9,21 +9,35 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "zhf/io/files.h"
 #include "zhf/io/ply.h"
+#include "zhf/runtime/rotation.h"
 #include "zhf/splat/scene.h"
 
 namespace zhf::splat {
 
-// The canonical record's header for SH degree 0..3 and that many splats.
+// The canonical record's header for SH degree 0..kMaxSplatShDegree and that many splats.
 io::ply::Header canonical_header(int degree, std::uint64_t splats);
+
+// A .spz extension record zhf does not read (type, payload), carried as it is.
+struct SpzExtension {
+  std::uint32_t type = 0;
+  std::string payload;
+};
 
 class SceneReader {
  public:
   virtual ~SceneReader() = default;
   std::uint64_t splats() const { return splats_; }
   int degree() const { return degree_; }
+  // The file's axes in the .ply's: v_ply = axes() v_file (a signed permutation).
+  const runtime::Matrix3& axes() const { return axes_; }
+  // Where axes() came from, for the report ("" for a format with the .ply's axes).
+  const std::string& axes_source() const { return axes_source_; }
+  bool antialiased() const { return antialiased_; }
+  const std::vector<SpzExtension>& extensions() const { return extensions_; }
   // The next `count` records (canonical_header(degree()) properties each); `first` is the first
   // one's index, for messages. Throws io::InputError naming the file, splat and field.
   virtual void read(std::uint64_t first, std::uint64_t count, double* records) = 0;
@@ -33,6 +47,20 @@ class SceneReader {
  protected:
   std::uint64_t splats_ = 0;
   int degree_ = 0;
+  runtime::Matrix3 axes_ = runtime::kIdentity;
+  std::string axes_source_;
+  bool antialiased_ = false;
+  std::vector<SpzExtension> extensions_;
+};
+
+// What a writer is given beyond the records.
+struct WriteOptions {
+  int degree = 0;  // of the records, at most file_format_max_sh_degree of the format
+  std::uint64_t splats = 0;
+  int spz_version = 4;
+  SpzAxes spz_axes = SpzAxes::kRaw;
+  bool antialiased = false;                 // .spz's flag
+  std::vector<SpzExtension> spz_extensions;  // carried into a .spz
 };
 
 class SceneWriter {
@@ -41,29 +69,30 @@ class SceneWriter {
   virtual void write(std::uint64_t count, const double* records) = 0;
   std::uint64_t clamped() const { return clamped_; }
   // Per SH band (0: f_dc), the largest |stored - given| of the values written: the format's error.
-  const std::array<double, 4>& sh_error() const { return sh_error_; }
-  // The SH degree this writer keeps of a scene of `degree`.
-  virtual int kept_degree(int degree) const = 0;
+  const std::array<double, kMaxSplatShDegree + 1>& sh_error() const { return sh_error_; }
+  // The .ply's axes in the file's: v_file = axes() v_ply.
+  const runtime::Matrix3& axes() const { return axes_; }
   // After the last record, before the file is committed.
   virtual void finish() {}
 
  protected:
   void stored(int band, double given, double kept) { sh_error_[band] = std::max(sh_error_[band], std::abs(kept - given)); }
   std::uint64_t clamped_ = 0;
-  std::array<double, 4> sh_error_{};
+  std::array<double, kMaxSplatShDegree + 1> sh_error_{};
+  runtime::Matrix3 axes_ = runtime::kIdentity;
 };
 
-std::unique_ptr<SceneReader> open_reader(FileFormat format, const std::string& path);
+std::unique_ptr<SceneReader> open_reader(FileFormat format, const std::string& path, SpzAxes spz_axes);
 // Each format's own (splat_file.cc, compressed_ply.cc, spz.cc, glb.cc), behind open_reader and open_writer.
 std::unique_ptr<SceneReader> open_splat_reader(const std::string& path);
 std::unique_ptr<SceneWriter> open_splat_writer(io::PendingFile& out, int degree);
 std::unique_ptr<SceneReader> open_compressed_ply_reader(const std::string& path);
 std::unique_ptr<SceneWriter> open_compressed_ply_writer(io::PendingFile& out, int degree, std::uint64_t splats);
-std::unique_ptr<SceneReader> open_spz_reader(const std::string& path);
-std::unique_ptr<SceneWriter> open_spz_writer(io::PendingFile& out, int degree, std::uint64_t splats, int version);
+std::unique_ptr<SceneReader> open_spz_reader(const std::string& path, SpzAxes axes);
+std::unique_ptr<SceneWriter> open_spz_writer(io::PendingFile& out, const WriteOptions& options);
 std::unique_ptr<SceneReader> open_glb_reader(const std::string& path);
 std::unique_ptr<SceneWriter> open_glb_writer(io::PendingFile& out, int degree, std::uint64_t splats);
-// Records of SH degree `degree` into `out`.
-std::unique_ptr<SceneWriter> open_writer(FileFormat format, io::PendingFile& out, int degree, std::uint64_t splats, int spz_version);
+// Records of SH degree options.degree into `out`.
+std::unique_ptr<SceneWriter> open_writer(FileFormat format, io::PendingFile& out, const WriteOptions& options);
 
 }  // namespace zhf::splat

@@ -115,7 +115,7 @@ void turn_half_about_z(double* v, const Canonical& c, bool to_gltf) {
   } else {
     q[0] = z, q[1] = y, q[2] = -x, q[3] = -w;
   }
-  const std::array<double, 15>& sign = half_turn_signs(Axis::kZ);
+  const std::array<double, kMaxRestPerChannel>& sign = half_turn_signs(Axis::kZ);
   const int per_channel = c.rest / 3;
   for (int ch = 0; ch < 3; ++ch)
     for (int k = 0; k < per_channel; ++k) v[Canonical::kRest + ch * per_channel + k] *= sign[k];
@@ -496,7 +496,6 @@ class GlbWriter : public SceneWriter {
     out_.write_at(bin_at_ - kChunkHeaderBytes, reinterpret_cast<const char*>(bin_header), sizeof bin_header);
   }
 
-  int kept_degree(int degree) const override { return degree; }
 
  private:
   // The glTF JSON; widest: every bound printed as the longest float text.

@@ -11,10 +11,12 @@
 #include <fstream>
 #include <future>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string_view>
 #include <vector>
 
+#include "format_io.h"
 #include "formats.h"
 #include "splat_math.h"
 #include "zhf/dispatch/checks.h"
@@ -27,6 +29,8 @@
 #include "zhf/runtime/orthogonal.h"
 #include "zhf/runtime/parallel.h"
 #include "zhf/runtime/rotator.h"
+#include "zhf/runtime/sh_eval.h"
+#include "zhf/splat/limits.h"
 
 namespace zhf::splat {
 namespace {
@@ -206,23 +210,214 @@ void transform_ascii(std::istream& file, io::PendingFile& pending, const ply::He
 
 namespace {
 
-// Any pair of formats but .ply to .ply: through the canonical record, a chunk at a time.
-Summary convert(const std::string& in, const std::string& out, FileFormat from, FileFormat to, int spz_version,
+int sh_value_bytes(FileFormat format);
+
+// Per band (f_dc is band 0), the sum of the squared coefficients of every splat and channel:
+// the energy zhf analyze sums, added in file order so the sums do not depend on the threads.
+void add_band_energy(const double* records, std::uint64_t count, const Canonical& c, std::vector<double>& energy) {
+  const int per_channel = c.rest / 3;
+  for (std::uint64_t s = 0; s < count; ++s) {
+    const double* v = records + s * c.size();
+    for (int ch = 0; ch < 3; ++ch) {
+      energy[0] += v[Canonical::kDc + ch] * v[Canonical::kDc + ch];
+      for (int k = 0; k < per_channel; ++k) {
+        const double x = v[Canonical::kRest + ch * per_channel + k];
+        energy[Canonical::band(k)] += x * x;
+      }
+    }
+  }
+}
+
+// The relative L2 error of keeping bands 0..kept, from the band energies.
+double kept_bands_error(const std::vector<double>& energy, int kept) {
+  double total = 0, dropped = 0;
+  for (std::size_t l = 0; l < energy.size(); ++l) (int(l) > kept ? dropped : total) += energy[l];
+  total += dropped;
+  return total > 0 ? std::sqrt(dropped / total) : 0;
+}
+
+// The largest |colour change| of one splat's channel when bands above `kept` are left out, over
+// kColourErrorDirections view directions (a golden-angle spiral, evaluated in the convention's
+// basis): the rendered colour is the SH's value in the view direction.
+class DroppedColour {
+ public:
+  DroppedColour(int degree, int kept, const runtime::Convention& convention) : first_(kept + 1), last_(degree) {
+    const int n2 = (degree + 1) * (degree + 1), from = first_ * first_;
+    width_ = n2 - from;
+    const runtime::Matrix3 m = convention.from_zhf();
+    const double golden = runtime::kPi * (3 - std::sqrt(5.0));
+    std::vector<double> y(n2);
+    for (int i = 0; i < kColourErrorDirections; ++i) {
+      const double z = 1 - (2 * i + 1.0) / kColourErrorDirections, r = std::sqrt(1 - z * z);
+      const double u[3] = {r * std::cos(golden * i), r * std::sin(golden * i), z};
+      double w[3];
+      for (int k = 0; k < 3; ++k) w[k] = m[3 * k] * u[0] + m[3 * k + 1] * u[1] + m[3 * k + 2] * u[2];
+      runtime::eval_sh(degree + 1, w, y.data());
+      basis_.insert(basis_.end(), y.begin() + from, y.end());
+    }
+  }
+  double largest(const double* records, std::size_t count, const Canonical& c) const {
+    if (width_ == 0) return 0;
+    const int per_channel = c.rest / 3, skip = first_ * first_ - 1;  // f_rest index of the first dropped coefficient
+    double most = 0;
+    for (std::size_t s = 0; s < count; ++s)
+      for (int ch = 0; ch < 3; ++ch) {
+        const double* f = records + s * c.size() + Canonical::kRest + ch * per_channel + skip;
+        for (int d = 0; d < kColourErrorDirections; ++d) {
+          const double* b = &basis_[std::size_t(d) * width_];
+          double e = 0;
+          for (int k = 0; k < width_; ++k) e += f[k] * b[k];
+          most = std::max(most, std::abs(e));
+        }
+      }
+    return most;
+  }
+
+ private:
+  int first_, last_, width_ = 0;
+  std::vector<double> basis_;  // direction-major, the dropped coefficients of each
+};
+
+// A record of `from`'s degree as one of `to`'s (lower or equal): the bands above left out.
+void keep_bands(const double* in, const Canonical& from, double* out, const Canonical& to) {
+  std::copy(in, in + Canonical::kRest, out);
+  const int per_from = from.rest / 3, per_to = to.rest / 3;
+  for (int ch = 0; ch < 3; ++ch)
+    std::copy(in + Canonical::kRest + ch * per_from, in + Canonical::kRest + ch * per_from + per_to, out + Canonical::kRest + ch * per_to);
+  std::copy(in + from.opacity(), in + from.size(), out + to.opacity());
+}
+
+// The SH degree to write: --sh-degree, the smallest within --max-sh-error (one pass over the
+// scene first), or the scene's; then what the output format holds.
+struct DegreeChoice {
+  int kept = 0, dropped_by_format = -1;
+  std::vector<double> energy;  // per band, when a pass measured it
+};
+
+DegreeChoice choose_degree(const std::string& in, const std::string& out, FileFormat from, FileFormat to, const Formats& formats,
+                           const SceneReader& reader) {
+  DegreeChoice choice;
+  const int degree = reader.degree();
+  choice.kept = degree;
+  if (formats.sh_degree) {
+    if (*formats.sh_degree > degree)
+      throw InputError(in + ": SH degree " + std::to_string(degree) + "; --sh-degree " + std::to_string(*formats.sh_degree) + " asks for more");
+    choice.kept = *formats.sh_degree;
+  } else if (formats.max_sh_error) {
+    const std::unique_ptr<SceneReader> pass = open_reader(from, in, formats.spz_axes);
+    const Canonical c(degree);
+    std::vector<double> records;
+    choice.energy.assign(degree + 1, 0);
+    for (std::uint64_t done = 0; done < pass->splats();) {
+      const std::uint64_t count = std::min(kChunkSplats, pass->splats() - done);
+      records.resize(count * c.size());
+      pass->read(done, count, records.data());
+      add_band_energy(records.data(), count, c, choice.energy);
+      done += count;
+      io::throw_if_interrupted();
+    }
+    pass->finish();
+    choice.kept = 0;
+    while (choice.kept < degree && kept_bands_error(choice.energy, choice.kept) > *formats.max_sh_error) ++choice.kept;
+  }
+  const int most = file_format_max_sh_degree(to);
+  if (choice.kept > most) {
+    // .splat keeps colour only and has always dropped degrees 1..3 with a note; degree 4, and any
+    // degree asked for, is refused rather than dropped.
+    if (most == 0 && choice.kept < kMaxSplatShDegree && !formats.sh_degree && !formats.max_sh_error) {
+      choice.dropped_by_format = choice.kept;
+      choice.kept = 0;
+    } else {
+      throw InputError(out + ": " + file_format_extension(to) + " holds SH degree " + std::to_string(most) + " at most; the scene has " +
+                       std::to_string(choice.kept) + ": give --sh-degree " + std::to_string(most));
+    }
+  }
+  return choice;
+}
+
+// Any pair of formats but .ply to .ply, and any scene whose bands are cut: through the canonical
+// record, a chunk at a time. A file's own axes (formats.h: axes()) are changes of axes at the
+// edges: into the .ply's after reading, the transform, back out before writing.
+Summary convert(const std::string& in, const std::string& out, FileFormat from, FileFormat to, const Formats& formats,
                 const Transform& transform, int threads, const std::function<void(std::uint64_t, std::uint64_t)>& progress) {
-  const std::unique_ptr<SceneReader> reader = open_reader(from, in);
-  const ply::Header header = canonical_header(reader->degree(), reader->splats());
+  const std::unique_ptr<SceneReader> reader = open_reader(from, in, formats.spz_axes);
+  DegreeChoice choice = choose_degree(in, out, from, to, formats, *reader);
+  const int degree = reader->degree(), kept = choice.kept;
+  const bool cut = kept < degree && choice.dropped_by_format < 0;
+  Summary summary;
+  summary.splats = reader->splats();
+  summary.sh_degree = degree;
+  summary.in = from;
+  summary.out = to;
+  summary.kept_degree = kept;
+  summary.dropped_degree = choice.dropped_by_format;
+  summary.antialiased = reader->antialiased();
+  summary.antialiasing_dropped = reader->antialiased() && to != FileFormat::kSpz;
+  summary.spz_axes_source = reader->axes_source();
+  WriteOptions options;
+  options.degree = kept;
+  options.splats = reader->splats();
+  options.spz_version = formats.spz_version;
+  options.spz_axes = formats.spz_axes;
+  options.antialiased = reader->antialiased();
+  if (!reader->extensions().empty()) {
+    const SpzExtension& first = reader->extensions().front();
+    if (formats.drop_spz_extensions) {
+      summary.dropped_extensions = int(reader->extensions().size());
+    } else if (to == FileFormat::kSpz) {
+      options.spz_extensions = reader->extensions();
+      summary.carried_extensions = int(reader->extensions().size());
+    } else {
+      char type[16];
+      std::snprintf(type, sizeof type, "0x%08x", first.type);
+      throw InputError(in + ": extension record " + type + " (" + std::to_string(first.payload.size()) + " bytes): " +
+                       file_format_extension(to) + " cannot carry it; give --drop-spz-extensions to convert without it");
+    }
+  }
+  if (to == FileFormat::kSpz) summary.spz_axes_source = std::string(formats.spz_axes == SpzAxes::kRub ? "rub" : "raw") + " (written)";
+  const Canonical whole(degree), written(kept);
+  const ply::Header header = canonical_header(kept, reader->splats());
   const Layout layout = layout_of(header, "canonical record");
-  const SplatMath math(layout, transform);
   io::PendingFile pending(out);
-  const std::unique_ptr<SceneWriter> writer = open_writer(to, pending, reader->degree(), reader->splats(), spz_version);
-  const std::size_t size = header.properties.size();
-  std::vector<double> records;
+  const std::unique_ptr<SceneWriter> writer = open_writer(to, pending, options);
+  Transform into_ply, out_of_ply;
+  into_ply.r = reader->axes();
+  out_of_ply.r = writer->axes();
+  into_ply.convention = out_of_ply.convention = transform.convention;
+  const SplatMath math(layout, transform);
+  std::optional<SplatMath> into, out_of;
+  if (into_ply.r != runtime::kIdentity) into.emplace(layout, into_ply, Orientation::kAxes);
+  if (out_of_ply.r != runtime::kIdentity) out_of.emplace(layout, out_of_ply, Orientation::kAxes);
+  const runtime::Convention& convention = transform.convention ? *transform.convention : *runtime::find_convention("3dgs");
+  const std::optional<DroppedColour> colour = cut ? std::optional<DroppedColour>(std::in_place, degree, kept, convention) : std::nullopt;
+  const bool measure_energy = cut && choice.energy.empty();
+  if (measure_energy) choice.energy.assign(degree + 1, 0);
+  const std::size_t size = written.size();
+  std::vector<double> records, read;
+  std::mutex colour_mutex;
+  double colour_error = 0;  // a maximum: the same whichever worker finds it
   for (std::uint64_t done = 0; done < reader->splats();) {
     const std::uint64_t count = std::min(kChunkSplats, reader->splats() - done);
     records.resize(count * size);
-    reader->read(done, count, records.data());
+    if (kept == degree) {
+      reader->read(done, count, records.data());
+    } else {
+      read.resize(count * whole.size());
+      reader->read(done, count, read.data());
+      if (measure_energy) add_band_energy(read.data(), count, whole, choice.energy);
+      runtime::parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
+        if (colour) {
+          const double e = colour->largest(&read[begin * whole.size()], end - begin, whole);
+          const std::lock_guard<std::mutex> lock(colour_mutex);
+          colour_error = std::max(colour_error, e);
+        }
+        for (std::size_t s = begin; s < end; ++s) keep_bands(&read[s * whole.size()], whole, &records[s * size], written);
+      });
+    }
     runtime::parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
+      if (into) into->apply_many(&records[begin * size], end - begin, size);
       math.apply_many(&records[begin * size], end - begin, size);
+      if (out_of) out_of->apply_many(&records[begin * size], end - begin, size);
     });
     writer->write(count, records.data());
     done += count;
@@ -232,11 +427,13 @@ Summary convert(const std::string& in, const std::string& out, FileFormat from, 
   reader->finish();
   writer->finish();
   pending.commit();
-  Summary summary{reader->splats(), reader->degree(), false, from, to};
-  if (writer->kept_degree(reader->degree()) < reader->degree()) summary.dropped_degree = reader->degree();
   summary.clamped = writer->clamped();
-  for (int band = 0; band <= std::min(reader->degree(), writer->kept_degree(reader->degree())); ++band)
-    summary.sh_error[band] = writer->sh_error()[band];
+  for (int band = 0; band <= kept; ++band) summary.sh_error[band] = writer->sh_error()[band];
+  if (cut) {
+    summary.dropped_energy_error = kept_bands_error(choice.energy, kept);
+    summary.dropped_colour_error = colour_error;
+    summary.dropped_bytes = reader->splats() * 3 * std::uint64_t(whole.rest / 3 - written.rest / 3) * sh_value_bytes(to);
+  }
   return summary;
 }
 
@@ -248,18 +445,22 @@ struct FormatName {
   FileFormat format;
   const char* name;
   const char* extension;
+  int max_sh_degree;
+  int sh_value_bytes;  // one SH coefficient of one channel, as stored before any compression
 };
-constexpr FormatName kFormatNames[] = {{FileFormat::kPly, "ply", ".ply"},
-                                       {FileFormat::kCompressedPly, "compressed-ply", ".compressed.ply"},
-                                       {FileFormat::kSplat, "splat", ".splat"},
-                                       {FileFormat::kSpz, "spz", ".spz"},
-                                       {FileFormat::kGlb, "glb", ".glb"}};
+constexpr FormatName kFormatNames[] = {{FileFormat::kPly, "ply", ".ply", kMaxSplatShDegree, 4},
+                                       {FileFormat::kCompressedPly, "compressed-ply", ".compressed.ply", 3, 1},
+                                       {FileFormat::kSplat, "splat", ".splat", 0, 0},
+                                       {FileFormat::kSpz, "spz", ".spz", kMaxSplatShDegree, 1},
+                                       {FileFormat::kGlb, "glb", ".glb", 3, 4}};
 
 const FormatName& named(FileFormat format) {
   for (const FormatName& f : kFormatNames)
     if (f.format == format) return f;
   return kFormatNames[0];
 }
+
+int sh_value_bytes(FileFormat format) { return named(format).sh_value_bytes; }
 
 // A .ply whose header starts with the element "chunk": PlayCanvas's compressed layout.
 bool looks_compressed(const std::string& path) {
@@ -284,6 +485,13 @@ bool parse_file_format(const std::string& name, FileFormat& format) {
 }
 
 const char* file_format_name(FileFormat format) { return named(format).name; }
+int file_format_max_sh_degree(FileFormat format) { return named(format).max_sh_degree; }
+
+bool parse_spz_axes(const std::string& name, SpzAxes& axes) {
+  if (name != "raw" && name != "rub") return false;
+  axes = name == "rub" ? SpzAxes::kRub : SpzAxes::kRaw;
+  return true;
+}
 const char* file_format_extension(FileFormat format) { return named(format).extension; }
 
 std::string file_format_names() {
@@ -315,7 +523,8 @@ Summary transform_file(const std::string& in, const std::string& out, const Tran
   else if (file_format_of(in, from) && from == FileFormat::kPly && looks_compressed(in)) from = FileFormat::kCompressedPly;
   if (formats.out) to = *formats.out;
   else file_format_of(out, to);
-  if (from != FileFormat::kPly || to != FileFormat::kPly) return convert(in, out, from, to, formats.spz_version, transform, threads, progress);
+  if (from != FileFormat::kPly || to != FileFormat::kPly || formats.sh_degree || formats.max_sh_error)
+    return convert(in, out, from, to, formats, transform, threads, progress);
   std::ifstream file(in, std::ios::binary);
   if (!file) throw InputError(in + ": cannot open: " + std::strerror(errno));
   const ply::Header header = ply::read_header(file, in);
@@ -339,7 +548,11 @@ Summary transform_file(const std::string& in, const std::string& out, const Tran
     transform_binary(file, pending, header, layout, math, in, threads, progress);
   }
   pending.commit();
-  return Summary{header.vertices, layout.degree, header.format == ply::Format::kAscii};
+  Summary summary;
+  summary.splats = header.vertices;
+  summary.sh_degree = layout.degree;
+  summary.ascii = header.format == ply::Format::kAscii;
+  return summary;
 }
 
 }  // namespace zhf::splat

@@ -101,7 +101,6 @@ class SplatFileWriter : public SceneWriter {
     }
     out_.write(reinterpret_cast<const char*>(buffer_.data()), buffer_.size());
   }
-  int kept_degree(int) const override { return 0; }
 
  private:
   io::PendingFile& out_;

@@ -6,6 +6,7 @@
 #include "zhf/io/errors.h"
 #include "zhf/dispatch/rotator.h"
 #include "zhf/runtime/conventions.h"
+#include "zhf/splat/limits.h"
 
 namespace zhf::splat {
 namespace {
@@ -40,8 +41,10 @@ Layout layout_of(const ply::Header& header, const std::string& source) {
   const bool colour = group<3>(header, {"f_dc_0", "f_dc_1", "f_dc_2"}, layout.dc, source);
   std::size_t rest = 0;
   for (const ply::Property& p : header.properties) rest += p.name.rfind("f_rest_", 0) == 0;
-  if (rest != 0 && rest != 9 && rest != 24 && rest != 45)
-    throw InputError(source + ": " + std::to_string(rest) + " f_rest properties; SH degree 1, 2, 3 has 9, 24, 45");
+  int degree = 0;
+  while (degree < kMaxSplatShDegree && std::size_t(3 * ((degree + 1) * (degree + 1) - 1)) < rest) ++degree;
+  if (rest != std::size_t(3 * ((degree + 1) * (degree + 1) - 1)))
+    throw InputError(source + ": " + std::to_string(rest) + " f_rest properties; SH degree 1, 2, 3, 4 has 9, 24, 45, 72");
   if (rest > 0 && !colour) throw InputError(source + ": f_rest properties without f_dc_0..2");
   for (std::size_t i = 0; i < rest; ++i) {
     const std::string name = "f_rest_" + std::to_string(i);
@@ -51,7 +54,7 @@ Layout layout_of(const ply::Header& header, const std::string& source) {
     layout.rest.push_back(index);
   }
   layout.opacity = header.find("opacity");
-  layout.degree = !colour ? -1 : rest == 0 ? 0 : rest == 9 ? 1 : rest == 24 ? 2 : 3;
+  layout.degree = colour ? degree : -1;
   for (int i : layout.position) layout.changed.push_back(i);
   for (const auto* g : {&layout.normal, &layout.log_scale})
     if ((*g)[0] >= 0) layout.changed.insert(layout.changed.end(), g->begin(), g->end());
@@ -63,9 +66,13 @@ Layout layout_of(const ply::Header& header, const std::string& source) {
 // Prepared for a whole scene: the band matrices are built once (they pay from a few vectors on).
 constexpr std::size_t kPreparedForScene = std::size_t(1) << 20;
 
-SplatMath::SplatMath(const Layout& layout, const Transform& t) : layout_(layout), t_(t) {
+SplatMath::SplatMath(const Layout& layout, const Transform& t, Orientation orientation) : layout_(layout), t_(t) {
   const runtime::Matrix3& r = t.r;
   reflection_ = runtime::determinant(r.data()) < 0;
+  if (orientation == Orientation::kAxes && r[1] == 0 && r[2] == 0 && r[3] == 0 && r[5] == 0 && r[6] == 0 && r[7] == 0) {
+    const double sign = reflection_ ? -1 : 1;
+    flip_ = std::array<double, 3>{sign * r[0], sign * r[4], sign * r[8]};
+  }
   runtime::Matrix3 proper = r;
   if (reflection_)
     for (double& x : proper) x = -x;
@@ -94,7 +101,9 @@ void SplatMath::apply_geometry(double* v) const {
     for (int i = 0; i < 3; ++i) v[n[i]] = r[3 * i] * a + r[3 * i + 1] * b + r[3 * i + 2] * c;
   }
   const auto& q = layout_.rotation;
-  if (q[0] >= 0) {
+  if (q[0] >= 0 && flip_) {
+    for (int i = 0; i < 3; ++i) v[q[1 + i]] *= (*flip_)[i];
+  } else if (q[0] >= 0) {
     // Q' = R Q, or for a reflection R Q F = (-R) Q Rz(pi): the quaternion of Rz(pi) is (0, 0, 0, 1).
     std::array<double, 4> turned = runtime::quaternion_product(turn_, {v[q[0]], v[q[1]], v[q[2]], v[q[3]]});
     if (reflection_) turned = runtime::quaternion_product(turned, {0, 0, 0, 1});

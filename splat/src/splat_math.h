@@ -29,9 +29,15 @@ struct Layout {
 // Throws io::InputError "<source>: ..." for a layout no transform can use.
 Layout layout_of(const io::ply::Header& header, const std::string& source);
 
+// How orientations turn: kTurn, Q' = R Q (R Q F for a reflection), the scene moved; kAxes, a
+// change of axes: for a signed diagonal R (a file's axes flipped) Q' = D Q D with D = det(R) R,
+// the quaternion's components flipped as the reference .spz library does, so a round trip is
+// exact; any other R as kTurn. Both give the same covariance.
+enum class Orientation { kTurn, kAxes };
+
 class SplatMath {
  public:
-  SplatMath(const Layout& layout, const Transform& t);
+  SplatMath(const Layout& layout, const Transform& t, Orientation orientation = Orientation::kTurn);
   // One splat's property values, transformed in place.
   void apply(double* values) const { apply_many(values, 1, 0); }
   // count splats' values, splat s at values + s * stride: the SH of several splats go through
@@ -42,6 +48,7 @@ class SplatMath {
   const Layout& layout_;
   const Transform& t_;
   bool reflection_ = false;
+  std::optional<std::array<double, 3>> flip_;  // kAxes with a signed diagonal: D's diagonal
   std::array<double, 4> turn_{};
   double log_scale_ = 0;
   std::optional<runtime::CoefficientMap> exact_;

@@ -11,13 +11,17 @@
 // the channel inner). Rotations, quaternion order x y z w: version 3 the smallest three in 32
 // bits (the largest component's index in the top 2, then the other three in order, 10 bits each:
 // a sign and 9 bits of |q| / sqrt(1/2)); version 2 x, y, z as 127.5 (q + 1) with w >= 0 rebuilt.
-// The file's axes are RUB where a .ply's are RDF: a half turn about x (y and z flip) at the edge,
-// on positions, the quaternion's y and z, and each SH coefficient odd in (y, z), so zhf shows the
-// scene in the .ply's axes as the reference library does when asked for RDF.
+// A stream whose attribute is empty (SH at degree 0) is left out, as the reference library does.
+// Header flags: 1 antialiased, 2 extension records, which sit between the header and the table in
+// version 4 and after the attributes in the gzip stream of version 3 (type, byte length, payload).
+// The records are read here with their values as stored; the file's axes (a coordinate-system
+// record, else --spz-axes) go to the transform as a change of axes (formats.h: axes()).
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
+#include <string_view>
 #include <vector>
 
 #include <zlib.h>
@@ -39,12 +43,75 @@ constexpr std::uint32_t kMagic = 0x5053474e;
 constexpr std::size_t kHeaderBytes = 16, kZstdHeaderBytes = 32;
 constexpr int kZstdLevel = 12;  // the reference library's
 constexpr int kAttributes = 6;
+constexpr unsigned char kFlagAntialiased = 1, kFlagExtensions = 2;
+constexpr std::size_t kRecordHeaderBytes = 8;
+// The reference library's coordinate-system record (Adobe's vendor id 0xADBE, extension 3): one
+// uint32, 0 (unspecified: RUB, as the library reads it) or one of the 16 systems below.
+constexpr std::uint32_t kCoordinateSystemRecord = 0xADBE0003;
+constexpr const char* kCoordinateSystems[] = {"RUB", "LDB", "RDB", "LUB", "RUB", "LDF", "RDF", "LUF", "RUF",
+                                              "LFD", "RFD", "LFU", "RFU", "LBD", "RBD", "LBU", "RBU"};
 constexpr int kFractionalBits = 12;  // written: positions to +-2048 in steps of 1/4096
 constexpr double kColourScale = 0.15;
 const double kSqrtHalf = std::sqrt(0.5);
 
 
 int coefficients(int degree) { return (degree + 1) * (degree + 1) - 1; }
+
+// A system's letters (the directions of its x, y, z) as the map into the .ply's axes (RDF: x
+// right, y down, z front): column i is the .ply direction of the file's axis i.
+runtime::Matrix3 axes_of(std::string_view letters) {
+  runtime::Matrix3 a{};
+  for (int i = 0; i < 3; ++i) {
+    const char c = letters[i];
+    const int row = c == 'R' || c == 'L' ? 0 : c == 'D' || c == 'U' ? 1 : 2;
+    a[3 * row + i] = c == 'R' || c == 'D' || c == 'F' ? 1 : -1;
+  }
+  return a;
+}
+
+std::string_view letters_of(SpzAxes axes) { return axes == SpzAxes::kRub ? "RUB" : "RDF"; }
+
+std::string hex(std::uint32_t x) {
+  char text[16];
+  std::snprintf(text, sizeof text, "0x%08x", x);
+  return text;
+}
+
+// Extension records, back to back, filling `bytes` exactly.
+std::vector<SpzExtension> parse_records(const std::string& bytes, const std::string& path) {
+  if (bytes.size() > kMaxSpzExtensionBytes)
+    throw InputError(path + ": " + std::to_string(bytes.size()) + " bytes of extension records; at most " + std::to_string(kMaxSpzExtensionBytes));
+  std::vector<SpzExtension> records;
+  for (std::size_t at = 0; at < bytes.size();) {
+    if (records.size() == std::size_t(kMaxSpzExtensionRecords))
+      throw InputError(path + ": more than " + std::to_string(kMaxSpzExtensionRecords) + " extension records");
+    if (bytes.size() - at < kRecordHeaderBytes) throw InputError(path + ": extension record " + std::to_string(records.size()) + ": truncated header");
+    SpzExtension r;
+    r.type = get_uint32(reinterpret_cast<const unsigned char*>(bytes.data() + at));
+    const std::uint32_t length = get_uint32(reinterpret_cast<const unsigned char*>(bytes.data() + at + 4));
+    at += kRecordHeaderBytes;
+    if (r.type == 0) throw InputError(path + ": extension record " + std::to_string(records.size()) + ": type 0 is reserved");
+    if (length > bytes.size() - at)
+      throw InputError(path + ": extension record " + std::to_string(records.size()) + " (" + hex(r.type) + "): " + std::to_string(length) +
+                       " bytes, past the end of the records");
+    r.payload = bytes.substr(at, length);
+    at += length;
+    records.push_back(std::move(r));
+  }
+  return records;
+}
+
+std::string record_bytes(const std::vector<SpzExtension>& records) {
+  std::string out;
+  for (const SpzExtension& r : records) {
+    unsigned char head[kRecordHeaderBytes];
+    put_uint32(head, r.type);
+    put_uint32(head + 4, static_cast<std::uint32_t>(r.payload.size()));
+    out.append(reinterpret_cast<const char*>(head), kRecordHeaderBytes);
+    out += r.payload;
+  }
+  return out;
+}
 
 // Bytes per splat of each attribute, in file order.
 std::array<std::uint64_t, kAttributes> attribute_bytes(int version, int degree) {
@@ -104,6 +171,23 @@ class GzipReader : public AttributeStream {
       if (result == Z_STREAM_END) ended_ = true;
       else if (result != Z_OK) throw InputError(path_ + ": gzip: " + (z_.msg ? runtime::excerpt(z_.msg) : "corrupt data"));
     }
+  }
+
+  // What is left of the decompressed stream, at most max_bytes (InputError beyond).
+  std::string read_rest(std::size_t max_bytes, const char* what) {
+    std::string rest;
+    std::array<unsigned char, 1 << 12> block;
+    while (!ended_) {
+      z_.next_out = block.data();
+      z_.avail_out = static_cast<uInt>(block.size());
+      refill();
+      const int result = inflate(&z_, Z_NO_FLUSH);
+      if (result == Z_STREAM_END) ended_ = true;
+      else if (result != Z_OK) throw InputError(path_ + ": gzip: " + (z_.msg ? runtime::excerpt(z_.msg) : "corrupt data"));
+      rest.append(reinterpret_cast<const char*>(block.data()), block.size() - z_.avail_out);
+      if (rest.size() > max_bytes) throw InputError(path_ + ": more than " + std::to_string(max_bytes) + " bytes of " + what);
+    }
+    return rest;
   }
 
   void expect_end() override {
@@ -194,7 +278,7 @@ class ZstdReader : public AttributeStream {
 
 class SpzReader : public SceneReader {
  public:
-  explicit SpzReader(const std::string& path) : path_(path) {
+  SpzReader(const std::string& path, SpzAxes default_axes) : path_(path) {
     const std::uint64_t size = regular_file_size(path, ".spz is checked against its size first");
     std::ifstream file = open_input(path);
     unsigned char h[kZstdHeaderBytes] = {};
@@ -216,9 +300,14 @@ class SpzReader : public SceneReader {
     if (splats_ > io::kMaxPlyVertices)
       throw InputError(path + ": " + std::to_string(splats_) + " splats; at most " + std::to_string(io::kMaxPlyVertices));
     degree_ = h[12];
-    if (degree_ > 3) throw InputError(path + ": SH degree " + std::to_string(degree_) + "; zhf splat handles degrees 0..3");
+    if (degree_ > kMaxSplatShDegree)
+      throw InputError(path + ": SH degree " + std::to_string(degree_) + "; .spz holds degrees 0.." + std::to_string(kMaxSplatShDegree));
     fractional_bits_ = h[13];
     if (fractional_bits_ > 23) throw InputError(path + ": " + std::to_string(fractional_bits_) + " fractional bits; at most 23");
+    const unsigned flags = h[14];
+    if (flags & ~unsigned(kFlagAntialiased | kFlagExtensions))
+      throw InputError(path + ": header flags " + hex(flags) + ": zhf knows 0x1 (antialiased) and 0x2 (extension records)");
+    antialiased_ = flags & kFlagAntialiased;
     const std::array<std::uint64_t, kAttributes> bytes = attribute_bytes(version_, degree_);
     std::uint64_t claimed = 0;
     for (std::uint64_t b : bytes) claimed += b * splats_;
@@ -232,30 +321,55 @@ class SpzReader : public SceneReader {
         attributes_[a] = std::make_unique<GzipReader>(path, offset);
         offset += bytes[a] * splats_;
       }
+      // Version 3 keeps its records after the attributes, to the end of the stream.
+      if (flags & kFlagExtensions) {
+        const std::string records = GzipReader(path, offset).read_rest(kMaxSpzExtensionBytes, "extension records");
+        gzip_record_bytes_ = records.size();
+        take_records(parse_records(records, path), default_axes);
+      } else {
+        take_records({}, default_axes);
+      }
       return;
     }
     for (std::size_t i = 20; i < kZstdHeaderBytes; ++i)
       if (h[i] != 0) throw InputError(path + ": the header's reserved bytes are not 0");
     const int streams = h[15];
     const std::uint32_t table = get_uint32(h + 16);
-    if (streams != kAttributes) throw InputError(path + ": " + std::to_string(streams) + " streams; expected 6");
+    // The reference library writes a stream per non-empty attribute; zhf's earlier files wrote all six.
+    int present = 0;
+    for (std::uint64_t b : bytes) present += b * splats_ > 0;
+    const bool every_attribute = streams == kAttributes;
+    if (streams != present && !every_attribute)
+      throw InputError(path + ": " + std::to_string(streams) + " streams; " + std::to_string(splats_) + " splats of SH degree " +
+                       std::to_string(degree_) + " have " + std::to_string(present));
     if (table < kZstdHeaderBytes || table > size || size - table < std::uint64_t(16 * streams))
       throw InputError(path + ": the table of streams at byte " + std::to_string(table) + " is not inside the file");
+    if (table > kZstdHeaderBytes && !(flags & kFlagExtensions))
+      throw InputError(path + ": " + std::to_string(table - kZstdHeaderBytes) + " bytes between the header and the table, and no extension flag");
+    std::string records(table - kZstdHeaderBytes, '\0');
+    if (records.size() > kMaxSpzExtensionBytes)
+      throw InputError(path + ": " + std::to_string(records.size()) + " bytes of extension records; at most " + std::to_string(kMaxSpzExtensionBytes));
     file.clear();
-    file.seekg(table);
-    std::uint64_t offset = table + 16 * streams;
-    for (int a = 0; a < streams; ++a) {
+    file.seekg(kZstdHeaderBytes);
+    file.read(records.data(), std::streamsize(records.size()));
+    take_records(parse_records(records, path), default_axes);
+    std::uint64_t offset = table + 16 * std::uint64_t(streams);
+    int stream = 0;
+    for (int a = 0; a < kAttributes; ++a) {
+      const std::uint64_t expected = bytes[a] * splats_;
+      if (expected == 0 && !every_attribute) continue;
       unsigned char entry[16];
       file.read(reinterpret_cast<char*>(entry), 16);
       std::uint64_t compressed, decompressed;
       std::memcpy(&compressed, entry, 8);
       std::memcpy(&decompressed, entry + 8, 8);
-      if (decompressed != bytes[a] * splats_)
-        throw InputError(path + ": stream " + std::to_string(a) + " holds " + std::to_string(decompressed) + " bytes; " +
-                         std::to_string(splats_) + " splats need " + std::to_string(bytes[a] * splats_));
-      if (compressed > size - offset) throw InputError(path + ": stream " + std::to_string(a) + " runs past the end of the file");
+      if (decompressed != expected)
+        throw InputError(path + ": stream " + std::to_string(stream) + " holds " + std::to_string(decompressed) + " bytes; " +
+                         std::to_string(splats_) + " splats need " + std::to_string(expected));
+      if (compressed > size - offset) throw InputError(path + ": stream " + std::to_string(stream) + " runs past the end of the file");
       attributes_[a] = std::make_unique<ZstdReader>(path, offset, compressed);
       offset += compressed;
+      ++stream;
     }
     if (offset != size) throw InputError(path + ": " + std::to_string(size - offset) + " bytes after the last stream");
   }
@@ -265,11 +379,10 @@ class SpzReader : public SceneReader {
     const std::array<std::uint64_t, kAttributes> bytes = attribute_bytes(version_, degree_);
     for (std::size_t a = 0; a < bytes.size(); ++a) {
       buffers_[a].resize(count * bytes[a]);
-      attributes_[a]->read(buffers_[a].data(), buffers_[a].size());
+      if (!buffers_[a].empty()) attributes_[a]->read(buffers_[a].data(), buffers_[a].size());
     }
     const double position_scale = 1.0 / double(1 << fractional_bits_);
     const int dim = coefficients(degree_);
-    const std::array<double, 15>& flip = half_turn_signs(Axis::kX);
     for (std::uint64_t s = 0; s < count; ++s) {
       double* v = records + s * c.size();
       const unsigned char* p = buffers_[0].data() + 9 * s;
@@ -278,7 +391,7 @@ class SpzReader : public SceneReader {
       for (int i = 0; i < 3; ++i) {
         std::int32_t fixed = p[3 * i] | (p[3 * i + 1] << 8) | (p[3 * i + 2] << 16);
         if (fixed & 0x800000) fixed -= 0x1000000;
-        v[Canonical::kPosition + i] = (i == 0 ? 1 : -1) * fixed * position_scale;
+        v[Canonical::kPosition + i] = fixed * position_scale;
         v[Canonical::kNormal + i] = 0;
         v[Canonical::kDc + i] = (rgb[i] / 255.0 - 0.5) / kColourScale;
         v[c.scale() + i] = scale[i] / 16.0 - 10;
@@ -307,30 +420,56 @@ class SpzReader : public SceneReader {
         }
         xyzw[3] = std::sqrt(std::max(0.0, 1 - squares));
       }
-      double* q = v + c.rotation();  // w x y z, turned: y and z flip
+      double* q = v + c.rotation();  // w x y z
       q[0] = xyzw[3];
-      q[1] = xyzw[0];
-      q[2] = -xyzw[1];
-      q[3] = -xyzw[2];
+      for (int i = 0; i < 3; ++i) q[1 + i] = xyzw[i];
       const unsigned char* sh = buffers_[5].data() + 3 * dim * s;  // empty at degree 0
       for (int k = 0; k < dim; ++k)
-        for (int ch = 0; ch < 3; ++ch) v[Canonical::kRest + ch * dim + k] = flip[k] * (sh[3 * k + ch] - 128.0) / 128;
+        for (int ch = 0; ch < 3; ++ch) v[Canonical::kRest + ch * dim + k] = (sh[3 * k + ch] - 128.0) / 128;
     }
   }
 
   void finish() override {
-    // Version 4: every stream its own frame; versions 2 and 3: one stream, ending after the last.
-    if (version_ == 4)
-      for (const auto& stream : attributes_) stream->expect_end();
-    else
-      attributes_.back()->expect_end();
+    // Version 4: every stream its own frame; versions 2 and 3: one stream, ending after the last
+    // attribute and the extension records.
+    if (version_ == 4) {
+      for (const auto& stream : attributes_)
+        if (stream) stream->expect_end();
+      return;
+    }
+    std::vector<unsigned char> records(gzip_record_bytes_);
+    if (!records.empty()) attributes_.back()->read(records.data(), records.size());
+    attributes_.back()->expect_end();
   }
 
  private:
+  // The coordinate-system record sets the axes; the others are carried.
+  void take_records(std::vector<SpzExtension> records, SpzAxes default_axes) {
+    std::string_view letters = letters_of(default_axes);
+    axes_source_ = std::string(default_axes == SpzAxes::kRub ? "rub" : "raw") + " (--spz-axes; no coordinate-system record)";
+    bool seen = false;
+    for (SpzExtension& r : records) {
+      if (r.type != kCoordinateSystemRecord) {
+        extensions_.push_back(std::move(r));
+        continue;
+      }
+      const std::string what = path_ + ": coordinate-system record";
+      if (seen) throw InputError(what + ": given twice");
+      if (r.payload.size() != 4) throw InputError(what + ": " + std::to_string(r.payload.size()) + " bytes; expected 4");
+      const std::uint32_t system = get_uint32(reinterpret_cast<const unsigned char*>(r.payload.data()));
+      if (system >= std::size(kCoordinateSystems)) throw InputError(what + ": " + std::to_string(system) + " is not a coordinate system (0..16)");
+      seen = true;
+      letters = kCoordinateSystems[system];
+      axes_source_ = std::string(letters) + " (coordinate-system record" + (system == 0 ? ", unspecified: RUB" : "") + ")";
+    }
+    axes_ = axes_of(letters);
+  }
+
   std::string path_;
   std::uint32_t version_ = 3;
   int fractional_bits_ = 0;
-  std::array<std::unique_ptr<AttributeStream>, kAttributes> attributes_;
+  std::uint64_t gzip_record_bytes_ = 0;  // version 3's extension records after the attributes
+  std::array<std::unique_ptr<AttributeStream>, kAttributes> attributes_;  // none for an empty attribute's left-out stream
   std::array<std::vector<unsigned char>, kAttributes> buffers_;
 };
 
@@ -346,8 +485,11 @@ unsigned char sh_byte(double v, int bits, std::uint64_t& clamped) {
 
 class SpzWriter : public SceneWriter {
  public:
-  SpzWriter(io::PendingFile& out, int degree, std::uint64_t splats, int version)
-      : out_(out), c_(degree), degree_(degree), version_(version), splats_(splats) {
+  SpzWriter(io::PendingFile& out, const WriteOptions& o)
+      : out_(out), c_(o.degree), degree_(o.degree), version_(o.spz_version), splats_(o.splats), antialiased_(o.antialiased),
+        records_(record_bytes(o.spz_extensions)) {
+    axes_ = runtime::transpose(axes_of(letters_of(o.spz_axes)));
+    if (records_.size() > kMaxSpzExtensionBytes) throw io::OutputError("extension records: more than " + std::to_string(kMaxSpzExtensionBytes) + " bytes");
     for (std::size_t a = 0; a < files_.size(); ++a) {
       files_[a].open(dir_.path() + "/" + std::to_string(a), std::ios::binary);
       if (!files_[a]) throw io::OutputError(dir_.path() + ": cannot write a temporary file");
@@ -356,12 +498,11 @@ class SpzWriter : public SceneWriter {
 
   void write(std::uint64_t count, const double* records) override {
     const int dim = coefficients(degree_);
-    const std::array<double, 15>& flip = half_turn_signs(Axis::kX);
     std::array<std::vector<unsigned char>, kAttributes> bytes;
     for (std::uint64_t s = 0; s < count; ++s) {
       const double* v = records + s * c_.size();
       for (int i = 0; i < 3; ++i) {
-        const double x = (i == 0 ? 1 : -1) * v[Canonical::kPosition + i] * double(1 << kFractionalBits);
+        const double x = v[Canonical::kPosition + i] * double(1 << kFractionalBits);
         const std::uint32_t fixed = std::uint32_t(std::int32_t(clamped_round(x + 0x7fffff, 0xfffffe, clamped_)) - 0x7fffff);
         for (int b = 0; b < 3; ++b) bytes[0].push_back(static_cast<unsigned char>(fixed >> (8 * b)));
       }
@@ -373,7 +514,7 @@ class SpzWriter : public SceneWriter {
       for (int i = 0; i < 3; ++i) bytes[3].push_back(static_cast<unsigned char>(clamped_round(16 * (v[c_.scale() + i] + 10), 255, clamped_)));
       const double* q = v + c_.rotation();
       const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-      const double xyzw[4] = {q[1] / norm, -q[2] / norm, -q[3] / norm, q[0] / norm};
+      const double xyzw[4] = {q[1] / norm, q[2] / norm, q[3] / norm, q[0] / norm};
       int largest = 0;
       for (int i = 1; i < 4; ++i)
         if (std::abs(xyzw[i]) > std::abs(xyzw[largest])) largest = i;
@@ -388,8 +529,8 @@ class SpzWriter : public SceneWriter {
       for (int b = 0; b < 4; ++b) bytes[4].push_back(static_cast<unsigned char>(word >> (8 * b)));
       for (int k = 0; k < dim; ++k)
         for (int ch = 0; ch < 3; ++ch) {
-          const double given = flip[k] * v[Canonical::kRest + ch * dim + k];
-          bytes[5].push_back(sh_byte(given, k < 3 ? 5 : 4, clamped_));
+          const double given = v[Canonical::kRest + ch * dim + k];
+          bytes[5].push_back(sh_byte(given, Canonical::band(k) == 1 ? 5 : 4, clamped_));
           stored(Canonical::band(k), given, (bytes[5].back() - 128.0) / 128);
         }
     }
@@ -407,7 +548,6 @@ class SpzWriter : public SceneWriter {
     if (version_ == 4) finish_zstd();
     else finish_gzip();
   }
-  int kept_degree(int degree) const override { return degree; }
 
  private:
   // Each attribute's bytes, a block at a time.
@@ -425,22 +565,30 @@ class SpzWriter : public SceneWriter {
     put_uint32(header + 8, static_cast<std::uint32_t>(splats_));
     header[12] = static_cast<unsigned char>(degree_);
     header[13] = kFractionalBits;
+    header[14] = static_cast<unsigned char>((antialiased_ ? kFlagAntialiased : 0) | (records_.empty() ? 0 : kFlagExtensions));
   }
 
-  // Version 4: the header, the table, then each attribute as its own zstd frame.
+  // Version 4: the header, the extension records, the table, then each non-empty attribute as its
+  // own zstd frame.
   void finish_zstd() {
+    const std::array<std::uint64_t, kAttributes> per_splat = attribute_bytes(4, degree_);
+    std::vector<std::size_t> present;
+    for (std::size_t a = 0; a < kAttributes; ++a)
+      if (per_splat[a] * splats_ > 0) present.push_back(a);
+    const std::uint32_t table_at = static_cast<std::uint32_t>(kZstdHeaderBytes + records_.size());
     unsigned char header[kZstdHeaderBytes] = {};
     put_header(header, 4);
-    header[15] = kAttributes;
-    put_uint32(header + 16, kZstdHeaderBytes);
+    header[15] = static_cast<unsigned char>(present.size());
+    put_uint32(header + 16, table_at);
     out_.write(reinterpret_cast<const char*>(header), kZstdHeaderBytes);
-    std::array<unsigned char, 16 * kAttributes> table{};
+    out_.write(records_);
+    std::vector<unsigned char> table(16 * present.size());
     out_.write(reinterpret_cast<const char*>(table.data()), table.size());  // filled in below
     ZSTD_CStream* stream = ZSTD_createCStream();
     if (!stream) throw io::OutputError("zstd: cannot start compressing");
     std::vector<unsigned char> out(ZSTD_CStreamOutSize());
     try {
-      for (std::size_t a = 0; a < kAttributes; ++a) {
+      for (std::size_t i = 0; i < present.size(); ++i) {
         ZSTD_CCtx_reset(stream, ZSTD_reset_session_only);
         ZSTD_CCtx_setParameter(stream, ZSTD_c_compressionLevel, kZstdLevel);
         ZSTD_CCtx_setParameter(stream, ZSTD_c_checksumFlag, 1);  // a reader can tell a damaged frame
@@ -456,23 +604,24 @@ class SpzWriter : public SceneWriter {
             if (mode == ZSTD_e_end ? left == 0 : input.pos == input.size) break;
           }
         };
-        for_each_block(a, [&](const unsigned char* data, std::size_t size) {
+        for_each_block(present[i], [&](const unsigned char* data, std::size_t size) {
           feed(data, size, ZSTD_e_continue);
           decompressed += size;
         });
         feed(nullptr, 0, ZSTD_e_end);
-        std::memcpy(&table[16 * a], &compressed, 8);
-        std::memcpy(&table[16 * a + 8], &decompressed, 8);
+        std::memcpy(&table[16 * i], &compressed, 8);
+        std::memcpy(&table[16 * i + 8], &decompressed, 8);
       }
     } catch (...) {
       ZSTD_freeCStream(stream);
       throw;
     }
     ZSTD_freeCStream(stream);
-    out_.write_at(kZstdHeaderBytes, reinterpret_cast<const char*>(table.data()), table.size());
+    out_.write_at(table_at, reinterpret_cast<const char*>(table.data()), table.size());
   }
 
-  // Versions 2 and 3: the header and the attributes, one after another, through one gzip stream.
+  // Versions 2 and 3: the header, the attributes one after another and the extension records,
+  // through one gzip stream.
   void finish_gzip() {
     Deflater deflater;
     z_stream& z = deflater.z;
@@ -494,6 +643,7 @@ class SpzWriter : public SceneWriter {
     feed(header, kHeaderBytes, Z_NO_FLUSH);
     for (std::size_t a = 0; a < kAttributes; ++a)
       for_each_block(a, [&](const unsigned char* data, std::size_t size) { feed(data, size, Z_NO_FLUSH); });
+    feed(reinterpret_cast<const unsigned char*>(records_.data()), records_.size(), Z_NO_FLUSH);
     feed(nullptr, 0, Z_FINISH);
   }
 
@@ -501,15 +651,17 @@ class SpzWriter : public SceneWriter {
   Canonical c_;
   int degree_, version_;
   std::uint64_t splats_;
+  bool antialiased_;
+  std::string records_;  // the extension records carried, as stored
   io::PrivateDir dir_{"zhf-spz"};  // each attribute's bytes until the end, in file order
   std::array<std::ofstream, kAttributes> files_;
 };
 
 }  // namespace
 
-std::unique_ptr<SceneReader> open_spz_reader(const std::string& path) { return std::make_unique<SpzReader>(path); }
-std::unique_ptr<SceneWriter> open_spz_writer(io::PendingFile& out, int degree, std::uint64_t splats, int version) {
-  return std::make_unique<SpzWriter>(out, degree, splats, version);
+std::unique_ptr<SceneReader> open_spz_reader(const std::string& path, SpzAxes axes) { return std::make_unique<SpzReader>(path, axes); }
+std::unique_ptr<SceneWriter> open_spz_writer(io::PendingFile& out, const WriteOptions& options) {
+  return std::make_unique<SpzWriter>(out, options);
 }
 
 }  // namespace zhf::splat

@@ -662,6 +662,7 @@ std::string spz_header(std::uint32_t version, std::uint32_t splats, int degree, 
   return h;
 }
 
+// With --spz-axes rub (the format's documented axes) the file is RUB and the .ply RDF.
 TEST(Splat, SpzHoldsTheLayoutInItsAxesAndReadsBackExactly) {
   const test::TempDir dir;
   std::mt19937_64 rng(36);
@@ -672,14 +673,14 @@ TEST(Splat, SpzHoldsTheLayoutInItsAxesAndReadsBackExactly) {
   }
   const std::string in = (dir / "in.ply").string(), spz = (dir / "out.spz").string(), back = (dir / "back.ply").string();
   write_scene(scene, in, false);
-  test::RunResult run = test::run_zhf("splat --in '" + in + "' --out '" + spz + "' --identity --quiet --spz-version 3");
+  test::RunResult run = test::run_zhf("splat --in '" + in + "' --out '" + spz + "' --identity --quiet --spz-version 3 --spz-axes rub");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(run.err, "");
   const std::string data = gunzip(test::read_text(spz));
   const std::size_t n = scene.rows.size();
   ASSERT_EQ(data.size(), 16 + n * (9 + 1 + 3 + 3 + 4 + 45));
   EXPECT_EQ(data.substr(0, 16), spz_header(3, std::uint32_t(n), 3));
-  run = test::run_zhf("splat --in '" + spz + "' --out '" + back + "' --identity --quiet");
+  run = test::run_zhf("splat --in '" + spz + "' --out '" + back + "' --identity --quiet --spz-axes rub");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   std::string header;
   const Scene got = read_scene(back, scene, header);
@@ -732,14 +733,14 @@ TEST(Splat, SpzHoldsTheLayoutInItsAxesAndReadsBackExactly) {
   }
   // Version 4 (the default): the same attributes as zstd frames, so the same values read back.
   const std::string v4 = (dir / "v4.spz").string(), v4_back = (dir / "v4_back.ply").string();
-  ASSERT_EQ(test::run_zhf("splat --in '" + in + "' --out '" + v4 + "' --identity --quiet").exit_code, 0);
+  ASSERT_EQ(test::run_zhf("splat --in '" + in + "' --out '" + v4 + "' --identity --quiet --spz-axes rub").exit_code, 0);
   const std::string v4_bytes = test::read_text(v4);
   ASSERT_GE(v4_bytes.size(), 32u + 96u);
   EXPECT_EQ(v4_bytes.substr(0, 12), spz_header(4, std::uint32_t(n), 3).substr(0, 12));
-  ASSERT_EQ(test::run_zhf("splat --in '" + v4 + "' --out '" + v4_back + "' --identity --quiet").exit_code, 0);
+  ASSERT_EQ(test::run_zhf("splat --in '" + v4 + "' --out '" + v4_back + "' --identity --quiet --spz-axes rub").exit_code, 0);
   EXPECT_EQ(test::read_text(v4_back), test::read_text(back));
   // Transformed straight from the .spz, as its decoded .ply is.
-  expect_alike(spz, kTurn, back, kTurn, scene, dir);
+  expect_alike(spz, kTurn + " --spz-axes rub", back, kTurn, scene, dir);
 }
 
 TEST(Splat, MalformedSpzIsRefusedAndNothingIsWritten) {
@@ -757,7 +758,7 @@ TEST(Splat, MalformedSpzIsRefusedAndNothingIsWritten) {
       {spz_header(4, 2, 0), "truncated: a version 4 header is 32 bytes"},
       {gzip(std::string("NGSX") + reordered.substr(4)), "the magic is not NGSP"},
       {gzip(spz_header(1, 2, 0) + reordered.substr(16)), ".spz version 1; zhf reads versions 2, 3 and 4"},
-      {gzip(spz_header(3, 2, 4) + reordered.substr(16)), "SH degree 4; zhf splat handles degrees 0..3"},
+      {gzip(spz_header(3, 2, 5) + reordered.substr(16)), "SH degree 5; .spz holds degrees 0..4"},
       {gzip(spz_header(3, 2, 0, 12, 7) + reordered.substr(16)), "the header's reserved byte is not 0"},
       {gzip(spz_header(3, 2, 0, 30) + reordered.substr(16)), "30 fractional bits; at most 23"},
       {gz.substr(0, gz.size() - 9), "truncated: the gzip stream ends early"},
@@ -785,13 +786,15 @@ TEST(Splat, MalformedSpzIsRefusedAndNothingIsWritten) {
   std::uint64_t first_stream;
   std::memcpy(&first_stream, &v4[32], 8);
   const std::vector<std::pair<std::string, std::string>> v4_cases = {
-      {with_byte(15, 5), "5 streams; expected 6"},
+      {with_byte(15, 4), "4 streams; 2 splats of SH degree 0 have 5"},
+      {with_byte(14, 4), "header flags 0x00000004: zhf knows 0x1 (antialiased) and 0x2 (extension records)"},
+      {with_byte(16, 40), "8 bytes between the header and the table, and no extension flag"},
       {with_byte(16, char(0xf0)), "the table of streams at byte 240 is not inside the file"},
       {with_byte(20, 1), "the header's reserved bytes are not 0"},
       {with_byte(40, 7), "stream 0 holds 7 bytes; 2 splats need 18"},
       {with_byte(32, char(first_stream + 1)), "stream"},
       {v4 + "z", "1 bytes after the last stream"},
-      {with_byte(32 + 96, char(v4[32 + 96] ^ 0x3c)), "zstd: "},  // the first frame's magic
+      {with_byte(32 + 80, char(v4[32 + 80] ^ 0x3c)), "zstd: "},  // the first frame's magic
       {v4.substr(0, v4.size() - 1), "runs past the end of the file"},
   };
   for (const auto& [content, message] : v4_cases)

@@ -21,6 +21,15 @@ inline constexpr double kMaxCompressionRatio = 1100;
 inline constexpr std::size_t kMaxGlbJsonBytes = std::size_t(16) << 20;
 inline constexpr int kMaxGlbChunks = 16;
 inline constexpr int kMaxGlbObjects = 1 << 16;
+// A scene's SH degree: 0..4, as .ply (72 f_rest) and .spz version 4 carry it; each channel's
+// coefficients above band 0.
+inline constexpr int kMaxSplatShDegree = 4;
+inline constexpr int kMaxRestPerChannel = (kMaxSplatShDegree + 1) * (kMaxSplatShDegree + 1) - 1;
+// A .spz file's extension records (the reference library's are a few bytes each).
+inline constexpr std::size_t kMaxSpzExtensionBytes = std::size_t(1) << 20;
+inline constexpr int kMaxSpzExtensionRecords = 64;
+// zhf splat --max-sh-error: the colour error's view directions (docs/formats.md).
+inline constexpr int kColourErrorDirections = 256;
 // zhf splat --scale: a factor in [kMinSplatScale, kMaxSplatScale].
 inline constexpr double kMinSplatScale = 1e-30, kMaxSplatScale = 1e30;
 

@@ -3,7 +3,7 @@
 // whole, and converted from one format to another:
 // p' = s R p + t for positions (rotate and scale about the origin, then translate), the
 // Gaussians' orientations and normals turned by R, log-scales plus log s, and each splat's
-// view-dependent colour (SH of degree 0..3 in the file's convention, 3dgs by default) turned
+// view-dependent colour (SH of degree 0..4 in the file's convention, 3dgs by default) turned
 // with R, so that the colour seen from R d after equals the colour seen from d before.
 // R may be a reflection (a mirrored scene): an orientation then becomes R Q F, F = diag(1, 1, -1),
 // which is a rotation and keeps the Gaussian's shape.
@@ -26,6 +26,7 @@
 
 #include "zhf/runtime/conventions.h"
 #include "zhf/runtime/rotation.h"
+#include "zhf/splat/limits.h"
 
 namespace zhf::splat {
 
@@ -48,16 +49,42 @@ std::string file_format_names();
 // From the name's ending (any case; the longest that fits), or false.
 bool file_format_of(const std::string& path, FileFormat& format);
 
+// The SH degree a format holds at most (.splat: colour only).
+int file_format_max_sh_degree(FileFormat format);
+
+// A .spz file's axes where it carries no coordinate-system record (docs/formats.md): kRaw, the
+// .ply's own (what the reference library writes by default, its ply_to_spz and splat-transform),
+// or kRub, the format's documented x right, y up, z back (Scaniverse's files, three.js).
+enum class SpzAxes { kRaw, kRub };
+// "raw", "rub", or false.
+bool parse_spz_axes(const std::string& name, SpzAxes& axes);
+
 struct Summary {
   std::uint64_t splats = 0;
   int sh_degree = -1;  // -1: no colour properties
   bool ascii = false;
   FileFormat in = FileFormat::kPly, out = FileFormat::kPly;
+  int kept_degree = -1;        // the SH degree written (converted scenes)
   int dropped_degree = -1;     // the SH degree the output format could not hold (-1: none dropped)
+  // Bands above kept_degree left out (--sh-degree, --max-sh-error): the relative L2 error of the
+  // colours' SH over the scene, as zhf analyze measures it (sqrt of the dropped energy over the
+  // whole), and the largest error of one splat's colour over view directions (docs/formats.md).
+  double dropped_energy_error = 0, dropped_colour_error = 0;
+  std::uint64_t dropped_bytes = 0;  // SH bytes the output does not hold (before a format's compression)
+  bool antialiased = false;         // the input's flag (.spz)
+  bool antialiasing_dropped = false;  // set, and the output format has no such flag
+  std::string spz_axes_source;        // a .spz's axes and where they came from, e.g. "rub (coordinate-system record)"
+  int carried_extensions = 0;         // .spz extension records carried unchanged
+  int dropped_extensions = 0;         // left out, as --drop-spz-extensions asks
   std::uint64_t clamped = 0;   // values outside the output's range, written as its nearest
   // Converted (any pair but .ply to .ply): per SH band (0: f_dc), the largest |written - exact|
   // of the transformed values, what the output format's steps cost; -1 for a band not written.
-  std::array<double, 4> sh_error{-1, -1, -1, -1};
+  std::array<double, kMaxSplatShDegree + 1> sh_error = unwritten();
+  static std::array<double, kMaxSplatShDegree + 1> unwritten() {
+    std::array<double, kMaxSplatShDegree + 1> a;
+    a.fill(-1);
+    return a;
+  }
 };
 
 // Splats per chunk: the memory bound (a degree-3 binary splat is 248 bytes).
@@ -69,6 +96,12 @@ inline constexpr std::uint64_t kChunkSplats = 1 << 16;
 struct Formats {
   std::optional<FileFormat> in, out;
   int spz_version = 4;  // written: 4 (zstd streams, the reference library's default) or 3 (gzip)
+  SpzAxes spz_axes = SpzAxes::kRaw;  // of a .spz read without a coordinate-system record, and of one written
+  bool drop_spz_extensions = false;  // records a non-.spz output cannot carry: left out (else refused)
+  // The SH bands written: 0..sh_degree (at most the scene's), or the smallest degree whose
+  // dropped energy error stays within max_sh_error; neither: all the output format holds.
+  std::optional<int> sh_degree;
+  std::optional<double> max_sh_error;
 };
 Summary transform_file(const std::string& in, const std::string& out, const Transform& transform, int threads,
                        const std::function<void(std::uint64_t, std::uint64_t)>& progress, const Formats& formats = {});
