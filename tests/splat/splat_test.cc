@@ -23,7 +23,7 @@
 #include "zhf/io/ply.h"
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/sh_eval.h"
-#include "zhf/runtime/tolerances.h"
+#include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/random.h"
 #include "zhf/sh/rotation_matrix.h"
 
@@ -34,8 +34,7 @@ namespace fs = std::filesystem;
 using namespace std::string_literals;
 using runtime::Matrix3;
 
-// Float32 storage: each value is rounded to float once on the way in and once on the way out.
-constexpr double kFloatStorage = 4 * runtime::tolerance::kFloatEpsilon;
+constexpr double kFloatStorage = tolerance::kSplatFloatStorage;
 
 struct Scene {
   int degree = 3;

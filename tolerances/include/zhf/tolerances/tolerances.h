@@ -233,6 +233,11 @@ inline constexpr float kRgbeBlack = 1e-32f;
 // difference over the exact shading's RMS, measured at most 1.6e-14 (bands 0..31, 4667 needlets).
 inline constexpr double kParsevalShading = 1e-12;
 
+// ---- Splat scenes ----------------------------------------------------------------------------
+// zhf splat's .ply values are float32: each is rounded to float once on the way in and once on
+// the way out, so a transformed value is within a few float steps of its double reference.
+inline constexpr double kSplatFloatStorage = 4 * kFloatEpsilon;
+
 // ---- HEALPix maps ----------------------------------------------------------------------------
 // A band-limited map (bands <= Nside / 2) synthesised on HEALPix pixels and projected back with 3
 // Jacobi steps: max coefficient error, measured 2.3e-10 at Nside 32, bands 0..16 (the pixel
