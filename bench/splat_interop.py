@@ -14,6 +14,7 @@ every format's range (seeded), so that no value is clamped.
 import argparse
 import math
 import random
+import re
 import struct
 import subprocess
 import sys
@@ -96,8 +97,10 @@ def largest_difference(a, b, degree):
 
 
 def run(args):
+    """Exit code and output lines, zhf's "zhf: <temporary path>: " prefix left out."""
     result = subprocess.run(args, capture_output=True, text=True)
-    return result.returncode, (result.stderr.strip() or result.stdout.strip()).splitlines()
+    lines = (result.stderr.strip() or result.stdout.strip()).splitlines()
+    return result.returncode, [re.sub(r"^zhf: \S+: ", "", l).replace("✗ ", "") for l in lines]
 
 
 def zhf_read(zhf, path, out):
@@ -124,12 +127,12 @@ def cell(writer, path, scene, degree, zhf, st, tmp):
     z_error = zhf_read(zhf, path, z_out)
     s_error = st_read(st, path, s_out) if fmt in ST_READS else None
     if reader == "zhf" and z_error:
-        return f"zhf refuses: {z_error[:90]}"
+        return f"zhf refuses: {z_error[:120]}"
     if reader == "splat-transform" and s_error:
-        return f"splat-transform refuses: {s_error[:90]}"
+        return f"splat-transform refuses: {s_error[:120]}"
     if z_error or s_error:
         other = "zhf" if z_error else "splat-transform"
-        return f"{other} cannot read it back: {(z_error or s_error)[:80]}"
+        return f"{other} cannot read it back: {(z_error or s_error)[:120]}"
     if fmt not in ST_READS:
         difference, field = largest_difference(read_ply(z_out), read_ply(scene), degree)
         return f"reads; {difference:.2g} ({field}) vs scene"
@@ -159,7 +162,7 @@ def main():
                 write_scene(scene, degree, a.splats, 1000 + degree)
                 by_zhf, by_st = str(Path(tmp) / ("zhf" + fmt)), str(Path(tmp) / ("st" + fmt))
                 code, lines = run([a.zhf, "splat", "--in", scene, "--out", by_zhf, "--quiet"])
-                left = cell("zhf", by_zhf, scene, degree, a.zhf, a.splat_transform, tmp) if code == 0 else f"zhf refuses to write: {lines[0][:90]}"
+                left = cell("zhf", by_zhf, scene, degree, a.zhf, a.splat_transform, tmp) if code == 0 else f"zhf refuses to write: {lines[0][:120]}"
                 if fmt not in ST_WRITES:
                     right = f"splat-transform does not write {fmt}"
                 else:
@@ -167,7 +170,7 @@ def main():
                     code, lines = run([a.splat_transform, "-w", "-q", *extra, scene, by_st])
                     if code != 0:
                         errors = [l for l in lines if "Error" in l] or lines
-                        right = f"splat-transform refuses to write: {errors[0].strip()[:90] if errors else code}"
+                        right = f"splat-transform refuses to write: {errors[0].strip()[:120] if errors else code}"
                     else:
                         right = cell("splat-transform", by_st, scene, degree, a.zhf, a.splat_transform, tmp)
                 print(f"| {fmt} | {degree} | {left} | {right} |")
