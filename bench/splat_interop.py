@@ -31,8 +31,10 @@ def rest_count(degree):
     return 3 * ((degree + 1) ** 2 - 1)
 
 
-def write_scene(path, degree, splats, seed):
+def write_scene(path, degree, splats, seed, band_scale=lambda band: 1.0):
+    """Random splats inside every format's range; SH band l's coefficients times band_scale(l)."""
     rng = random.Random(seed)
+    per_channel = (degree + 1) ** 2 - 1
     names = ["x", "y", "z", "nx", "ny", "nz", "f_dc_0", "f_dc_1", "f_dc_2"]
     names += [f"f_rest_{i}" for i in range(rest_count(degree))]
     names += ["opacity", "scale_0", "scale_1", "scale_2", "rot_0", "rot_1", "rot_2", "rot_3"]
@@ -42,7 +44,7 @@ def write_scene(path, degree, splats, seed):
     for _ in range(splats):
         row = [rng.uniform(-50, 50) for _ in range(3)] + [0.0, 0.0, 0.0]
         row += [rng.uniform(-1.5, 1.5) for _ in range(3)]
-        row += [rng.uniform(-0.9, 0.9) for _ in range(rest_count(degree))]
+        row += [rng.uniform(-0.9, 0.9) * band_scale(math.isqrt(j % per_channel + 1)) for j in range(rest_count(degree))]
         row += [rng.uniform(-4, 4)] + [rng.uniform(-8, 3) for _ in range(3)]
         q = [rng.uniform(-1, 1) for _ in range(4)]
         norm = math.sqrt(sum(x * x for x in q))
