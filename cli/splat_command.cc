@@ -22,7 +22,7 @@ struct SplatOptions {
   TransformOptions transform;
   std::string translate, scale = "1", convention = "3dgs", threads = "0", format, in_format, spz_version = "4", spz_axes = "raw";
   std::string sh_degree, max_sh_error;
-  bool identity = false, quiet = false, drop_spz_extensions = false;
+  bool identity = false, quiet = false, drop_spz_extensions = false, keep_order = false;
 };
 
 std::array<double, 3> translation(const std::string& text) {
@@ -64,6 +64,7 @@ int run_splat(const SplatOptions& o) {
   formats.spz_version = static_cast<int>(integer_option("--spz-version", o.spz_version, 3, 4));
   if (!splat::parse_spz_axes(o.spz_axes, formats.spz_axes)) throw UsageError("--spz-axes: '" + runtime::excerpt(o.spz_axes) + "' is not raw or rub");
   formats.drop_spz_extensions = o.drop_spz_extensions;
+  formats.keep_order = o.keep_order;
   if (!o.sh_degree.empty() && !o.max_sh_error.empty()) throw UsageError("--sh-degree: --max-sh-error is given too; give one or the other");
   if (!o.sh_degree.empty()) formats.sh_degree = static_cast<int>(integer_option("--sh-degree", o.sh_degree, 0, splat::kMaxSplatShDegree));
   if (!o.max_sh_error.empty()) formats.max_sh_error = number_option("--max-sh-error", o.max_sh_error, 0, 1);
@@ -124,6 +125,7 @@ void add_splat_command(CLI::App& app, Action& action) {
                 "A .spz's axes where it has no coordinate-system record, read and written: raw (the .ply's, default: the reference "
                 "library's default, splat-transform) or rub (x right, y up, z back: Scaniverse, three.js)");
   c->add_flag("--drop-spz-extensions", o->drop_spz_extensions, "Leave out a .spz's extension records (else carried into a .spz, refused for other formats)");
+  c->add_flag("--keep-order", o->keep_order, "A compressed .ply output keeps the input's splat order (default: Morton order, as splat-transform writes)");
   c->add_option("--sh-degree", o->sh_degree, "Keep SH bands 0..K only (at most the scene's degree)");
   c->add_option("--max-sh-error", o->max_sh_error,
                 "Keep the fewest SH bands whose dropped energy, relative L2 over the scene as zhf analyze measures it, is at most E");

@@ -9,15 +9,21 @@
 // in order, 10 bits each of q / sqrt(2) + 1/2. Colour: bytes r, g, b from the top down, of
 // 0.5 + Y00 f_dc between the chunk's colour min and max (0 and 1 without them), and the low byte
 // alpha = sigmoid(opacity). SH: byte b stands for 8 ((b + 0.5) / 256 - 1/2); 0 and 255 for -4, 4.
+// Written in Morton (Z-order) of the positions by default, as splat-transform writes it: the
+// splats of a chunk lie close together, so its bounds, and the positions' steps, are small. The
+// records wait in a private temporary file (float, the canonical record) until the order is known;
+// memory holds 20 bytes a splat (position, index, key).
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <sstream>
+#include <fstream>
 #include <vector>
 
 #include "format_io.h"
 #include "formats.h"
 #include "zhf/io/errors.h"
+#include "zhf/io/private_dir.h"
 #include "zhf/runtime/sh_eval.h"
 
 namespace zhf::splat {
@@ -205,9 +211,55 @@ class CompressedPlyReader : public SceneReader {
   std::vector<unsigned char> chunk_bytes_, vertex_bytes_, sh_bytes_;
 };
 
+// 10 bits of each coordinate interleaved, x lowest (Fabian Giesen's bit spreading).
+std::uint32_t morton_code(std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+  auto spread = [](std::uint32_t v) {
+    v &= 0x3ff;
+    v = (v ^ (v << 16)) & 0xff0000ff;
+    v = (v ^ (v << 8)) & 0x0300f00f;
+    v = (v ^ (v << 4)) & 0x030c30c3;
+    return (v ^ (v << 2)) & 0x09249249;
+  };
+  return (spread(z) << 2) | (spread(y) << 1) | spread(x);
+}
+
+// Sorts `order` (indices into positions, 3 floats each) by the Morton code of the positions in
+// their bounding box, stably; a run of more than one chunk on one code is sorted again within its
+// own box, as splat-transform does, so dense regions are ordered too.
+void morton_sort(const std::vector<float>& positions, std::uint32_t* order, std::size_t n) {
+  if (n < 2) return;
+  std::array<float, 3> low{INFINITY, INFINITY, INFINITY}, high{-INFINITY, -INFINITY, -INFINITY};
+  for (std::size_t i = 0; i < n; ++i)
+    for (int a = 0; a < 3; ++a) {
+      low[a] = std::min(low[a], positions[3 * order[i] + a]);
+      high[a] = std::max(high[a], positions[3 * order[i] + a]);
+    }
+  std::array<double, 3> scale{};
+  for (int a = 0; a < 3; ++a) scale[a] = high[a] > low[a] ? 1024.0 / (double(high[a]) - low[a]) : 0;
+  if (scale[0] == 0 && scale[1] == 0 && scale[2] == 0) return;  // all at one point
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> keyed(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::array<std::uint32_t, 3> cell{};
+    for (int a = 0; a < 3; ++a) cell[a] = std::uint32_t(std::min(1023.0, (double(positions[3 * order[i] + a]) - low[a]) * scale[a]));
+    keyed[i] = {morton_code(cell[0], cell[1], cell[2]), order[i]};
+  }
+  std::stable_sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (std::size_t i = 0; i < n; ++i) order[i] = keyed[i].second;
+  for (std::size_t start = 0, end = 0; start < n; start = end) {
+    while (end < n && keyed[end].first == keyed[start].first) ++end;
+    if (end - start > kChunk) morton_sort(positions, order + start, end - start);
+  }
+}
+
 class CompressedPlyWriter : public SceneWriter {
  public:
-  CompressedPlyWriter(io::PendingFile& out, int degree, std::uint64_t splats) : out_(out), c_(degree) {
+  CompressedPlyWriter(io::PendingFile& out, int degree, std::uint64_t splats, bool morton)
+      : out_(out), c_(degree), morton_(morton) {
+    if (morton_) {
+      records_.open(dir_.path() + "/records", std::ios::binary | std::ios::in | std::ios::out | std::ios::trunc);
+      if (!records_) throw io::OutputError(dir_.path() + ": cannot write a temporary file");
+      positions_.reserve(3 * splats);
+    }
     const std::uint64_t chunks = (splats + kChunk - 1) / kChunk;
     std::ostringstream h;
     h << "ply\nformat binary_little_endian 1.0\ncomment written by zhf splat\nelement chunk " << chunks << "\n";
@@ -226,6 +278,41 @@ class CompressedPlyWriter : public SceneWriter {
   }
 
   void write(std::uint64_t count, const double* records) override {
+    if (!morton_) return pack_block(count, records);
+    std::vector<float> floats(count * c_.size());
+    for (std::uint64_t s = 0; s < count; ++s)
+      for (int i = 0; i < c_.size(); ++i) {
+        floats[s * c_.size() + i] = clamped_float(records[s * c_.size() + i], clamped_);
+        if (i < 3) positions_.push_back(floats[s * c_.size() + i]);
+      }
+    records_.write(reinterpret_cast<const char*>(floats.data()), std::streamsize(floats.size() * sizeof(float)));
+    if (!records_) throw io::OutputError(dir_.path() + ": cannot write a temporary file");
+  }
+
+  // The waiting records in Morton order, a block of whole chunks at a time.
+  void finish() override {
+    if (!morton_) return;
+    const std::size_t n = positions_.size() / 3;
+    std::vector<std::uint32_t> order(n);
+    for (std::size_t i = 0; i < n; ++i) order[i] = std::uint32_t(i);
+    morton_sort(positions_, order.data(), n);
+    std::vector<float> record(c_.size());
+    std::vector<double> block;
+    for (std::size_t first = 0; first < n; first += kChunkSplats) {
+      const std::size_t count = std::min<std::size_t>(kChunkSplats, n - first);
+      block.resize(count * c_.size());
+      for (std::size_t s = 0; s < count; ++s) {
+        records_.seekg(std::streamoff(std::uint64_t(order[first + s]) * c_.size() * sizeof(float)));
+        records_.read(reinterpret_cast<char*>(record.data()), std::streamsize(record.size() * sizeof(float)));
+        if (!records_) throw io::OutputError(dir_.path() + ": cannot read a temporary file");
+        std::copy(record.begin(), record.end(), block.begin() + s * c_.size());
+      }
+      pack_block(count, block.data());
+    }
+  }
+
+ private:
+  void pack_block(std::uint64_t count, const double* records) {
     const std::uint64_t chunks = (count + kChunk - 1) / kChunk;
     chunk_bytes_.assign(chunks * kChunkFloats * 4, 0);
     vertex_bytes_.assign(count * 16, 0);
@@ -256,7 +343,6 @@ class CompressedPlyWriter : public SceneWriter {
     sh_at_ += sh_bytes_.size();
   }
 
- private:
   // Group 0: position, 1: log-scale, 2: colour 0.5 + Y00 f_dc.
   double field(const double* v, int group, int i) const {
     return group == 0 ? v[Canonical::kPosition + i] : group == 1 ? v[c_.scale() + i] : 0.5 + runtime::kInvSqrt4Pi * v[Canonical::kDc + i];
@@ -300,6 +386,10 @@ class CompressedPlyWriter : public SceneWriter {
 
   io::PendingFile& out_;
   Canonical c_;
+  bool morton_;
+  io::PrivateDir dir_{"zhf-compressed-ply"};
+  std::fstream records_;         // Morton order: the records as written, float
+  std::vector<float> positions_;  // Morton order: x y z of each
   std::uint64_t chunk_at_ = 0, vertex_at_ = 0, sh_at_ = 0;
   std::vector<unsigned char> chunk_bytes_, vertex_bytes_, sh_bytes_;
 };
@@ -307,8 +397,8 @@ class CompressedPlyWriter : public SceneWriter {
 }  // namespace
 
 std::unique_ptr<SceneReader> open_compressed_ply_reader(const std::string& path) { return std::make_unique<CompressedPlyReader>(path); }
-std::unique_ptr<SceneWriter> open_compressed_ply_writer(io::PendingFile& out, int degree, std::uint64_t splats) {
-  return std::make_unique<CompressedPlyWriter>(out, degree, splats);
+std::unique_ptr<SceneWriter> open_compressed_ply_writer(io::PendingFile& out, int degree, std::uint64_t splats, bool morton) {
+  return std::make_unique<CompressedPlyWriter>(out, degree, splats, morton);
 }
 
 }  // namespace zhf::splat

@@ -138,7 +138,7 @@ std::unique_ptr<SceneReader> open_reader(FileFormat format, const std::string& p
 
 std::unique_ptr<SceneWriter> open_writer(FileFormat format, io::PendingFile& out, const WriteOptions& o) {
   if (format == FileFormat::kSplat) return open_splat_writer(out, o.degree);
-  if (format == FileFormat::kCompressedPly) return open_compressed_ply_writer(out, o.degree, o.splats);
+  if (format == FileFormat::kCompressedPly) return open_compressed_ply_writer(out, o.degree, o.splats, !o.keep_order);
   if (format == FileFormat::kSpz) return open_spz_writer(out, o);
   if (format == FileFormat::kGlb) return open_glb_writer(out, o.degree, o.splats);
   return std::make_unique<PlyWriter>(out, o.degree, o.splats);

@@ -61,6 +61,7 @@ struct WriteOptions {
   SpzAxes spz_axes = SpzAxes::kRaw;
   bool antialiased = false;                 // .spz's flag
   std::vector<SpzExtension> spz_extensions;  // carried into a .spz
+  bool keep_order = false;                   // a compressed .ply in the input's order, not Morton's
 };
 
 class SceneWriter {
@@ -87,7 +88,7 @@ std::unique_ptr<SceneReader> open_reader(FileFormat format, const std::string& p
 std::unique_ptr<SceneReader> open_splat_reader(const std::string& path);
 std::unique_ptr<SceneWriter> open_splat_writer(io::PendingFile& out, int degree);
 std::unique_ptr<SceneReader> open_compressed_ply_reader(const std::string& path);
-std::unique_ptr<SceneWriter> open_compressed_ply_writer(io::PendingFile& out, int degree, std::uint64_t splats);
+std::unique_ptr<SceneWriter> open_compressed_ply_writer(io::PendingFile& out, int degree, std::uint64_t splats, bool morton);
 std::unique_ptr<SceneReader> open_spz_reader(const std::string& path, SpzAxes axes);
 std::unique_ptr<SceneWriter> open_spz_writer(io::PendingFile& out, const WriteOptions& options);
 std::unique_ptr<SceneReader> open_glb_reader(const std::string& path);

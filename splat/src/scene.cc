@@ -360,6 +360,7 @@ Summary convert(const std::string& in, const std::string& out, FileFormat from, 
   options.spz_version = formats.spz_version;
   options.spz_axes = formats.spz_axes;
   options.antialiased = reader->antialiased();
+  options.keep_order = formats.keep_order;
   if (!reader->extensions().empty()) {
     const SpzExtension& first = reader->extensions().front();
     if (formats.drop_spz_extensions) {

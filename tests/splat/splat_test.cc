@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <map>
+#include <set>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -512,7 +514,7 @@ TEST(Splat, CompressedPlyHoldsTheLayoutAndReadsBackExactly) {
   }
   const std::string in = (dir / "in.ply").string(), packed = (dir / "out.compressed.ply").string(), back = (dir / "back.ply").string();
   write_scene(scene, in, false);
-  test::RunResult run = test::run_zhf("splat --in '" + in + "' --out '" + packed + "' --identity");
+  test::RunResult run = test::run_zhf("splat --in '" + in + "' --out '" + packed + "' --identity --keep-order");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(run.err, "");  // nothing dropped, nothing beyond the format's range
   // The error the format added, per SH band, reported: SH to half a step of 8 / 256.
@@ -581,6 +583,45 @@ TEST(Splat, CompressedPlyHoldsTheLayoutAndReadsBackExactly) {
   EXPECT_EQ(test::read_text((dir / "plain_back.ply").string()), test::read_text(back));
   // Transformed straight from the compressed file, as its decoded .ply is.
   expect_alike(packed, kTurn, back, kTurn, scene, dir);
+}
+
+// By default the splats are written in Morton order: the same splats (known by their SH bytes,
+// which do not depend on the chunk), each within half a step of its chunk's range, and chunks far
+// smaller than in the input's random order.
+TEST(Splat, CompressedPlyIsWrittenInMortonOrder) {
+  const test::TempDir dir;
+  std::mt19937_64 rng(37);
+  Scene scene = random_scene(3, 20000, rng);
+  for (auto& row : scene.rows)
+    for (int i = 0; i < 45; ++i) row[index_of(scene, "f_rest_" + std::to_string(i))] *= 0.5;
+  const std::string in = (dir / "in.ply").string(), kept = (dir / "kept.compressed.ply").string(), sorted = (dir / "sorted.compressed.ply").string();
+  write_scene(scene, in, false);
+  ASSERT_EQ(test::run_zhf("splat --in '" + in + "' --out '" + kept + "' --quiet --keep-order").exit_code, 0);
+  ASSERT_EQ(test::run_zhf("splat --in '" + in + "' --out '" + sorted + "' --quiet").exit_code, 0);
+  const Compressed a = read_compressed(kept), b = read_compressed(sorted);
+  ASSERT_EQ(b.packed.size(), scene.rows.size());
+  std::map<std::vector<unsigned char>, std::size_t> input_of;
+  for (std::size_t k = 0; k < a.sh.size(); ++k) input_of[a.sh[k]] = k;
+  ASSERT_EQ(input_of.size(), scene.rows.size()) << "SH bytes name each splat";
+  std::set<std::size_t> seen;
+  double kept_extent = 0, sorted_extent = 0, sorted_worst = 0;
+  for (std::size_t k = 0; k < b.sh.size(); ++k) {
+    const auto found = input_of.find(b.sh[k]);
+    ASSERT_NE(found, input_of.end()) << "splat " << k << " is not one of the input's";
+    seen.insert(found->second);
+    const std::array<float, 18>& bounds = b.chunks[k / 256];
+    for (int i = 0; i < 3; ++i) {
+      const double t = unorm(b.packed[k][0], i == 0 ? 21 : i == 1 ? 11 : 0, i == 1 ? 10 : 11);
+      const double x = bounds[i] * (1 - t) + bounds[3 + i] * t, original = scene.rows[found->second][i];
+      const double step = (double(bounds[3 + i]) - bounds[i]) / ((1 << (i == 1 ? 10 : 11)) - 1);
+      ASSERT_LE(std::abs(x - original), 0.5 * step + 1e-6 * std::abs(x) + 1e-30) << "splat " << k;
+      sorted_worst = std::max(sorted_worst, std::abs(x - original));
+    }
+  }
+  EXPECT_EQ(seen.size(), scene.rows.size());
+  for (const auto& c : a.chunks) kept_extent += (c[3] - c[0]) + (c[4] - c[1]) + (c[5] - c[2]);
+  for (const auto& c : b.chunks) sorted_extent += (c[3] - c[0]) + (c[4] - c[1]) + (c[5] - c[2]);
+  EXPECT_LT(sorted_extent, kept_extent / 2) << "chunk extents summed: Morton " << sorted_extent << ", input order " << kept_extent;
 }
 
 TEST(Splat, MalformedCompressedPlyIsRefusedAndNothingIsWritten) {

@@ -98,6 +98,7 @@ struct Formats {
   int spz_version = 4;  // written: 4 (zstd streams, the reference library's default) or 3 (gzip)
   SpzAxes spz_axes = SpzAxes::kRaw;  // of a .spz read without a coordinate-system record, and of one written
   bool drop_spz_extensions = false;  // records a non-.spz output cannot carry: left out (else refused)
+  bool keep_order = false;           // a compressed .ply in the input's order (default: Morton order)
   // The SH bands written: 0..sh_degree (at most the scene's), or the smallest degree whose
   // dropped energy error stays within max_sh_error; neither: all the output format holds.
   std::optional<int> sh_degree;
