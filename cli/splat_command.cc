@@ -99,6 +99,9 @@ int run_splat(const SplatOptions& o) {
                   summary.kept_degree, summary.sh_degree, summary.dropped_energy_error, summary.dropped_colour_error,
                   splat::kColourErrorDirections, (unsigned long long)summary.dropped_bytes);
     if (!summary.spz_axes_source.empty()) std::printf(".spz axes: %s\n", summary.spz_axes_source.c_str());
+    if (summary.palette_entries > 0)
+      std::printf("SH palette of %llu entries turned once (not per splat); labels, scales and colours carried as stored\n",
+                  (unsigned long long)summary.palette_entries);
     if (summary.carried_extensions > 0) std::printf("%d .spz extension records carried unchanged\n", summary.carried_extensions);
     if (summary.sh_error[0] >= 0) {
       std::printf("the format's error in the colour, largest per SH band:");
@@ -115,9 +118,9 @@ void add_splat_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<SplatOptions>();
   CLI::App* c = app.add_subcommand(
       "splat",
-      "Transform a 3D Gaussian Splatting scene (.ply, .compressed.ply, .splat, .spz, .glb): p' = s R p + t (rotate and scale about the origin, then translate), "
+      "Transform a 3D Gaussian Splatting scene (.ply, .compressed.ply, .splat, .spz, .glb, .sog): p' = s R p + t (rotate and scale about the origin, then translate), "
       "orientations, normals, log-scales and SH colours with it, in the .ply's axes (.spz and .glb are turned into them: docs/conventions.md); or convert it to another format");
-  c->add_option("--in", o->in, "The scene: binary little-endian or ASCII .ply, compressed .ply, .splat, .spz, or .glb (KHR_gaussian_splatting)")->required();
+  c->add_option("--in", o->in, "The scene: binary little-endian or ASCII .ply, compressed .ply, .splat, .spz, .glb (KHR_gaussian_splatting), or SOG (.sog, or a meta.json)")->required();
   c->add_option("--out", o->out, "Write the transformed scene here (.ply to .ply: same format, columns and comments)")->required();
   c->add_option("--format", o->format, "The output's format, " + splat::file_format_names() + " (default: --out's extension, else ply)");
   c->add_option("--spz-version", o->spz_version, "A .spz output's version: 4 (zstd, default) or 3 (gzip, for older readers)");

@@ -1,6 +1,6 @@
 // zhf splat's format readers on arbitrary bytes: the first byte picks the reader (binary .ply to
-// .splat, .splat to .ply, compressed .ply to compressed .ply, .spz to .spz, .glb to .glb), the
-// rest is the file.
+// .splat, .splat to .ply, compressed .ply to compressed .ply, .spz to .spz, .glb to .glb, .sog to
+// .sog), the rest is the file.
 // They may refuse, never crash; a .splat the reader accepts converts every one of its 32-byte
 // records.
 #include <cstddef>
@@ -20,8 +20,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                                           {"/in.splat", "/out.ply"},
                                           {"/in.compressed.ply", "/out.compressed.ply"},
                                           {"/in.spz", "/out.spz"},
-                                          {"/in.glb", "/out.glb"}};
-  const int path = data[0] % 5;
+                                          {"/in.glb", "/out.glb"},
+                                          {"/in.sog", "/out.sog"}};
+  const int path = data[0] % 6;
   const bool from_splat = path == 1;
   const std::string in = dir.path() + kPaths[path][0], out = dir.path() + kPaths[path][1];
   {

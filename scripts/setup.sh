@@ -16,7 +16,7 @@ packages=(
   libhealpix-cxx-dev libcfitsio-dev gnuplot-nox
   python3 python3-dev pybind11-dev python3-numpy python3-pytest
   qemu-user g++-aarch64-linux-gnu googletest
-  libhwy-dev libxsimd-dev
+  libhwy-dev libxsimd-dev libwebp-dev
 )
 missing=()
 for p in "${packages[@]}"; do

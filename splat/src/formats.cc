@@ -133,6 +133,7 @@ std::unique_ptr<SceneReader> open_reader(FileFormat format, const std::string& p
   if (format == FileFormat::kCompressedPly) return open_compressed_ply_reader(path);
   if (format == FileFormat::kSpz) return open_spz_reader(path, spz_axes);
   if (format == FileFormat::kGlb) return open_glb_reader(path);
+  if (format == FileFormat::kSog) return open_sog_reader(path);
   return std::make_unique<PlyReader>(path);
 }
 

@@ -92,6 +92,9 @@ std::unique_ptr<SceneWriter> open_compressed_ply_writer(io::PendingFile& out, in
 std::unique_ptr<SceneReader> open_spz_reader(const std::string& path, SpzAxes axes);
 std::unique_ptr<SceneWriter> open_spz_writer(io::PendingFile& out, const WriteOptions& options);
 std::unique_ptr<SceneReader> open_glb_reader(const std::string& path);
+std::unique_ptr<SceneReader> open_sog_reader(const std::string& path);
+// A .sog turned into a .sog: positions and orientations per splat, the SH palette once (sog.cc).
+Summary transform_sog(const std::string& in, const std::string& out, const Transform& transform, const Formats& formats, Summary summary);
 std::unique_ptr<SceneWriter> open_glb_writer(io::PendingFile& out, int degree, std::uint64_t splats);
 // Records of SH degree options.degree into `out`.
 std::unique_ptr<SceneWriter> open_writer(FileFormat format, io::PendingFile& out, const WriteOptions& options);

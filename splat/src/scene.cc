@@ -453,7 +453,8 @@ constexpr FormatName kFormatNames[] = {{FileFormat::kPly, "ply", ".ply", kMaxSpl
                                        {FileFormat::kCompressedPly, "compressed-ply", ".compressed.ply", 3, 1},
                                        {FileFormat::kSplat, "splat", ".splat", 0, 0},
                                        {FileFormat::kSpz, "spz", ".spz", kMaxSplatShDegree, 1},
-                                       {FileFormat::kGlb, "glb", ".glb", 3, 4}};
+                                       {FileFormat::kGlb, "glb", ".glb", 3, 4},
+                                       {FileFormat::kSog, "sog", ".sog", 3, 0}};
 
 const FormatName& named(FileFormat format) {
   for (const FormatName& f : kFormatNames)
@@ -504,6 +505,10 @@ std::string file_format_names() {
 bool file_format_of(const std::string& path, FileFormat& format) {
   std::string lower = std::filesystem::path(path).filename().string();
   for (char& c : lower) c = static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
+  if (lower == "meta.json") {  // a SOG's files beside their meta.json
+    format = FileFormat::kSog;
+    return true;
+  }
   std::size_t best = 0;
   for (const FormatName& f : kFormatNames) {
     const std::string extension = f.extension;
@@ -524,6 +529,14 @@ Summary transform_file(const std::string& in, const std::string& out, const Tran
   else if (file_format_of(in, from) && from == FileFormat::kPly && looks_compressed(in)) from = FileFormat::kCompressedPly;
   if (formats.out) to = *formats.out;
   else file_format_of(out, to);
+  if (to == FileFormat::kSog) {
+    if (from != FileFormat::kSog)
+      throw InputError(out + ": zhf writes a .sog from a .sog only (turning its palette); convert " + std::string(file_format_extension(from)) +
+                       " to .ply, .spz, .glb, compressed .ply or .splat");
+    Summary summary;
+    summary.in = summary.out = FileFormat::kSog;
+    return transform_sog(in, out, transform, formats, summary);
+  }
   if (from != FileFormat::kPly || to != FileFormat::kPly || formats.sh_degree || formats.max_sh_error)
     return convert(in, out, from, to, formats, transform, threads, progress);
   std::ifstream file(in, std::ios::binary);

@@ -463,7 +463,7 @@ TEST(Splat, MalformedSplatFilesAreRefusedAndNothingIsWritten) {
   EXPECT_NE(fifo.err.find("not a regular file"), std::string::npos) << fifo.err;
   const test::RunResult format = test::run_zhf("splat --in '" + zero_turn_path + "' --out x --format gltf --identity");
   EXPECT_EQ(format.exit_code, 2) << format.err;
-  EXPECT_NE(format.err.find("--format: 'gltf' is not ply, compressed-ply, splat, spz or glb"), std::string::npos) << format.err;
+  EXPECT_NE(format.err.find("--format: 'gltf' is not ply, compressed-ply, splat, spz, glb or sog"), std::string::npos) << format.err;
 }
 
 // A quaternion read back: rot_0..3 exactly the decoded q (w x y z, in float), the same rotation

@@ -30,6 +30,15 @@ inline constexpr std::size_t kMaxSpzExtensionBytes = std::size_t(1) << 20;
 inline constexpr int kMaxSpzExtensionRecords = 64;
 // zhf splat --max-sh-error: the colour error's view directions (docs/formats.md).
 inline constexpr int kColourErrorDirections = 256;
+// A ZIP archive's entries (a bundled SOG has 8 or fewer); a SOG's meta.json, one WebP image, its
+// splats (WebP's 16383 x 16383 texels) and SH palette entries (16-bit labels).
+inline constexpr int kMaxZipEntries = 64;
+inline constexpr std::uint64_t kMaxSogMetaBytes = std::uint64_t(1) << 20;
+inline constexpr std::uint64_t kMaxSogImageBytes = std::uint64_t(1) << 30;
+inline constexpr std::uint64_t kMaxSogSplats = std::uint64_t(16380) * 16380;
+inline constexpr int kMaxSogPalette = 1 << 16;
+// sign(p) ln(|p| + 1) of a position: beyond 88 its inverse leaves float's range.
+inline constexpr double kMaxSogLogPosition = 88;
 // zhf splat --scale: a factor in [kMinSplatScale, kMaxSplatScale].
 inline constexpr double kMinSplatScale = 1e-30, kMaxSplatScale = 1e30;
 

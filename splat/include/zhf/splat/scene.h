@@ -37,16 +37,16 @@ struct Transform {
   const runtime::Convention* convention = nullptr;  // the SH's; nullptr: 3dgs
 };
 
-enum class FileFormat { kPly, kCompressedPly, kSplat, kSpz, kGlb };
+enum class FileFormat { kPly, kCompressedPly, kSplat, kSpz, kGlb, kSog };
 
-// "ply", "compressed-ply", "splat", "spz", "glb", or false.
+// "ply", "compressed-ply", "splat", "spz", "glb", "sog", or false.
 bool parse_file_format(const std::string& name, FileFormat& format);
 const char* file_format_name(FileFormat format);
-// ".ply", ".compressed.ply", ".splat", ".spz", ".glb".
+// ".ply", ".compressed.ply", ".splat", ".spz", ".glb", ".sog".
 const char* file_format_extension(FileFormat format);
-// "ply, compressed-ply, splat, spz or glb", for messages.
+// "ply, compressed-ply, splat, spz, glb or sog", for messages.
 std::string file_format_names();
-// From the name's ending (any case; the longest that fits), or false.
+// From the name's ending (any case; the longest that fits; a file named meta.json is a SOG), or false.
 bool file_format_of(const std::string& path, FileFormat& format);
 
 // The SH degree a format holds at most (.splat: colour only).
@@ -76,6 +76,7 @@ struct Summary {
   std::string spz_axes_source;        // a .spz's axes and where they came from, e.g. "rub (coordinate-system record)"
   int carried_extensions = 0;         // .spz extension records carried unchanged
   int dropped_extensions = 0;         // left out, as --drop-spz-extensions asks
+  std::uint64_t palette_entries = 0;  // a .sog turned: its SH palette's entries, each turned once
   std::uint64_t clamped = 0;   // values outside the output's range, written as its nearest
   // Converted (any pair but .ply to .ply): per SH band (0: f_dc), the largest |written - exact|
   // of the transformed values, what the output format's steps cost; -1 for a band not written.

@@ -1,0 +1,324 @@
+// PlayCanvas's SOG, built here from its layout (meta.json and lossless WebP images, libwebp linked
+// into this test) and read by zhf splat: every field as the layout says. A SOG turned into a SOG:
+// positions and orientations per splat within the 16-bit and 8-bit steps, the SH palette turned
+// once against the double reference, labels, scales and colours carried byte for byte. Hostile
+// SOGs are refused in one line with nothing written.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <webp/decode.h>
+#include <webp/encode.h>
+#include <zlib.h>
+
+#include "test_support.h"
+#include "zhf/io/ply.h"
+#include "zhf/runtime/rotation.h"
+#include "zhf/sh/reference_rotation.h"
+#include "zhf/sh/rotation_matrix.h"
+#include "zhf/tolerances/tolerances.h"
+
+namespace zhf {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kBands = 2, kCoefficients = 8, kPalette = 100;
+// A turned quaternion's matrix entries: its components are 8-bit (steps of sqrt(2) / 255 before
+// the largest is rebuilt), so an entry moves by a few steps at most.
+const double kQuaternionEntry = 4 * 2 / 255.0;
+// A log-scale codebook entry plus log s, rounded to float twice (codebook, .ply), values below 8.
+constexpr double kShiftedLogScale = 16 * tolerance::kSplatFloatStorage;
+
+// A SOG's content, made here: n splats, kPalette palette entries, codebooks of 256.
+struct Built {
+  int n = 0, width = 0, height = 0;
+  std::vector<double> scales, colours, sh;
+  std::array<double, 3> mins{}, maxs{};
+  std::vector<std::array<unsigned char, 4>> low, high, quats, scale_bytes, sh0, labels;
+  std::vector<std::array<unsigned char, 4>> centroids;  // 64 K x rows
+  nlohmann::json meta;
+};
+
+std::string webp(const std::vector<std::array<unsigned char, 4>>& texels, int width, int height) {
+  std::vector<unsigned char> rgba(std::size_t(width) * height * 4, 255);
+  for (std::size_t i = 0; i < std::min(texels.size(), rgba.size() / 4); ++i) std::memcpy(&rgba[4 * i], texels[i].data(), 4);
+  std::uint8_t* out = nullptr;
+  const std::size_t size = WebPEncodeLosslessRGBA(rgba.data(), width, height, width * 4, &out);
+  std::string bytes(reinterpret_cast<const char*>(out), size);
+  WebPFree(out);
+  return bytes;
+}
+
+std::vector<unsigned char> unwebp(const std::string& bytes, int& width, int& height) {
+  std::uint8_t* rgba = WebPDecodeRGBA(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size(), &width, &height);
+  EXPECT_NE(rgba, nullptr);
+  std::vector<unsigned char> out(rgba, rgba + std::size_t(width) * height * 4);
+  WebPFree(rgba);
+  return out;
+}
+
+Built build(int n, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  auto byte = [&] { return static_cast<unsigned char>(rng() >> 56); };
+  Built b;
+  b.n = n;
+  b.width = int(std::ceil(std::sqrt(double(n)) / 4)) * 4;
+  b.height = int((n + b.width * 4 - 1) / (b.width * 4)) * 4;
+  for (int k = 0; k < 256; ++k) {
+    b.scales.push_back(double(float(-8 + 10.0 * k / 255)));
+    b.colours.push_back(double(float(-2 + 4.0 * k / 255)));
+    b.sh.push_back(double(float(-0.9 + 1.8 * k / 255)));
+  }
+  b.mins = {-3, -2, -4};
+  b.maxs = {3, 2.5, 1};
+  for (int i = 0; i < n; ++i) {
+    b.low.push_back({byte(), byte(), byte(), 255});
+    b.high.push_back({byte(), byte(), byte(), 255});
+    b.quats.push_back({byte(), byte(), byte(), static_cast<unsigned char>(252 + (rng() >> 62))});
+    b.scale_bytes.push_back({byte(), byte(), byte(), 255});
+    b.sh0.push_back({byte(), byte(), byte(), static_cast<unsigned char>(1 + (rng() >> 57) % 254)});
+    const int label = int(rng() % kPalette);
+    b.labels.push_back({static_cast<unsigned char>(label & 0xff), static_cast<unsigned char>(label >> 8), 0, 255});
+  }
+  b.centroids.assign(64 * kCoefficients * ((kPalette + 63) / 64), {0, 0, 0, 255});
+  for (int e = 0; e < kPalette; ++e)
+    for (int j = 0; j < kCoefficients; ++j) b.centroids[(e / 64) * 64 * kCoefficients + (e % 64) * kCoefficients + j] = {byte(), byte(), byte(), 255};
+  b.meta = {{"version", 2},
+            {"asset", {{"generator", "zhf test"}}},
+            {"count", n},
+            {"means", {{"mins", b.mins}, {"maxs", b.maxs}, {"files", {"means_l.webp", "means_u.webp"}}}},
+            {"scales", {{"codebook", b.scales}, {"files", {"scales.webp"}}}},
+            {"quats", {{"files", {"quats.webp"}}}},
+            {"sh0", {{"codebook", b.colours}, {"files", {"sh0.webp"}}}},
+            {"shN", {{"count", kPalette}, {"bands", kBands}, {"codebook", b.sh}, {"files", {"shN_centroids.webp", "shN_labels.webp"}}}}};
+  return b;
+}
+
+// The SOG's files beside its meta.json in `dir`; returns meta.json's path.
+std::string write_unbundled(const Built& b, const fs::path& dir, const nlohmann::json& meta) {
+  fs::create_directories(dir);
+  test::write_text((dir / "means_l.webp").string(), webp(b.low, b.width, b.height));
+  test::write_text((dir / "means_u.webp").string(), webp(b.high, b.width, b.height));
+  test::write_text((dir / "quats.webp").string(), webp(b.quats, b.width, b.height));
+  test::write_text((dir / "scales.webp").string(), webp(b.scale_bytes, b.width, b.height));
+  test::write_text((dir / "sh0.webp").string(), webp(b.sh0, b.width, b.height));
+  test::write_text((dir / "shN_labels.webp").string(), webp(b.labels, b.width, b.height));
+  test::write_text((dir / "shN_centroids.webp").string(), webp(b.centroids, 64 * kCoefficients, (kPalette + 63) / 64));
+  test::write_text((dir / "meta.json").string(), meta.dump());
+  return (dir / "meta.json").string();
+}
+
+double inverse_log(double v) { return std::copysign(std::exp(std::abs(v)) - 1, v); }
+
+struct Ply {
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> rows;
+  int index(const std::string& name) const { return int(std::find(names.begin(), names.end(), name) - names.begin()); }
+};
+
+Ply read_ply(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const io::ply::Header h = io::ply::read_header(in, path);
+  Ply p;
+  for (const auto& property : h.properties) p.names.push_back(property.name);
+  std::vector<unsigned char> record(h.record_bytes);
+  for (std::uint64_t k = 0; k < h.vertices; ++k) {
+    in.read(reinterpret_cast<char*>(record.data()), std::streamsize(record.size()));
+    std::vector<double> row;
+    for (const auto& property : h.properties) row.push_back(io::ply::read_binary(record.data(), property));
+    p.rows.push_back(row);
+  }
+  return p;
+}
+
+// The canonical values the layout gives for splat i, as double.
+std::vector<double> expected(const Built& b, int i, const Ply& like) {
+  std::vector<double> v(like.names.size(), 0);
+  for (int a = 0; a < 3; ++a) {
+    const double t = (b.low[i][a] | (b.high[i][a] << 8)) / 65535.0;
+    v[like.index(std::string(1, "xyz"[a]))] = inverse_log(b.mins[a] + (b.maxs[a] - b.mins[a]) * t);
+    v[like.index("scale_" + std::to_string(a))] = b.scales[b.scale_bytes[i][a]];
+    v[like.index("f_dc_" + std::to_string(a))] = b.colours[b.sh0[i][a]];
+  }
+  const double alpha = b.sh0[i][3] / 255.0;
+  v[like.index("opacity")] = std::log(alpha / (1 - alpha));
+  const int stored[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+  const int largest = b.quats[i][3] - 252;
+  double q[4], squares = 0;
+  for (int k = 0; k < 3; ++k) {
+    q[stored[largest][k]] = (b.quats[i][k] / 255.0 * 2 - 1) / std::sqrt(2.0);
+    squares += q[stored[largest][k]] * q[stored[largest][k]];
+  }
+  q[largest] = std::sqrt(std::max(0.0, 1 - squares));
+  for (int k = 0; k < 4; ++k) v[like.index("rot_" + std::to_string(k))] = q[k];
+  const int entry = b.labels[i][0] | (b.labels[i][1] << 8);
+  for (int ch = 0; ch < 3; ++ch)
+    for (int j = 0; j < kCoefficients; ++j)
+      v[like.index("f_rest_" + std::to_string(ch * kCoefficients + j))] = b.sh[b.centroids[(entry / 64) * 64 * kCoefficients + (entry % 64) * kCoefficients + j][ch]];
+  return v;
+}
+
+TEST(Sog, EveryFieldReadsAsTheLayoutSays) {
+  const test::TempDir dir;
+  const Built b = build(1000, 3);
+  const std::string meta = write_unbundled(b, dir / "scene", b.meta), out = (dir / "out.ply").string();
+  const test::RunResult run = test::run_zhf("splat --in '" + meta + "' --out '" + out + "' --quiet");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const Ply p = read_ply(out);
+  ASSERT_EQ(p.rows.size(), 1000u);
+  ASSERT_EQ(p.names.size(), std::size_t(9 + 3 * kCoefficients + 8));
+  for (int i = 0; i < b.n; ++i) {
+    const std::vector<double> e = expected(b, i, p);
+    for (std::size_t k = 0; k < e.size(); ++k) ASSERT_EQ(p.rows[i][k], float(e[k])) << "splat " << i << ", " << p.names[k];
+  }
+}
+
+// Turned .sog to .sog: read back, each splat where the turn puts it (within the format's steps),
+// its SH from the palette turned once as the double reference turns it.
+TEST(Sog, ATurnedSogMovesSplatsAndTurnsThePaletteOnce) {
+  const test::TempDir dir;
+  const Built b = build(2000, 5);
+  const std::string meta = write_unbundled(b, dir / "scene", b.meta), turned = (dir / "turned.sog").string();
+  const std::string before = (dir / "before.ply").string(), after = (dir / "after.ply").string();
+  const test::RunResult run = test::run_zhf("splat --in '" + meta + "' --out '" + turned + "' --zyz '0.3 0.5 0.7' --scale 2");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("palette of 100 entries turned once"), std::string::npos) << run.out;
+  ASSERT_EQ(test::run_zhf("splat --in '" + meta + "' --out '" + before + "' --quiet").exit_code, 0);
+  ASSERT_EQ(test::run_zhf("splat --in '" + turned + "' --out '" + after + "' --quiet").exit_code, 0);
+  const Ply x = read_ply(before), y = read_ply(after);
+  const runtime::Matrix3 r = runtime::rotation_from_zyz(0.3, 0.5, 0.7);
+  // 16 bits of sign(p) ln(|p| + 1): a step of (max - min) / 65535 in that, times (|p| + 1) in p.
+  const sh::BandMatrices bands = sh::ivanic_ruedenberg(sh::to_eigen(r), kBands + 1);
+  // The new SH codebook, from meta.json, the archive's first entry (stored: 30-byte header, name).
+  const std::string sog = test::read_text(turned);
+  std::uint32_t meta_bytes;
+  std::memcpy(&meta_bytes, sog.data() + 18, 4);
+  ASSERT_EQ(sog.substr(30, 9), "meta.json");
+  const nlohmann::json written = nlohmann::json::parse(sog.substr(39, meta_bytes));
+  const std::vector<double> levels = written["shN"]["codebook"].get<std::vector<double>>();
+  ASSERT_EQ(levels.size(), 256u);
+  auto nearest_distance = [&](double v) {
+    double best = INFINITY;
+    for (double level : levels) best = std::min(best, std::abs(level - v));
+    return best;
+  };
+  for (int i = 0; i < b.n; ++i) {
+    for (int a = 0; a < 3; ++a) {
+      double p = 0;
+      for (int k = 0; k < 3; ++k) p += 2 * r[3 * a + k] * x.rows[i][x.index(std::string(1, "xyz"[k]))];
+      // A 16-bit step of sign(p) ln(|p| + 1) between the written bounds, in p: times e^|v| = |p| + 1.
+      const double step = (written["means"]["maxs"][a].get<double>() - written["means"]["mins"][a].get<double>()) / 65535 * (std::abs(p) + 1);
+      ASSERT_NEAR(y.rows[i][y.index(std::string(1, "xyz"[a]))], p, step) << "splat " << i << ", axis " << a;
+      ASSERT_NEAR(y.rows[i][y.index("scale_" + std::to_string(a))], x.rows[i][x.index("scale_" + std::to_string(a))] + std::log(2.0), kShiftedLogScale);
+      ASSERT_EQ(y.rows[i][y.index("f_dc_" + std::to_string(a))], x.rows[i][x.index("f_dc_" + std::to_string(a))]);
+    }
+    ASSERT_EQ(y.rows[i][y.index("opacity")], x.rows[i][x.index("opacity")]);
+    // Orientation R Q, up to sign and the 8-bit steps of the smallest three.
+    runtime::Matrix3 q_in, q_out;
+    auto q_of = [](const Ply& p, int i, runtime::Matrix3& m) {
+      runtime::rotation_from_quaternion(p.rows[i][p.index("rot_0")], p.rows[i][p.index("rot_1")], p.rows[i][p.index("rot_2")],
+                                        p.rows[i][p.index("rot_3")], m);
+    };
+    q_of(x, i, q_in);
+    q_of(y, i, q_out);
+    const runtime::Matrix3 turned_q = runtime::multiply(r, q_in);
+    for (int k = 0; k < 9; ++k) ASSERT_NEAR(q_out[k], turned_q[k], kQuaternionEntry) << "splat " << i;
+    // SH: 3DGS's coefficients carry (-1)^m against zhf's basis.
+    for (int ch = 0; ch < 3; ++ch) {
+      Eigen::VectorXd f = Eigen::VectorXd::Zero(9);
+      for (int j = 0; j < kCoefficients; ++j) {
+        const int l = j < 3 ? 1 : 2, m = j + 1 - l * (l + 1);
+        f[1 + j] = (m % 2 ? -1 : 1) * x.rows[i][x.index("f_rest_" + std::to_string(ch * kCoefficients + j))];
+      }
+      const Eigen::VectorXd g = sh::apply_band_matrices(bands, f);
+      for (int j = 0; j < kCoefficients; ++j) {
+        const int l = j < 3 ? 1 : 2, m = j + 1 - l * (l + 1);
+        const double reference = (m % 2 ? -1 : 1) * g[1 + j];
+        ASSERT_LE(std::abs(y.rows[i][y.index("f_rest_" + std::to_string(ch * kCoefficients + j))] - reference), nearest_distance(reference) + 1e-7)
+            << "splat " << i << ", channel " << ch << ", coefficient " << j << ": not the codebook's nearest level to the reference";
+      }
+    }
+  }
+  // Labels, scales and colours carried as stored.
+  int w = 0, h = 0;
+  std::string labels_in = test::read_text((dir / "scene" / "shN_labels.webp").string());
+  EXPECT_NE(sog.find(labels_in), std::string::npos) << "the labels image, byte for byte";
+  EXPECT_NE(sog.find(test::read_text((dir / "scene" / "sh0.webp").string())), std::string::npos);
+  (void)unwebp(labels_in, w, h);
+  EXPECT_EQ(w, b.width);
+}
+
+TEST(Sog, HostileSogsAreRefusedInOneLine) {
+  const test::TempDir dir;
+  const Built b = build(300, 7);
+  const std::string out = (dir / "out.ply").string();
+  auto refused = [&](const std::string& what, const std::string& meta_path, const std::string& message) {
+    const test::RunResult run = test::run_zhf("splat --in '" + meta_path + "' --out '" + out + "' --quiet");
+    EXPECT_EQ(run.exit_code, 3) << what << ": " << run.err;
+    EXPECT_NE(run.err.find(message), std::string::npos) << what << ": " << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << what << ": " << run.err;
+    EXPECT_FALSE(fs::exists(out)) << what;
+  };
+  int case_number = 0;
+  auto scene = [&](const nlohmann::json& meta) { return write_unbundled(b, dir / ("s" + std::to_string(case_number++)), meta); };
+  nlohmann::json lie = b.meta;
+  lie["count"] = 5000;
+  refused("a count the images cannot hold", scene(lie), "texels; meta.json's count needs");
+  lie = b.meta;
+  lie["shN"]["codebook"].erase(0);
+  refused("a short codebook", scene(lie), "shN.codebook: expected 256 entries, found 255");
+  lie = b.meta;
+  lie["version"] = 1;
+  refused("version 1", scene(lie), "SOG version 1; zhf reads version 2");
+  lie = b.meta;
+  lie["sh0"]["files"] = {"../sh0.webp"};
+  refused("a path in a file name", scene(lie), "sh0.files[0]: '../sh0.webp' is not a plain file name");
+  lie = b.meta;
+  lie["shN"]["count"] = 70;  // the same centroid rows; labels reach 99
+  refused("labels past the palette", scene(lie), "palette entry");
+  lie = b.meta;
+  lie["means"]["maxs"][0] = 1000;
+  refused("a log-position past float", scene(lie), "means.maxs[0]: beyond the log-position");
+  const std::string bad_webp = scene(b.meta);
+  test::write_text((fs::path(bad_webp).parent_path() / "quats.webp").string(), "RIFF....WEBPVP8L garbage");
+  refused("a bad WebP", bad_webp, "quats.webp: not a WebP image zhf can decode");
+  const std::string small = scene(b.meta);
+  test::write_text((fs::path(small).parent_path() / "scales.webp").string(), webp(b.scale_bytes, b.width, b.height / 2));
+  refused("an image of the wrong size", small,
+          "scales.webp: " + std::to_string(b.width) + " x " + std::to_string(b.height / 2) + " texels; meta.json's count needs " +
+              std::to_string(b.width) + " x " + std::to_string(b.height));
+  Built tagged = b;
+  tagged.quats[7][3] = 17;
+  refused("a quaternion tag outside 252..255", write_unbundled(tagged, dir / "tag", b.meta), "splat 7: quats: tag 17 is not 252..255");
+  // A bundled .sog whose entry is damaged: its CRC.
+  const std::string meta = scene(b.meta), sog = (dir / "good.sog").string(), turned = (dir / "turned.sog").string();
+  ASSERT_EQ(test::run_zhf("splat --in '" + meta + "' --out '" + sog + "' --quiet").exit_code, 0);
+  std::string bytes = test::read_text(sog);
+  const std::size_t at = bytes.find("RIFF", bytes.size() / 2);
+  ASSERT_NE(at, std::string::npos);
+  bytes[at + 40] = char(bytes[at + 40] ^ 0x5a);
+  test::write_text((dir / "damaged.sog").string(), bytes);
+  refused("a damaged entry", (dir / "damaged.sog").string(), "CRC mismatch");
+  test::write_text((dir / "cut.sog").string(), bytes.substr(0, bytes.size() - 30));
+  refused("a truncated archive", (dir / "cut.sog").string(), "cut.sog");
+  // Other formats are not written as SOG: one line, nothing written.
+  const std::string ply = (dir / "in.ply").string(), into = (dir / "from_ply.sog").string();
+  ASSERT_EQ(test::run_zhf("splat --in '" + meta + "' --out '" + ply + "' --quiet").exit_code, 0);
+  const test::RunResult run = test::run_zhf("splat --in '" + ply + "' --out '" + into + "' --quiet");
+  EXPECT_EQ(run.exit_code, 3) << run.err;
+  EXPECT_NE(run.err.find("zhf writes a .sog from a .sog only"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(into));
+}
+
+}  // namespace
+}  // namespace zhf
