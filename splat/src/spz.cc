@@ -19,9 +19,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
-#include <string_view>
 #include <vector>
 
 #include <zlib.h>
@@ -29,6 +27,7 @@
 
 #include "format_io.h"
 #include "formats.h"
+#include "spz_records.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/limits.h"
 #include "zhf/io/private_dir.h"
@@ -44,74 +43,11 @@ constexpr std::size_t kHeaderBytes = 16, kZstdHeaderBytes = 32;
 constexpr int kZstdLevel = 12;  // the reference library's
 constexpr int kAttributes = 6;
 constexpr unsigned char kFlagAntialiased = 1, kFlagExtensions = 2;
-constexpr std::size_t kRecordHeaderBytes = 8;
-// The reference library's coordinate-system record (Adobe's vendor id 0xADBE, extension 3): one
-// uint32, 0 (unspecified: RUB, as the library reads it) or one of the 16 systems below.
-constexpr std::uint32_t kCoordinateSystemRecord = 0xADBE0003;
-constexpr const char* kCoordinateSystems[] = {"RUB", "LDB", "RDB", "LUB", "RUB", "LDF", "RDF", "LUF", "RUF",
-                                              "LFD", "RFD", "LFU", "RFU", "LBD", "RBD", "LBU", "RBU"};
 constexpr int kFractionalBits = 12;  // written: positions to +-2048 in steps of 1/4096
 constexpr double kColourScale = 0.15;
 const double kSqrtHalf = std::sqrt(0.5);
 
-
 int coefficients(int degree) { return (degree + 1) * (degree + 1) - 1; }
-
-// A system's letters (the directions of its x, y, z) as the map into the .ply's axes (RDF: x
-// right, y down, z front): column i is the .ply direction of the file's axis i.
-runtime::Matrix3 axes_of(std::string_view letters) {
-  runtime::Matrix3 a{};
-  for (int i = 0; i < 3; ++i) {
-    const char c = letters[i];
-    const int row = c == 'R' || c == 'L' ? 0 : c == 'D' || c == 'U' ? 1 : 2;
-    a[3 * row + i] = c == 'R' || c == 'D' || c == 'F' ? 1 : -1;
-  }
-  return a;
-}
-
-std::string_view letters_of(SpzAxes axes) { return axes == SpzAxes::kRub ? "RUB" : "RDF"; }
-
-std::string hex(std::uint32_t x) {
-  char text[16];
-  std::snprintf(text, sizeof text, "0x%08x", x);
-  return text;
-}
-
-// Extension records, back to back, filling `bytes` exactly.
-std::vector<SpzExtension> parse_records(const std::string& bytes, const std::string& path) {
-  if (bytes.size() > kMaxSpzExtensionBytes)
-    throw InputError(path + ": " + std::to_string(bytes.size()) + " bytes of extension records; at most " + std::to_string(kMaxSpzExtensionBytes));
-  std::vector<SpzExtension> records;
-  for (std::size_t at = 0; at < bytes.size();) {
-    if (records.size() == std::size_t(kMaxSpzExtensionRecords))
-      throw InputError(path + ": more than " + std::to_string(kMaxSpzExtensionRecords) + " extension records");
-    if (bytes.size() - at < kRecordHeaderBytes) throw InputError(path + ": extension record " + std::to_string(records.size()) + ": truncated header");
-    SpzExtension r;
-    r.type = get_uint32(reinterpret_cast<const unsigned char*>(bytes.data() + at));
-    const std::uint32_t length = get_uint32(reinterpret_cast<const unsigned char*>(bytes.data() + at + 4));
-    at += kRecordHeaderBytes;
-    if (r.type == 0) throw InputError(path + ": extension record " + std::to_string(records.size()) + ": type 0 is reserved");
-    if (length > bytes.size() - at)
-      throw InputError(path + ": extension record " + std::to_string(records.size()) + " (" + hex(r.type) + "): " + std::to_string(length) +
-                       " bytes, past the end of the records");
-    r.payload = bytes.substr(at, length);
-    at += length;
-    records.push_back(std::move(r));
-  }
-  return records;
-}
-
-std::string record_bytes(const std::vector<SpzExtension>& records) {
-  std::string out;
-  for (const SpzExtension& r : records) {
-    unsigned char head[kRecordHeaderBytes];
-    put_uint32(head, r.type);
-    put_uint32(head + 4, static_cast<std::uint32_t>(r.payload.size()));
-    out.append(reinterpret_cast<const char*>(head), kRecordHeaderBytes);
-    out += r.payload;
-  }
-  return out;
-}
 
 // Bytes per splat of each attribute, in file order.
 std::array<std::uint64_t, kAttributes> attribute_bytes(int version, int degree) {
@@ -306,7 +242,7 @@ class SpzReader : public SceneReader {
     if (fractional_bits_ > 23) throw InputError(path + ": " + std::to_string(fractional_bits_) + " fractional bits; at most 23");
     const unsigned flags = h[14];
     if (flags & ~unsigned(kFlagAntialiased | kFlagExtensions))
-      throw InputError(path + ": header flags " + hex(flags) + ": zhf knows 0x1 (antialiased) and 0x2 (extension records)");
+      throw InputError(path + ": header flags " + hex32(flags) + ": zhf knows 0x1 (antialiased) and 0x2 (extension records)");
     antialiased_ = flags & kFlagAntialiased;
     const std::array<std::uint64_t, kAttributes> bytes = attribute_bytes(version_, degree_);
     std::uint64_t claimed = 0;
@@ -325,7 +261,7 @@ class SpzReader : public SceneReader {
       if (flags & kFlagExtensions) {
         const std::string records = GzipReader(path, offset).read_rest(kMaxSpzExtensionBytes, "extension records");
         gzip_record_bytes_ = records.size();
-        take_records(parse_records(records, path), default_axes);
+        take_records(parse_spz_records(records, path), default_axes);
       } else {
         take_records({}, default_axes);
       }
@@ -352,7 +288,7 @@ class SpzReader : public SceneReader {
     file.clear();
     file.seekg(kZstdHeaderBytes);
     file.read(records.data(), std::streamsize(records.size()));
-    take_records(parse_records(records, path), default_axes);
+    take_records(parse_spz_records(records, path), default_axes);
     std::uint64_t offset = table + 16 * std::uint64_t(streams);
     int stream = 0;
     for (int a = 0; a < kAttributes; ++a) {
@@ -445,24 +381,8 @@ class SpzReader : public SceneReader {
  private:
   // The coordinate-system record sets the axes; the others are carried.
   void take_records(std::vector<SpzExtension> records, SpzAxes default_axes) {
-    std::string_view letters = letters_of(default_axes);
-    axes_source_ = std::string(default_axes == SpzAxes::kRub ? "rub" : "raw") + " (--spz-axes; no coordinate-system record)";
-    bool seen = false;
-    for (SpzExtension& r : records) {
-      if (r.type != kCoordinateSystemRecord) {
-        extensions_.push_back(std::move(r));
-        continue;
-      }
-      const std::string what = path_ + ": coordinate-system record";
-      if (seen) throw InputError(what + ": given twice");
-      if (r.payload.size() != 4) throw InputError(what + ": " + std::to_string(r.payload.size()) + " bytes; expected 4");
-      const std::uint32_t system = get_uint32(reinterpret_cast<const unsigned char*>(r.payload.data()));
-      if (system >= std::size(kCoordinateSystems)) throw InputError(what + ": " + std::to_string(system) + " is not a coordinate system (0..16)");
-      seen = true;
-      letters = kCoordinateSystems[system];
-      axes_source_ = std::string(letters) + " (coordinate-system record" + (system == 0 ? ", unspecified: RUB" : "") + ")";
-    }
-    axes_ = axes_of(letters);
+    axes_ = spz_read_axes(records, default_axes, path_, axes_source_);
+    extensions_ = std::move(records);
   }
 
   std::string path_;
@@ -487,8 +407,8 @@ class SpzWriter : public SceneWriter {
  public:
   SpzWriter(io::PendingFile& out, const WriteOptions& o)
       : out_(out), c_(o.degree), degree_(o.degree), version_(o.spz_version), splats_(o.splats), antialiased_(o.antialiased),
-        records_(record_bytes(o.spz_extensions)) {
-    axes_ = runtime::transpose(axes_of(letters_of(o.spz_axes)));
+        records_(spz_record_bytes(o.spz_extensions)) {
+    axes_ = spz_write_axes(o.spz_axes);
     if (records_.size() > kMaxSpzExtensionBytes) throw io::OutputError("extension records: more than " + std::to_string(kMaxSpzExtensionBytes) + " bytes");
     for (std::size_t a = 0; a < files_.size(); ++a) {
       files_[a].open(dir_.path() + "/" + std::to_string(a), std::ios::binary);

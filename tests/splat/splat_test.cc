@@ -21,6 +21,7 @@
 #include <zlib.h>
 
 #include "sh_bases.h"
+#include "spz_layout.h"
 #include "test_support.h"
 #include "zhf/io/ply.h"
 #include "zhf/runtime/rotation.h"
@@ -748,15 +749,7 @@ TEST(Splat, SpzHoldsTheLayoutInItsAxesAndReadsBackExactly) {
     ASSERT_EQ(row[index_of(scene, "opacity")], float(std::log(alpha / (1 - alpha)))) << at;
     std::uint32_t word;
     std::memcpy(&word, &data[16 + 16 * n + 4 * k], 4);
-    double xyzw[4], squares = 0;
-    const int largest = int(word >> 30);
-    for (int i = 3; i >= 0; --i) {
-      if (i == largest) continue;
-      xyzw[i] = std::sqrt(0.5) * (word & 511u) / 511 * ((word >> 9) & 1u ? -1 : 1);
-      squares += xyzw[i] * xyzw[i];
-      word >>= 10;
-    }
-    xyzw[largest] = std::sqrt(std::max(0.0, 1 - squares));
+    const std::array<double, 4> xyzw = test::spz_smallest_three(word);
     const double wxyz[4] = {xyzw[3], xyzw[0], -xyzw[1], -xyzw[2]};
     expect_quaternion(scene, row, original, wxyz, 2e-5, at);
     // SH: coefficient-major, channel inner, each odd in (y, z) flipped; 5 bits kept in band 1, 4 above.

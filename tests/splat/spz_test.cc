@@ -19,6 +19,7 @@
 #include <gtest/gtest.h>
 #include <zstd.h>
 
+#include "spz_layout.h"
 #include "test_support.h"
 #include "zhf/io/ply.h"
 #include "zhf/runtime/rotation.h"
@@ -228,16 +229,7 @@ TEST(Spz, Version4DecodesIndependentlyAtDegrees0To4) {
       }
       const double alpha = std::clamp(byte(1, k) / 255.0, 0.25 / 255, 254.75 / 255);
       ASSERT_EQ(row[scene.opacity()], float(std::log(alpha / (1 - alpha)))) << at;
-      std::uint32_t word = u32(f.attribute[4], 4 * k);
-      double xyzw[4], squares = 0;
-      const int largest = int(word >> 30);
-      for (int i = 3; i >= 0; --i) {
-        if (i == largest) continue;
-        xyzw[i] = std::sqrt(0.5) * (word & 511u) / 511 * ((word >> 9) & 1u ? -1 : 1);
-        squares += xyzw[i] * xyzw[i];
-        word >>= 10;
-      }
-      xyzw[largest] = std::sqrt(std::max(0.0, 1 - squares));
+      const std::array<double, 4> xyzw = test::spz_smallest_three(u32(f.attribute[4], 4 * k));
       const double wxyz[4] = {xyzw[3], xyzw[0], xyzw[1], xyzw[2]};
       double dot = 0;
       for (int i = 0; i < 4; ++i) {

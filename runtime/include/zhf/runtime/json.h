@@ -369,15 +369,13 @@ class Field {
       : value_(&value), source_(std::move(source)), path_(std::move(path)) {}
 
   const Value& value() const { return *value_; }
-  const std::string& source() const { return source_; }
   // "lobes[3].xyz", or "top level".
   std::string where() const { return path_.empty() ? "top level" : path_; }
 
   [[noreturn]] void fail(const std::string& problem) const { throw InputError(source_ + ": " + where() + ": " + problem); }
 
-  bool is(Value::Kind kind) const { return value_->kind == kind; }
   void expect(Value::Kind kind) const {
-    if (!is(kind)) fail(std::string("expected ") + kind_name(kind) + ", found " + kind_name(value_->kind));
+    if (value_->kind != kind) fail(std::string("expected ") + kind_name(kind) + ", found " + kind_name(value_->kind));
   }
 
   // Objects.
@@ -448,21 +446,6 @@ class Field {
   const std::string& string() const {
     expect(Value::Kind::kString);
     return value_->text;
-  }
-  const std::string& one_of(std::initializer_list<std::string_view> allowed) const {
-    return one_of(std::vector<std::string_view>(allowed));
-  }
-  const std::string& one_of(const std::vector<std::string>& allowed) const {
-    return one_of(std::vector<std::string_view>(allowed.begin(), allowed.end()));
-  }
-  const std::string& one_of(const std::vector<std::string_view>& allowed) const {
-    const std::string& s = string();
-    std::string list;
-    for (std::string_view a : allowed) {
-      if (a == s) return s;
-      list += (list.empty() ? "" : ", ") + std::string(a);
-    }
-    fail("'" + excerpt(s) + "' is not one of " + list);
   }
 
  private:
