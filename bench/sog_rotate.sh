@@ -35,7 +35,7 @@ zhf_ply="$ZHF_BUILD/cli/zhf splat --in $work/decoded.ply --out $work/zhf.ply --z
 st_sog="$st -w -q -g cpu $work/scene.sog $work/st.sog -r 10,20,30"
 pairs() {
   echo "## A: zhf .sog to .sog, B: zhf turning the decoded .ply (.ply to .ply)"
-  farm-bench -n 9 --timeout 900 --vs "sh -c 'exec $zhf_ply'" -- sh -c "exec $zhf_sog"
+  farm-bench -n 9 --timeout 900 --vs "$zhf_ply" -- sh -c "exec $zhf_sog"
   if [ "$with_st" = 1 ]; then
     echo
     echo "## A: zhf .sog to .sog, B: splat-transform .sog to .sog (-g cpu), one run"
