@@ -241,7 +241,7 @@ double kept_bands_error(const std::vector<double>& energy, int kept) {
 // basis): the rendered colour is the SH's value in the view direction.
 class DroppedColour {
  public:
-  DroppedColour(int degree, int kept, const runtime::Convention& convention) : first_(kept + 1), last_(degree) {
+  DroppedColour(int degree, int kept, const runtime::Convention& convention) : first_(kept + 1) {
     const int n2 = (degree + 1) * (degree + 1), from = first_ * first_;
     width_ = n2 - from;
     const runtime::Matrix3 m = convention.from_zhf();
@@ -274,7 +274,7 @@ class DroppedColour {
   }
 
  private:
-  int first_, last_, width_ = 0;
+  int first_, width_ = 0;
   std::vector<double> basis_;  // direction-major, the dropped coefficients of each
 };
 
