@@ -85,6 +85,10 @@ Image decode_webp(const std::string& bytes, const std::string& where, int width,
   Image image;
   const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data());
   if (!WebPGetInfo(data, bytes.size(), &image.width, &image.height)) throw InputError(where + ": not a WebP image zhf can decode");
+  // A few bytes must not claim a huge image: checked before the texels are allocated.
+  if (4.0 * image.width * image.height > kMaxCompressionRatio * double(bytes.size()))
+    throw InputError(where + ": " + std::to_string(image.width) + " x " + std::to_string(image.height) + " texels from " +
+                     std::to_string(bytes.size()) + " bytes, more than WebP can hold");
   if (image.width != width || image.height != height)
     throw InputError(where + ": " + std::to_string(image.width) + " x " + std::to_string(image.height) + " texels; meta.json's count needs " +
                      std::to_string(width) + " x " + std::to_string(height));

@@ -297,6 +297,17 @@ TEST(Sog, HostileSogsAreRefusedInOneLine) {
   refused("an image of the wrong size", small,
           "scales.webp: " + std::to_string(b.width) + " x " + std::to_string(b.height / 2) + " texels; meta.json's count needs " +
               std::to_string(b.width) + " x " + std::to_string(b.height));
+  // A lossless WebP whose header claims 16000 x 16000 texels (its 14-bit sizes after the
+  // signature byte) in a few hundred bytes: refused before anything is allocated.
+  const std::string huge = scene(b.meta);
+  std::string claim = webp(b.quats, b.width, b.height);
+  ASSERT_EQ(claim.substr(12, 4), "VP8L");
+  std::uint32_t bits;
+  std::memcpy(&bits, claim.data() + 21, 4);
+  bits = (bits & ~((1u << 28) - 1)) | 15999u | (15999u << 14);
+  std::memcpy(claim.data() + 21, &bits, 4);
+  test::write_text((fs::path(huge).parent_path() / "quats.webp").string(), claim);
+  refused("a WebP claiming more texels than its bytes hold", huge, "quats.webp: 16000 x 16000 texels from");
   Built tagged = b;
   tagged.quats[7][3] = 17;
   refused("a quaternion tag outside 252..255", write_unbundled(tagged, dir / "tag", b.meta), "splat 7: quats: tag 17 is not 252..255");
