@@ -84,6 +84,9 @@ ZipReader::ZipReader(const std::string& path) : path_(path) {
     if (e.method != kStored && e.method != kDeflated) throw InputError(what + ": compression method " + std::to_string(e.method) + "; zhf reads stored and deflated");
     if (e.compressed == 0xffffffffu || e.size == 0xffffffffu || e.local_header == 0xffffffffu) throw InputError(what + ": ZIP64 is not read");
     if (e.method == kStored && e.compressed != e.size) throw InputError(what + ": stored, but its two sizes differ");
+    // Deflate expands at most about 1032:1: a larger claim is refused before anything is allocated.
+    if (double(e.size) > kMaxCompressionRatio * double(std::max<std::uint64_t>(e.compressed, 1)))
+      throw InputError(what + ": " + std::to_string(e.size) + " bytes claimed from " + std::to_string(e.compressed));
     if (!entries_.emplace(name, e).second) throw InputError(what + ": appears twice");
     offset += kCentralHeaderBytes + name_bytes + extra + comment;
   }
