@@ -14,15 +14,9 @@ with_st=0
 source "$(dirname "${BASH_SOURCE[0]}")/../scripts/setup.sh"
 cmake --build "$ZHF_BUILD" -j "$ZHF_JOBS" --target zhf
 cd "$ZHF_ROOT"
-st_version=3.7.0
-st_dir=tools/splat-transform
-if ! grep -qs "\"version\": \"$st_version\"" "$st_dir/node_modules/@playcanvas/splat-transform/package.json"; then
-  mkdir -p "$st_dir"
-  npm install --prefix "$st_dir" --no-audit --no-fund --loglevel=error "@playcanvas/splat-transform@$st_version" > /dev/null
-fi
+source bench/splat_transform.sh
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-st=$PWD/$st_dir/node_modules/.bin/splat-transform
 if [ $# -ge 1 ]; then
   cp "$1" "$work/scene.sog"
 else
