@@ -6,24 +6,20 @@
 #   x86-64-v3 build everything -O3 -march=x86-64-v3; zhf's rows header-only, through
 #                   zhf_kernels_adapter.cc.txt and zhf_table_adapter.cc.txt.
 # The harness is copied to a private scratch folder and its adapters replaced there (its own copy
-# is never changed). Writes bench/peers/default_build.txt and default_build_then_x86_64_v3.txt,
-# then prints their comparison (bench/peers_compare.py). Refuses to write them from a modified tree
-# (RESULTS=dir writes elsewhere). Arguments: the orders (default 2,3,4,5,6,7,8,16,32,64).
-# Environment: PEERS, RESULTS, REPS (7), K (1024).
+# is never changed). Writes, through bench/record.sh, peers_default_build.txt and
+# peers_x86_64_v3.txt (orders 2..8, 16, 32, 64), then peers_default_build_order128.txt and
+# peers_x86_64_v3_order128.txt (K = 4, 3 repetitions: google's rotation takes 0.1 s there) into
+# RESULTS (bench/performance.sh sets it), and prints the comparison (bench/peers_compare.py).
+# Environment: PEERS, RESULTS (required), REPS (7), K (1024).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/../scripts/setup.sh"
 cd "$ZHF_ROOT"
-orders=${1:-2,3,4,5,6,7,8,16,32,64}
+orders=2,3,4,5,6,7,8,16,32,64
 peers=${PEERS:-$ZHF_ROOT/../shared/peers}
-results=${RESULTS:-bench/peers}
+results=${RESULTS:?peers.sh: set RESULTS (bench/performance.sh runs it)}
 reps=${REPS:-7}
 k=${K:-1024}
 [ -f "$peers/build.sh" ] && [ -f "$peers/run.sh" ] || { echo "peers.sh: no peer harness at $peers (set PEERS)" >&2; exit 1; }
-[[ $orders =~ ^[0-9]+(,[0-9]+)*$ ]] || { echo "peers.sh: orders: '$orders' is not a comma-separated list of integers" >&2; exit 2; }
-if [ -z "${RESULTS:-}" ] && ! git diff --quiet HEAD --; then
-  echo "peers.sh: the tree has changes; commit them, or set RESULTS to write elsewhere" >&2
-  exit 1
-fi
 mkdir -p "$results"
 cmake --build "$ZHF_BUILD" -j "$ZHF_JOBS" --target zhf_dispatch
 
@@ -61,17 +57,15 @@ export ZHF_SRC=$ZHF_ROOT
 OUT="$scratch/default/out" NATIVE_FLAGS="-O3 -std=c++17 -DNDEBUG" bash "$scratch/default/harness/build.sh"
 OUT="$scratch/v3/out" NATIVE_FLAGS="-O3 -march=x86-64-v3 -std=c++17 -DNDEBUG" bash "$scratch/v3/harness/build.sh"
 
-# run NAME FILE: one run into $results/FILE, through a temporary file beside it.
+# run NAME FILE WHAT ORDERS K REPS: one run of the NAME build into $results/FILE.
 run() {
-  local target="$results/$2" tmp
-  tmp=$(mktemp "$target.XXXXXX")
-  if ! OUT="$scratch/$1/out" bash "$scratch/$1/harness/run.sh" --orders "$orders" --K "$k" --reps "$reps" > "$tmp"; then
-    rm -f "$tmp"
-    echo "peers.sh: the $1 run failed" >&2
-    exit 1
-  fi
-  mv "$tmp" "$target"
+  bash bench/record.sh "$results/$2" "$3" env OUT="$scratch/$1/out" bash "$scratch/$1/harness/run.sh" \
+    --orders "$4" --K "$5" --reps "$6" > /dev/null || { echo "peers.sh: the $1 run failed" >&2; exit 1; }
 }
-run default default_build.txt
-run v3 default_build_then_x86_64_v3.txt
-python3 bench/peers_compare.py "$results/default_build.txt" "$results/default_build_then_x86_64_v3.txt"
+default="peers and zhf -O3 (no -march); zhf through zhf::dispatch"
+v3="peers and zhf -O3 -march=x86-64-v3; zhf header-only"
+run default peers_default_build.txt "$default" "$orders" "$k" "$reps"
+run v3 peers_x86_64_v3.txt "$v3" "$orders" "$k" "$reps"
+run default peers_default_build_order128.txt "$default" 128 4 3
+run v3 peers_x86_64_v3_order128.txt "$v3" 128 4 3
+python3 bench/peers_compare.py "$results/peers_default_build.txt" "$results/peers_x86_64_v3.txt"

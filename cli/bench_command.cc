@@ -79,7 +79,7 @@ void add_bench_command(CLI::App& app, Action& action) {
                                           " (default 2..8 plus 10, 12, 16)");
   keep_old_spelling(c, c->add_option("--out", o->json, "Write every measurement as JSON here"), "--json", o->json);
   c->add_option("--plot", o->plot,
-                "Write the Pareto fronts here (SVG), and beside it FILE_families.svg, FILE_scaling.svg, FILE.csv and FILE.gp "
+                "Write the Pareto fronts here (SVG), and beside it FILE_scenarios.svg, FILE_scaling.svg, FILE.csv and FILE.gp "
                 "(replaced only when zhf bench wrote them; needs gnuplot)");
   c->add_option("--from", o->from, "Redraw the --plot files from a report an earlier --out wrote (measures nothing)");
   c->callback([o, &action] { action = [o] { return run_bench(*o); }; });

@@ -18,6 +18,7 @@
 #include "zhf/bench/limits.h"
 #include "zhf/bench/machine.h"
 #include "zhf/codegen/manifest.h"
+#include "zhf/dispatch/rotator.h"
 #include "zhf/frames/tight_frame_rotation.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
@@ -404,6 +405,12 @@ SuiteReport run_suite(const SuiteOptions& o) {
         }
       }
     }
+    // zhf as the CLI and the Python module run it: zhf::dispatch on the path it picks for this CPU
+    // (the variant names the instruction set and the kernels).
+    const auto shipped = dispatch::Rotator<float>::make(order);
+    const std::string shipped_path = std::string(dispatch::isa_name(shipped.isa())) + ": " + shipped.path();
+    say(single<float>(scale, pool, "zhf_dispatch", "single", 1, [&](auto r, auto in, auto out) { shipped.rotate(r, in, out); }, shipped_path));
+    say(single<float>(scale, pool, "zhf_dispatch", "rgb", 3, [&](auto r, auto in, auto out) { shipped.rotate_rgb(r, in, out); }, shipped_path));
     if (have_table) {
       const runtime::LobeTable table = runtime::read_lobe_table(table_path.string(), order);
       const auto t = runtime::Rotator<float>::from_table(table);
@@ -535,6 +542,9 @@ SuiteReport run_suite(const SuiteOptions& o) {
       // lanes through runtime::rotate_soa where its lobe stage is float.
       say(batch_soa(scale, pool, "zhf_batch_soa", threads, count, soa_kernel));
       if (soa_packs) say(batch_soa(scale, pool, "zhf_rotate_soa", threads, count, soa_packs));
+      say(batch(scale, pool, "zhf_dispatch", threads, [&](size_t b, size_t e, const float* r, const float* in, float* out) {
+        shipped.rotate_batch(e - b, r + 9 * b, in + n * b, out + n * b, 1);
+      }, count));
       say(batch(scale, pool, "zxzxz", threads, [&](size_t b, size_t e, const float* r, const float* in, float* out) {
         for (size_t v = b; v < e; ++v) z.rotate(r + 9 * v, in + n * v, out + n * v);
       }, count));

@@ -109,7 +109,7 @@ TEST(Bench, QuickRunMeasuresEveryMethodWithinItsTolerance) {
   }
   // The script a user reruns by hand writes the final SVGs, not zhf's temporary ones.
   const std::string script = test::read_text((dir / "bench.gp").string());
-  for (const char* svg : {"bench.svg", "bench_families.svg", "bench_scaling.svg"}) {
+  for (const char* svg : {"bench.svg", "bench_scenarios.svg", "bench_scaling.svg"}) {
     EXPECT_NE(script.find("'" + (dir / svg).string() + "'"), std::string::npos) << svg << "\n" << script;
     EXPECT_GT(fs::file_size(dir / svg), 0u) << svg;
   }

@@ -1,7 +1,7 @@
 // zhf bench's plots, drawn by gnuplot from one CSV: the Pareto front of every order (the methods
-// that no other method beats on both time and error, one vector per call), the method families in
-// small multiples, and time against order. The CSV's columns are order, ns_median, max_error and
-// the series' name last, so no name can shift a numeric column.
+// that no other method beats on both time and error, one vector per call), each method's fastest
+// path per order in one panel per scenario, and time against order. The CSV's columns are order,
+// ns_median, max_error and a label last, so no label can shift a numeric column.
 #pragma once
 
 #include <string>
@@ -15,11 +15,11 @@ double scaling_exponent(const SuiteReport& report, const std::string& method, co
                         const std::string& variant = "");
 
 // Refuses (OutputError) a --plot path write_plots could not use: control characters in it, a file
-// beside it (FILE.csv, FILE.gp, FILE_families.svg, FILE_scaling.svg) that zhf bench did not write,
+// beside it (FILE.csv, FILE.gp, FILE_scenarios.svg, FILE_scaling.svg) that zhf bench did not write,
 // or no gnuplot to draw with. Call it before measuring.
 void check_plot_targets(const std::string& svg_path);
 
-// Writes svg_path (the Pareto fronts), FILE_families.svg and FILE_scaling.svg, with FILE.csv and
+// Writes svg_path (the Pareto fronts), FILE_scenarios.svg and FILE_scaling.svg, with FILE.csv and
 // FILE.gp beside them (the script redraws the plots: gnuplot FILE.gp); all or nothing. Returns
 // what it wrote.
 std::string write_plots(const SuiteReport& report, const std::string& svg_path);
