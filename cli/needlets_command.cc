@@ -61,7 +61,7 @@ void add_needlets_command(CLI::App& app, Action& action, const std::string& comm
   sc->callback([sy, &action] { action = [sy] { return run_needlet_synthesize(*sy); }; });
   auto pr_t = std::make_shared<NeedletOptions>();
   CLI::App* rc = nc->add_subcommand("prt", "Shadowed transfer shaded with SH and with needlets at equal coefficient counts, against the exact integral");
-  rc->add_option("--scene", pr_t->scene, "sphere (default; one sphere over the ground), corner (two walls) or spheres (three)");
+  rc->add_option("--scene", pr_t->scene, "sphere (default; one sphere over the ground), corner (two walls), spheres (three) or open (the ground alone)");
   rc->add_option("--transfer", pr_t->transfer, "diffuse (default) or glossy (Phong lobe, exponent 20)");
   keep_old_spelling(rc, rc->add_option("--image", pr_t->image, "A Radiance .hdr equirectangular sky (row 0 at +z, phi from +x towards +y; default: an analytic sun and sky)"), "--sky", pr_t->image);
   rc->add_option("--side", pr_t->side, "Vertices per side of the ground grid, 1.." + std::to_string(frames::kMaxPrtSide) + " (default 16)");
@@ -71,7 +71,7 @@ void add_needlets_command(CLI::App& app, Action& action, const std::string& comm
   rc->add_option("--size", pr_t->size, kTableSizeHelp + " (the tabulated rotation of the sky)");
   rc->add_flag("--gauss", pr_t->gauss, "Gauss product cubatures instead of the shipped designs");
   rc->add_option("--out", pr_t->out, "Write the report here (zhf-needlet-prt-1)");
-  rc->add_option("--shading-csv", pr_t->shading_csv, "Write each vertex's shading here (x, y, exact, then SH and needlets per K): the images");
+  rc->add_option("--shading-csv", pr_t->shading_csv, "Write each vertex's shading here (x, y, exact, then SH, needlets and SH's best K per K): the images");
   add_threads_option(rc, pr_t->threads);
   add_progress_flags(rc, pr_t->quiet, pr_t->verbose);
   rc->add_option("--csv", pr_t->csv, "Write the error table here (K, SH rms, SH worst, needlet rms, needlet worst, both skies' least values)");

@@ -26,7 +26,7 @@ int run_needlet_prt(const NeedletOptions& o) {
   const double dilation = dilation_option(o.dilation);
   const int lmax = o.order.empty() && o.lmax.empty() ? 31 : top_band(o, 1, frames::kMaxProjectionOrder - 1);
   frames::PrtScene scene;
-  if (!frames::parse_prt_scene(o.scene, scene)) throw UsageError("--scene: '" + io::excerpt(o.scene) + "' is not sphere, corner or spheres");
+  if (!frames::parse_prt_scene(o.scene, scene)) throw UsageError("--scene: '" + io::excerpt(o.scene) + "' is not open, sphere, corner or spheres");
   frames::PrtTransfer transfer;
   if (!frames::parse_prt_transfer(o.transfer, transfer)) throw UsageError("--transfer: '" + io::excerpt(o.transfer) + "' is not diffuse or glossy");
   const int side = static_cast<int>(integer_option("--side", o.side, 1, frames::kMaxPrtSide));
@@ -61,18 +61,25 @@ int run_needlet_prt(const NeedletOptions& o) {
   std::printf("%s scene, %s transfer, %s sky: %d vertices; SH bands 0..%d (%d coefficients), needlets B = %g (%d coefficients)\n", o.scene.c_str(),
               o.transfer.c_str(), analytic_sky ? "sun and sky" : o.image.c_str(), r.vertices, lmax, r.sh_coefficients, dilation, r.needlet_coefficients);
   std::printf("shading error against the exact integral (RMS / worst, relative to the exact RMS / largest); least value of the sky rebuilt (true: %.3g)\n", r.sky_min);
-  std::printf("%8s %12s %12s %12s %12s %12s %12s\n", "K", "SH rms", "SH worst", "needlet rms", "needlet worst", "SH sky min", "needlet min");
-  std::string csv = "# zhf needlets prt: K, SH rms, SH worst, needlet rms, needlet worst, SH sky min, needlet sky min\n";
+  std::printf("%6s %10s %10s %10s %10s %10s %10s %9s %9s %9s %10s %10s\n", "K", "SH rms", "SH worst", "best rms", "best worst", "needl rms",
+              "needl worst", "SH bytes", "best B", "needl B", "SH sky min", "needl min");
+  std::string csv =
+      "# zhf needlets prt: K, SH rms, SH worst, needlet rms, needlet worst, SH sky min, needlet sky min, SH best-K rms, SH best-K worst, "
+      "SH bytes, SH best-K bytes, needlet bytes (per vertex, 4-byte values and the indices they need)\n";
   nlohmann::ordered_json rows = nlohmann::ordered_json::array();
   for (const frames::PrtRow& row : r.rows) {
-    std::printf("%8d %12.3e %12.3e %12.3e %12.3e %12.3e %12.3e\n", row.kept, row.sh_rms, row.sh_worst, row.needlet_rms, row.needlet_worst, row.sh_sky_min,
+    std::printf("%6d %10.3e %10.3e %10.3e %10.3e %10.3e %10.3e %9d %9d %9d %10.3e %10.3e\n", row.kept, row.sh_rms, row.sh_worst, row.sh_best_rms,
+                row.sh_best_worst, row.needlet_rms, row.needlet_worst, row.sh_bytes, row.sh_best_bytes, row.needlet_bytes, row.sh_sky_min,
                 row.needlet_sky_min);
-    char line[256];
-    std::snprintf(line, sizeof line, "%d,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e\n", row.kept, row.sh_rms, row.sh_worst, row.needlet_rms, row.needlet_worst,
-                  row.sh_sky_min, row.needlet_sky_min);
+    char line[320];
+    std::snprintf(line, sizeof line, "%d,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e,%d,%d,%d\n", row.kept, row.sh_rms, row.sh_worst, row.needlet_rms,
+                  row.needlet_worst, row.sh_sky_min, row.needlet_sky_min, row.sh_best_rms, row.sh_best_worst, row.sh_bytes, row.sh_best_bytes,
+                  row.needlet_bytes);
     csv += line;
-    rows.push_back({{"kept", row.kept}, {"sh_rms", row.sh_rms}, {"sh_worst", row.sh_worst}, {"needlet_rms", row.needlet_rms},
-                    {"needlet_worst", row.needlet_worst}, {"sh_sky_min", row.sh_sky_min}, {"needlet_sky_min", row.needlet_sky_min}});
+    rows.push_back({{"kept", row.kept}, {"sh_rms", row.sh_rms}, {"sh_worst", row.sh_worst}, {"sh_best_rms", row.sh_best_rms},
+                    {"sh_best_worst", row.sh_best_worst}, {"needlet_rms", row.needlet_rms}, {"needlet_worst", row.needlet_worst},
+                    {"sh_bytes", row.sh_bytes}, {"sh_best_bytes", row.sh_best_bytes}, {"needlet_bytes", row.needlet_bytes},
+                    {"sh_sky_min", row.sh_sky_min}, {"needlet_sky_min", row.needlet_sky_min}});
   }
   std::printf("all coefficients: needlets - SH = %.2e of the exact RMS (Parseval)\n", r.parseval_gap);
   std::printf("sky turned through %d steps: largest change of a level's energy through tabulated rotation (%d entries):", 12, table_size);
@@ -89,14 +96,15 @@ int run_needlet_prt(const NeedletOptions& o) {
   }
   if (shading_out) {
     std::string text = "# zhf needlets prt: x, y, exact";
-    for (const frames::PrtRow& row : r.rows) text += ", SH K=" + std::to_string(row.kept) + ", needlets K=" + std::to_string(row.kept);
+    for (const frames::PrtRow& row : r.rows)
+      text += ", SH K=" + std::to_string(row.kept) + ", needlets K=" + std::to_string(row.kept) + ", SH best K=" + std::to_string(row.kept);
     text += "\n";
     for (int v = 0; v < r.vertices; ++v) {
       char cell[64];
       std::snprintf(cell, sizeof cell, "%.6f,%.6f,%.6e", r.vertex_positions[v][0], r.vertex_positions[v][1], r.exact[v]);
       text += cell;
       for (const frames::PrtRow& row : r.rows) {
-        std::snprintf(cell, sizeof cell, ",%.6e,%.6e", row.sh[v], row.needlet[v]);
+        std::snprintf(cell, sizeof cell, ",%.6e,%.6e,%.6e", row.sh[v], row.needlet[v], row.sh_best[v]);
         text += cell;
       }
       text += "\n";

@@ -67,33 +67,33 @@ GP
 gnuplot "$work/projection.gp"
 
 kept=4,9,16,36,64,144,256,576,1024
-"$zhf" needlets prt --scene sphere --transfer diffuse --kept $kept --csv "$work/prt_sphere.csv" >/dev/null
-"$zhf" needlets prt --scene corner --transfer glossy --kept $kept --csv "$work/prt_corner.csv" >/dev/null
-"$zhf" needlets prt --scene spheres --transfer diffuse --kept $kept --csv "$work/prt_spheres.csv" >/dev/null
+"$zhf" needlets prt --quiet --scene sphere --transfer diffuse --kept $kept --csv "$work/prt_sphere.csv" >/dev/null
+"$zhf" needlets prt --quiet --scene corner --transfer glossy --kept $kept --csv "$work/prt_corner.csv" >/dev/null
+"$zhf" needlets prt --quiet --scene spheres --transfer diffuse --kept $kept --csv "$work/prt_spheres.csv" >/dev/null
 for s in sphere corner spheres; do grep -v "^#" "$work/prt_$s.csv" | head -n -1 >"$work/prt_${s}_k.csv"; done
 cat >"$work/prt.gp" <<GP
 set terminal svg size 1200,420 font "sans,11" background "white"
 set output "$work/prt_error.svg"
 set datafile separator ","
-set multiplot layout 1,3 title "Shading error (RMS, relative) against coefficients kept per vertex: SH bands (solid), largest needlets (dashed); bands 0..31, sun and sky"
+set multiplot layout 1,3 title "Shading error (RMS, relative to the exact reference) against coefficients kept per vertex: SH bands, SH's largest, needlets' largest; bands 0..31, sun and sky"
 set logscale xy
 set format y "10^{%T}"
 set xlabel "coefficients per vertex"
 set grid
 set key top right
-set yrange [5e-4:0.5]
 GP
 for s in "sphere diffuse" "corner glossy" "spheres diffuse"; do
   read -r scene transfer <<<"$s"
   cat >>"$work/prt.gp" <<GP
 set title "$scene, $transfer"
 plot "$work/prt_${scene}_k.csv" using 1:2 with linespoints lw 2 pt 7 lc rgb "#d62728" title "SH", \
-     "" using 1:4 with linespoints lw 2 dt 2 pt 5 lc rgb "#1f77b4" title "needlets"
+     "" using 1:8 with linespoints lw 1.5 dt 3 pt 9 lc rgb "#ff7f0e" title "SH, K largest", \
+     "" using 1:4 with linespoints lw 2 dt 2 pt 5 lc rgb "#1f77b4" title "needlets, K largest"
 GP
 done
 echo "unset multiplot" >>"$work/prt.gp"
 gnuplot "$work/prt.gp"
-"$zhf" needlets prt --scene spheres --side 40 --kept 64 --shading-csv "$work/prt_images.csv" >/dev/null
+"$zhf" needlets prt --quiet --scene spheres --side 40 --kept 64 --shading-csv "$work/prt_images.csv" >/dev/null
 grep -v "^#" "$work/prt_images.csv" >"$work/prt_images_data.csv"
 cat >"$work/prt_images.gp" <<GP
 set terminal svg size 1500,330 font "sans,11" background "white"

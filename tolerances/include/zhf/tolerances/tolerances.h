@@ -232,6 +232,10 @@ inline constexpr float kRgbeBlack = 1e-32f;
 // Needlet shading with every coefficient kept against the SH sum it equals (the frame is tight):
 // difference over the exact shading's RMS, measured at most 1.6e-14 (bands 0..31, 4667 needlets).
 inline constexpr double kParsevalShading = 1e-12;
+// The exact shading (frames/prt.h: caps integrated in closed-form theta intervals) against closed
+// forms (open ground, the sphere straight overhead, the corner's Lambert polygon) and against
+// itself at half the step: absolute, on shadings of order 1 (relative to max(1, |shading|)).
+inline constexpr double kPrtExactReference = 1e-10;
 
 // ---- Splat scenes ----------------------------------------------------------------------------
 // zhf splat's .ply values are float32: each is rounded to float once on the way in and once on
