@@ -1,0 +1,346 @@
+#!/usr/bin/env python3
+"""The tables of docs/performance.md, from the raw files bench/performance.sh writes.
+
+Usage: performance_tables.py RESULTS_DIR              print every table (Markdown)
+       performance_tables.py --check DOCUMENT         exit 1 if a table block of DOCUMENT is stale
+       performance_tables.py --update DOCUMENT        rewrite DOCUMENT's table blocks
+
+Reads peers_*.txt (the peer harness), fma_bound.txt, bulk_*.txt, splat_builds.txt,
+python_builds*.txt and bench.json of one run of bench/performance.sh, and makes each table with
+the file it comes from and that file's provenance line. In a document a block
+
+    <!-- table NAME from RESULTS_DIR: bench/performance_tables.py writes it, do not edit -->
+    ...
+    <!-- end table -->
+
+holds table NAME (peers_x86_64_v3, peers_default_build, goals, fma_bound, bulk, splat_builds, python,
+bench) made from RESULTS_DIR, relative to the repository. Nothing is measured here.
+"""
+import contextlib
+import io
+import json
+import os
+import re
+import sys
+
+ROW = re.compile(r"^(.*?)\s+(float|double)\s+([\d.]+)\s+([\d.]+)\s+([\d.e+-]+)\s")
+PEERS = [
+    ("DirectXMath", "DirectXMath XMSHRotate", "float"),
+    ("Filament (order 3)", "Filament", "float"),
+    ("sh-lib", "sh-lib RRotateSH (as shipped)", "float"),
+    ("Ivanic-Ruedenberg (the harness's, float)", "plain Ivanic-Ruedenberg (this harness)", "float"),
+    ("google (float)", "google Rotation::Create+Apply<float>", "float"),
+    ("HEALPix (double, with conversion)", "HEALPix rotate_alm<double> (+conversion)", "double"),
+]
+
+
+def header(path):
+    """The two '#' lines bench/record.sh writes, as one line of provenance."""
+    with open(path) as f:
+        lines = [next(f).rstrip("\n"), next(f).rstrip("\n")]
+    return " ".join(l.lstrip("# ").strip() for l in lines)
+
+
+def read_peers(path):
+    """{order: [(method, precision, median ns, max err)]}."""
+    orders, order = {}, None
+    for line in open(path):
+        m = re.match(r"== N = (\d+) ", line)
+        if m:
+            order = int(m.group(1))
+            orders[order] = []
+            continue
+        m = ROW.match(line)
+        if order is not None and m and not line.startswith("method"):
+            orders[order].append((m.group(1).strip(), m.group(2), float(m.group(3)), float(m.group(5))))
+    return orders
+
+
+def path_name(method):
+    """A zhf row's path, short: the harness's method names without the row's type and call."""
+    isa = re.search(r"\[(\w+)\]$", method)
+    if "dispatch" in method:
+        return f"`{isa.group(1)}` path" if isa else "dispatch"
+    for text, name in (("bands 0 and 1", "bands 0 and 1 in one register"), ("rotate_lanes", "lanes"), ("band rows", "band rows"),
+                       ("from_table", "`from_table`: zxzxz"), ("zxzxz", "zxzxz"), ("rotate_orderN", "scalar kernel")):
+        if text in method:
+            return name
+    return method
+
+
+def fmt(ns):
+    return f"{ns:.1f}" if ns < 1e4 else f"{ns:.0f}"
+
+
+def peers_table(results, build, zhf_label):
+    """One row per order: zhf's fastest path of the build against every peer, and the ratios."""
+    path = os.path.join(results, f"peers_{build}.txt")
+    orders = read_peers(path)
+    big = os.path.join(results, f"peers_{build}_order128.txt")
+    if os.path.exists(big):
+        orders.update(read_peers(big))
+    print(f"Source: `{path}` (order 128: `{big}`, K = 4, 3 repetitions).  ")
+    print(f"Run: {header(path)}\n")
+    print(f"| N | {zhf_label}: median ns (path) / max err | " + " | ".join(p[0] for p in PEERS) + " | DirectXMath / zhf | HEALPix / zhf |")
+    print("| --- " * (len(PEERS) + 4) + "|")
+    for order in sorted(orders):
+        rows = orders[order]
+        native = [r for r in rows if r[0].startswith("zhf") and r[1] == "float" and "no -march" not in r[0]]
+        if not native:
+            continue
+        best = min(native, key=lambda r: r[2])
+        cells = [f"{fmt(best[2])} ({path_name(best[0])}) / {best[3]:.1e}"]
+        found = {}
+        for label, name, precision in PEERS:
+            match = [r for r in rows if r[0].startswith(name) and r[1] == precision]
+            found[label] = match[0][2] if match else None
+            cells.append(fmt(match[0][2]) if match else "-")
+        ratio = lambda label: f"{found[label] / best[2]:.3g}x" if found[label] else "-"
+        print(f"| {order} | " + " | ".join(cells) + f" | {ratio('DirectXMath')} | {ratio('HEALPix (double, with conversion)')} |")
+    print()
+
+
+# The goals of the performance work: (order, what, the ratio's function of (zhf, DirectXMath's
+# time at the order, DirectXMath's N = 6 time, HEALPix's), the bound, whether above it is met).
+GOALS = [
+    (2, ">= 2.5x DirectXMath", lambda z, d, d6, h: d / z, 2.5, True),
+    (3, ">= 1.8x DirectXMath", lambda z, d, d6, h: d / z, 1.8, True),
+    (4, ">= 1.6x DirectXMath", lambda z, d, d6, h: d / z, 1.6, True),
+    (5, ">= 1.4x DirectXMath", lambda z, d, d6, h: d / z, 1.4, True),
+    (6, ">= 1.4x DirectXMath", lambda z, d, d6, h: d / z, 1.4, True),
+    (7, "<= 1.6x DirectXMath's N = 6 time", lambda z, d, d6, h: z / d6, 1.6, False),
+    (8, "<= 2.5x DirectXMath's N = 6 time", lambda z, d, d6, h: z / d6, 2.5, False),
+    (16, "<= 10x DirectXMath's N = 6 time", lambda z, d, d6, h: z / d6, 10, False),
+    (32, "<= 65x DirectXMath's N = 6 time", lambda z, d, d6, h: z / d6, 65, False),
+    (32, ">= 10x HEALPix", lambda z, d, d6, h: h / z, 10, True),
+    (64, ">= 10x HEALPix", lambda z, d, d6, h: h / z, 10, True),
+    (128, ">= 10x HEALPix", lambda z, d, d6, h: h / z, 10, True),
+]
+
+
+def goals_table(results):
+    """Each goal against both builds' peer runs."""
+    builds = []
+    for build in ("x86_64_v3", "default_build"):
+        orders = read_peers(os.path.join(results, f"peers_{build}.txt"))
+        orders.update(read_peers(os.path.join(results, f"peers_{build}_order128.txt")))
+        times = {}
+        for order, rows in orders.items():
+            native = [r[2] for r in rows if r[0].startswith("zhf") and r[1] == "float" and "no -march" not in r[0]]
+            dx = [r[2] for r in rows if r[0].startswith("DirectXMath")]
+            hp = [r[2] for r in rows if r[0].startswith("HEALPix rotate_alm<double>")]
+            times[order] = (min(native) if native else None, dx[0] if dx else None, hp[0] if hp else None)
+        builds.append(times)
+    print(f"Source: the two peer runs above (`{results}/peers_*.txt`).\n")
+    print("| N | goal | `-march=x86-64-v3` | met | no `-march` (`zhf::dispatch`) | met |\n| --- | --- | --- | --- | --- | --- |")
+    for order, what, ratio, bound, above in GOALS:
+        cells = []
+        for times in builds:
+            z, d, h = times.get(order, (None, None, None))
+            d6 = times.get(6, (None, None, None))[1]
+            try:
+                value = ratio(z, d, d6, h)
+            except TypeError:
+                cells += ["-", "-"]
+                continue
+            cells += [f"{value:.2f}x", "yes" if (value >= bound if above else value <= bound) else "**no**"]
+        print(f"| {order} | {what} | " + " | ".join(cells) + " |")
+    print()
+
+
+def fma_table(results):
+    """Every path's measured time per order and its distance from the bound, side by side."""
+    path = os.path.join(results, "fma_bound.txt")
+    print(f"Source: `{path}`.  \nRun: {header(path)}\n")
+    paths, isa, clock = {}, None, ""
+    for line in list(open(path))[2:]:
+        m = re.match(r"^(\w+) \((\d+) float lanes(, FMA|, no FMA)", line)
+        if m:
+            isa = f"`{m.group(1)}` ({m.group(2)} floats{m.group(3)})"
+            paths[isa] = {}
+        elif line.startswith("clock"):
+            clock = line.strip()
+        m = re.match(r"^\| (\d+) \| (\S+) \| ([\d.]+) \| ([\d.]+) \| (\S+) \| (\S+) \|", line)
+        if m and isa:
+            paths[isa][int(m.group(1))] = m.groups()[1:]
+    print(f"{clock}. Per path: the kernels it runs, measured ns, and measured / bound (the bound's ns in brackets).\n")
+    print("| N | " + " | ".join(paths) + " |\n" + "| --- " * (len(paths) + 1) + "|")
+    for order in sorted({o for rows in paths.values() for o in rows}):
+        cells = []
+        for rows in paths.values():
+            kernel, _, bound_ns, measured, ratio = rows.get(order, ("-",) * 5)
+            cells.append("-" if measured == "-" else f"{kernel} {measured} ns, {ratio}x ({bound_ns})")
+        print(f"| {order} | " + " | ".join(cells) + " |")
+    print()
+
+
+BULK = re.compile(r"N=(\d+) threads=(\d+) items=(\d+) .*?copy ([\d.]+) GB/s; splats ([\d.]+) ns/item [\d.]+ GB/s (\d+)% of copy, "
+                  r"in place [\d.]+ ns/item (\d+)%; planar ([\d.]+) ns/item [\d.]+ GB/s (\d+)% of copy, in place [\d.]+ ns/item (\d+)%")
+SOA = re.compile(r"N=(\d+) soa, (\d+) rotations, planes (\d+) apart, one thread: rotate_soa ([\d.]+) ns per rotation; "
+                 r"generated rotate_batch ([\d.]+ ns|-); scalar rotate per rotation ([\d.]+) ns \(([\d.]+)x rotate_soa\)")
+
+
+def bulk_table(results):
+    """One rotation for many items (both builds, both counts), then SoA (both builds)."""
+    files = {name: os.path.join(results, name + ".txt") for name in ("bulk_x86_64_v3", "bulk_default_build", "bulk_x86_64_v3_odd_counts")}
+    for name, path in files.items():
+        print(f"Source: `{path}`.  \nRun: {header(path)}  ")
+    print("\nOne rotation for many items: copy rate, then ns per item and the rate as a share of the copy's, out of place; in place")
+    print("\n| build, items | N | threads | copy GB/s | 3DGS layout | planar |\n| --- | --- | --- | --- | --- | --- |")
+    for name, label in (("bulk_x86_64_v3", "x86-64-v3"), ("bulk_x86_64_v3_odd_counts", "x86-64-v3, no power of two"),
+                        ("bulk_default_build", "no -march")):
+        for line in open(files[name]):
+            m = BULK.match(line)
+            if m:
+                n, threads, items, copy, splat_ns, splat, splat_in, planar_ns, planar, planar_in = m.groups()
+                print(f"| {label}, {items} | {n} | {threads} | {copy} | {splat_ns} ns, {splat} %; {splat_in} % | "
+                      f"{planar_ns} ns, {planar} %; {planar_in} % |")
+    print("\nMany rotations, SoA, one thread: ns per rotation, `rotate_soa` / generated `rotate_batch_orderN` loop / scalar kernel "
+          "per rotation, and scalar / `rotate_soa`\n")
+    layouts = [("4096", "4096"), ("4096", "4128"), ("4000", "4000")]
+    print("| build | N | " + " | ".join(f"{c} rotations, planes {p} apart" for c, p in layouts) + " |")
+    print("| --- " * (len(layouts) + 2) + "|")
+    for name, label in (("bulk_x86_64_v3", "x86-64-v3"),):  # without -march: the file
+        rows = {}
+        for line in open(files[name]):
+            m = SOA.match(line)
+            if m:
+                n, count, stride, soa, loop, scalar, ratio = m.groups()
+                rows.setdefault(int(n), {})[(count, stride)] = f"{soa} / {loop.replace(' ns', '')} / {scalar}, **{ratio}x**"
+        for n in sorted(rows):
+            print(f"| {label} | {n} | " + " | ".join(rows[n].get(l, "-") for l in layouts) + " |")
+    print()
+
+
+def splat_table(results):
+    path = os.path.join(results, "splat_builds.txt")
+    print(f"Source: `{path}`.  \nRun: {header(path)}\n")
+    print("| pairing | A wall s (median) | B wall s (median) | A/B wall (median) |")
+    print("| --- | --- | --- | --- |")
+    title, a = None, None
+    for line in open(path):
+        if line.startswith("## "):
+            title = line[3:].strip()
+        m = re.match(r"^([AB]) wall s\s+[\d.]+\s+([\d.]+)", line)
+        if m and m.group(1) == "A":
+            a = m.group(2)
+        elif m:
+            b = m.group(2)
+        m = re.match(r"^A/B wall\s+[\d.]+\s+([\d.]+)", line)
+        if m:
+            print(f"| {title} | {a} | {b} | {m.group(1)} |")
+    print()
+
+
+def python_table(results):
+    """The two runs (each build first in one) side by side."""
+    runs = []
+    for name in ("python_builds", "python_builds_swapped"):
+        path = os.path.join(results, name + ".txt")
+        print(f"Source: `{path}`.  \nRun: {header(path)}  ")
+        rows = {}
+        for line in open(path):
+            m = re.match(r"^\| (order [^|]+) \| ([\d.]+) \| ([\d.]+) \| ([\d.]+) \|", line)
+            if m:
+                rows[m.group(1).strip()] = m.groups()[1:]
+        runs.append(rows)
+    print("\nns per vector, medians of the pairs; the ratio default / x86-64-v3, in the run with the default build first and "
+          "in the one with it second\n")
+    print("| workload | no `-march` | `-march=x86-64-v3` | ratio, default first | ratio, x86-64-v3 first |\n| --- | --- | --- | --- | --- |")
+    for what, (a, b, ratio) in runs[0].items():
+        swapped = runs[1].get(what)
+        other = f"{float(swapped[2]):.3f}" if swapped else "-"
+        print(f"| {what} | {a} | {b} | {float(ratio) and 1 / float(ratio):.3f} | {other} |")
+    print()
+
+
+def bench_table(results):
+    """zhf bench: per scenario and order, each method's fastest row (the plots' points)."""
+    path = os.path.join(results, "bench.json")
+    report = json.load(open(path))
+    print(f"Source: `{path}` ({report.get('cpu', '')}; {report.get('flags', '')}; {report.get('date', '')}).\n")
+    # RGB and the batches are in the file and the scenario plot.
+    panels = [("single", None, "One vector, a new rotation per call"), ("shared", None, "One rotation for 2^20 vectors")]
+    for scenario, variant, title in panels:
+        best = {}
+        for r in report["rows"]:
+            if r["scenario"] != scenario or (variant and r["variant"] != variant) or r["variant"] == "conversion only":
+                continue
+            method = r["method"] + (" (double)" if r["precision"] == "double" else "")
+            key = (method, r["order"])
+            if key not in best or r["ns_median"] < best[key]["ns_median"]:
+                best[key] = r
+        methods = sorted({m for m, _ in best})
+        orders = sorted({o for _, o in best})
+        print(f"{title}: median ns / max error, each method's fastest path\n")
+        print("| N | " + " | ".join(methods) + " |")
+        print("| --- " * (len(methods) + 1) + "|")
+        for o in orders:
+            cells = []
+            for m in methods:
+                r = best.get((m, o))
+                cells.append(f"{r['ns_median']:.3g} / {r['max_error']:.1e}" if r and r.get("max_error") is not None else
+                              (f"{r['ns_median']:.3g}" if r else "-"))
+            print(f"| {o} | " + " | ".join(cells) + " |")
+        print()
+
+
+SECTIONS = {
+    "peers_x86_64_v3": lambda r: peers_table(r, "x86_64_v3", "zhf, fastest path"),
+    "peers_default_build": lambda r: peers_table(r, "default_build", "zhf::dispatch"),
+    "goals": goals_table,
+    "fma_bound": fma_table,
+    "bulk": bulk_table,
+    "splat_builds": splat_table,
+    "python": python_table,
+    "bench": bench_table,
+}
+BLOCK = re.compile(r"(<!-- table (\w+) from ([\w/.-]+): bench/performance_tables.py writes it, do not edit -->\n)(.*?)(<!-- end table -->)",
+                   re.S)
+
+
+def section(name, results):
+    """One table as text, its paths relative to the repository."""
+    out = io.StringIO()
+    root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+    cwd = os.getcwd()
+    os.chdir(root)
+    try:
+        with contextlib.redirect_stdout(out):
+            SECTIONS[name](results)
+    finally:
+        os.chdir(cwd)
+    return out.getvalue()
+
+
+def main():
+    if len(sys.argv) == 3 and sys.argv[1] in ("--check", "--update"):
+        text = open(sys.argv[2]).read()
+        stale = []
+
+        def fill(m):
+            if m.group(2) not in SECTIONS:
+                sys.exit(f"{sys.argv[2]}: no table named {m.group(2)}")
+            made = section(m.group(2), m.group(3))
+            if made != m.group(4):
+                stale.append(m.group(2))
+            return m.group(1) + made + m.group(5)
+
+        updated = BLOCK.sub(fill, text)
+        if sys.argv[1] == "--update":
+            with open(sys.argv[2] + ".tmp", "w") as f:
+                f.write(updated)
+            os.replace(sys.argv[2] + ".tmp", sys.argv[2])
+        elif stale:
+            sys.exit(f"{sys.argv[2]}: stale tables {', '.join(stale)} (python3 bench/performance_tables.py --update {sys.argv[2]})")
+        print(f"{sys.argv[2]}: {len(BLOCK.findall(text))} table blocks" + (", updated" if sys.argv[1] == "--update" else ", current"))
+        return
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    for name in SECTIONS:
+        print(f"## {name}\n")
+        print(section(name, sys.argv[1]))
+
+
+if __name__ == "__main__":
+    main()
