@@ -133,7 +133,7 @@ std::vector<std::pair<double, double>> phi_pieces(const std::vector<Cap>& caps) 
     for (std::size_t j = i + 1; j < caps.size(); ++j) {
       const Point &c1 = caps[i].axis, &c2 = caps[j].axis;
       const double g = c1[0] * c2[0] + c1[1] * c2[1] + c1[2] * c2[2], det = 1 - g * g;
-      if (det < 1e-12) continue;
+      if (!(det > 0)) continue;  // parallel axes: the edges are nested or apart, never crossing once
       const double a = (caps[i].cos_half - caps[j].cos_half * g) / det, b = (caps[j].cos_half - caps[i].cos_half * g) / det;
       const Point n{c1[1] * c2[2] - c1[2] * c2[1], c1[2] * c2[0] - c1[0] * c2[2], c1[0] * c2[1] - c1[1] * c2[0]};
       const double t2 = (1 - (a * a + b * b + 2 * a * b * g)) / det;  // |c1 x c2|^2 = det
@@ -146,7 +146,7 @@ std::vector<std::pair<double, double>> phi_pieces(const std::vector<Cap>& caps) 
   std::sort(cuts.begin(), cuts.end());
   std::vector<std::pair<double, double>> pieces;
   for (std::size_t i = 0; i + 1 < cuts.size(); ++i)
-    if (cuts[i + 1] - cuts[i] > 1e-13) pieces.push_back({cuts[i], cuts[i + 1]});
+    if (cuts[i + 1] > cuts[i]) pieces.push_back({cuts[i], cuts[i + 1]});
   return pieces;
 }
 

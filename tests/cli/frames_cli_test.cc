@@ -137,9 +137,10 @@ TEST(NeedletPrtCli, ReportsErrorsPerCoefficientCountAndRefusesBadOptions) {
   EXPECT_EQ(test::line_count(test::read_text(csv)), 4);
   const std::string images = test::read_text(shading);
   EXPECT_EQ(test::line_count(images), 5);  // a header and 2 x 2 vertices
-  EXPECT_EQ(std::count(images.begin(), images.end(), ','), 4 * 8 + 8);  // x, y, exact and 3 x (SH, needlets) a vertex; the header's 8
+  // x, y, exact and 3 x (SH, needlets, SH's best K) a vertex: 11 commas a line, the header's too
+  EXPECT_EQ(std::count(images.begin(), images.end(), ','), 5 * 11);
   for (const auto& [args, message] : std::vector<std::pair<std::vector<std::string>, std::string>>{
-           {{"needlets", "prt", "--scene", "teapot"}, "--scene: 'teapot' is not sphere, corner or spheres"},
+           {{"needlets", "prt", "--scene", "teapot"}, "--scene: 'teapot' is not open, sphere, corner or spheres"},
            {{"needlets", "prt", "--transfer", "mirror"}, "--transfer: 'mirror'"},
            {{"needlets", "prt", "--order", "9", "--kept", "2000"}, "--kept: 2000 is more than the frame's"},
            {{"needlets", "prt", "--order", "9", "--kept", "5000"}, "--kept: must be 1..4096"},  // the largest frame's size
