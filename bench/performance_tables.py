@@ -2,8 +2,8 @@
 """The tables of docs/performance.md, from the raw files bench/performance.sh writes.
 
 Usage: performance_tables.py RESULTS_DIR              print every table (Markdown)
-       performance_tables.py --check DOCUMENT         exit 1 if a table block of DOCUMENT is stale
-       performance_tables.py --update DOCUMENT        rewrite DOCUMENT's table blocks
+       performance_tables.py --check DOCUMENT...      exit 1 if a table block of a DOCUMENT is stale
+       performance_tables.py --update DOCUMENT...     rewrite the DOCUMENTs' table blocks
 
 Reads peers_*.txt (the peer harness), fma_bound.txt, bulk_*.txt, splat_builds.txt,
 python_builds*.txt and bench.json of one run of bench/performance.sh, and makes each table with
@@ -14,7 +14,7 @@ the file it comes from and that file's provenance line. In a document a block
     <!-- end table -->
 
 holds table NAME (peers_x86_64_v3, peers_default_build, goals, fma_bound, bulk, splat_builds, python,
-bench) made from RESULTS_DIR, relative to the repository. Nothing is measured here.
+bench; tight_frame for docs/frames.md, products for docs/products.md) made from RESULTS_DIR, relative to the repository. Nothing is measured here.
 """
 import contextlib
 import io
@@ -279,6 +279,47 @@ def bench_table(results):
         print()
 
 
+def bench_rows(results):
+    path = os.path.join(results, "bench.json")
+    report = json.load(open(path))
+    print(f"Source: `{path}` ({report.get('cpu', '')}; {report.get('flags', '')}; {report.get('date', '')}).\n")
+    return report["rows"]
+
+
+def tight_frame_table(results):
+    """The tight-frame rotation against the run-time path and the recurrence (docs/frames.md)."""
+    rows = bench_rows(results)
+    pick = lambda method, order: min((r for r in rows if r["method"] == method and r["scenario"] == "single" and r["order"] == order
+                                      and r["precision"] == ("double" if method == "ivanic_ruedenberg" else "float")),
+                                     key=lambda r: r["ns_median"], default=None)
+    print("| N | lobes (design) | tight frame ns | run-time path (`from_table`) ns | Ivanic-Ruedenberg (double) ns | tight frame max err "
+          "| worst unit input |\n| --- | --- | --- | --- | --- | --- | --- |")
+    for order in sorted({r["order"] for r in rows if r["method"] == "tight_frame"}):
+        t, z, ir = pick("tight_frame", order), pick("zhf_runtime", order), pick("ivanic_ruedenberg", order)
+        runtime = f"{z['ns_median']:.0f}" if z else "-"
+        print(f"| {order} | {t['variant']} | {t['ns_median']:.0f} | {runtime} | {ir['ns_median']:.0f} | "
+              f"{t['max_error']:.1e} | {t['worst_unit_error']:.1e} |")
+    print()
+
+
+def products_table(results):
+    """The product, square and shading kernels against the sparse Gaunt loop (docs/products.md)."""
+    rows = bench_rows(results)
+    columns = [("product", "zhf", "float", "product"), ("product (double)", "zhf", "double", "product"),
+               ("gaunt_sparse", "gaunt_sparse", "float", "product"), ("square", "zhf", "float", "square"),
+               ("shade", "zhf_shade", "float", "shade"), ("rotate, then dot", "zhf_rotate_then_dot", "float", "shade"),
+               ("shade_lobes", "zhf_shade_lobes", "float", "shade")]
+    print("ns per call, median:\n")
+    print("| N | " + " | ".join(c[0] for c in columns) + " |\n" + "| --- " * (len(columns) + 1) + "|")
+    for order in sorted({r["order"] for r in rows if r["scenario"] == "product"}):
+        cells = []
+        for _, method, precision, scenario in columns:
+            match = [r for r in rows if r["method"] == method and r["precision"] == precision and r["scenario"] == scenario and r["order"] == order]
+            cells.append(f"{match[0]['ns_median']:.1f}" if match else "-")
+        print(f"| {order} | " + " | ".join(cells) + " |")
+    print()
+
+
 SECTIONS = {
     "peers_x86_64_v3": lambda r: peers_table(r, "x86_64_v3", "zhf, fastest path"),
     "peers_default_build": lambda r: peers_table(r, "default_build", "zhf::dispatch"),
@@ -288,6 +329,8 @@ SECTIONS = {
     "splat_builds": splat_table,
     "python": python_table,
     "bench": bench_table,
+    "tight_frame": tight_frame_table,
+    "products": products_table,
 }
 BLOCK = re.compile(r"(<!-- table (\w+) from ([\w/.-]+): bench/performance_tables.py writes it, do not edit -->\n)(.*?)(<!-- end table -->)",
                    re.S)
@@ -308,26 +351,27 @@ def section(name, results):
 
 
 def main():
-    if len(sys.argv) == 3 and sys.argv[1] in ("--check", "--update"):
-        text = open(sys.argv[2]).read()
+    if len(sys.argv) >= 3 and sys.argv[1] in ("--check", "--update"):
         stale = []
+        for document in sys.argv[2:]:
+            text = open(document).read()
 
-        def fill(m):
-            if m.group(2) not in SECTIONS:
-                sys.exit(f"{sys.argv[2]}: no table named {m.group(2)}")
-            made = section(m.group(2), m.group(3))
-            if made != m.group(4):
-                stale.append(m.group(2))
-            return m.group(1) + made + m.group(5)
+            def fill(m):
+                if m.group(2) not in SECTIONS:
+                    sys.exit(f"{document}: no table named {m.group(2)}")
+                made = section(m.group(2), m.group(3))
+                if made != m.group(4):
+                    stale.append(f"{document}: {m.group(2)}")
+                return m.group(1) + made + m.group(5)
 
-        updated = BLOCK.sub(fill, text)
-        if sys.argv[1] == "--update":
-            with open(sys.argv[2] + ".tmp", "w") as f:
-                f.write(updated)
-            os.replace(sys.argv[2] + ".tmp", sys.argv[2])
-        elif stale:
-            sys.exit(f"{sys.argv[2]}: stale tables {', '.join(stale)} (python3 bench/performance_tables.py --update {sys.argv[2]})")
-        print(f"{sys.argv[2]}: {len(BLOCK.findall(text))} table blocks" + (", updated" if sys.argv[1] == "--update" else ", current"))
+            updated = BLOCK.sub(fill, text)
+            if sys.argv[1] == "--update" and updated != text:
+                with open(document + ".tmp", "w") as f:
+                    f.write(updated)
+                os.replace(document + ".tmp", document)
+            print(f"{document}: {len(BLOCK.findall(text))} table blocks")
+        if stale and sys.argv[1] == "--check":
+            sys.exit(f"stale tables: {'; '.join(stale)} (python3 bench/performance_tables.py --update DOCUMENT)")
         return
     if len(sys.argv) != 2:
         sys.exit(__doc__)

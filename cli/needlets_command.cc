@@ -74,7 +74,7 @@ void add_needlets_command(CLI::App& app, Action& action, const std::string& comm
   rc->add_option("--shading-csv", pr_t->shading_csv, "Write each vertex's shading here (x, y, exact, then SH, needlets and SH's best K per K): the images");
   add_threads_option(rc, pr_t->threads);
   add_progress_flags(rc, pr_t->quiet, pr_t->verbose);
-  rc->add_option("--csv", pr_t->csv, "Write the error table here (K, SH rms, SH worst, needlet rms, needlet worst, both skies' least values)");
+  rc->add_option("--csv", pr_t->csv, "Write the error table here (K, SH rms, SH worst, needlet rms, needlet worst, both skies' least values, SH's best-K rms and worst, bytes per vertex of each)");
   rc->callback([pr_t, &action] { action = [pr_t] { return run_needlet_prt(*pr_t); }; });
   auto t = std::make_shared<NeedletOptions>();
   CLI::App* tc = nc->add_subcommand("tables", "The needlet frame of bands 0..lmax: levels, kernel look-up error and tabulated rotation error per table size");
