@@ -14,7 +14,8 @@ the file it comes from and that file's provenance line. In a document a block
     <!-- end table -->
 
 holds table NAME (peers_x86_64_v3, peers_default_build, goals, fma_bound, bulk, splat_builds, python,
-bench; tight_frame for docs/frames.md, products for docs/products.md) made from RESULTS_DIR, relative to the repository. Nothing is measured here.
+bench; tight_frame, prt_reference and prt_errors for docs/frames.md, products for docs/products.md)
+made from RESULTS_DIR, relative to the repository. Nothing is measured here.
 """
 import contextlib
 import io
@@ -320,6 +321,34 @@ def products_table(results):
     print()
 
 
+def prt_reference_table(results):
+    """The exact PRT reference's convergence (bench/prt.sh's reference.txt), as it printed it."""
+    path = os.path.join(results, "reference.txt")
+    print(f"Source: `{path}`.  \nRun: {header(path)}\n")
+    for line in open(path):
+        if line.startswith("|"):
+            print(line.rstrip("\n"))
+    print()
+
+
+def prt_errors_table(results):
+    """SH bands / SH's K largest / needlets, RMS error per scene and transfer (bench/prt.sh's runs)."""
+    kept = (16, 64, 256, 1024)
+    print(f"Source: `{results}/<scene>_<transfer>.txt`.  \nRun: {header(os.path.join(results, 'sphere_diffuse.txt'))}\n")
+    print("| scene, transfer | " + " | ".join(f"K = {k}" for k in kept) + " | all (SH 1024, needlets 4667) |")
+    print("| --- " * (len(kept) + 2) + "|")
+    for scene in ("sphere", "corner", "spheres"):
+        for transfer in ("diffuse", "glossy"):
+            rows = {}
+            for line in list(open(os.path.join(results, f"{scene}_{transfer}.txt")))[2:]:
+                fields = line.split()
+                if len(fields) == 12 and fields[0].isdigit():
+                    rows[int(fields[0])] = (float(fields[1]), float(fields[3]), float(fields[5]))
+            cells = [" / ".join(f"{v:.1e}" for v in rows[k]) for k in kept]
+            print(f"| {scene}, {transfer} | " + " | ".join(cells) + f" | {rows[max(rows)][0]:.1e} |")
+    print()
+
+
 SECTIONS = {
     "peers_x86_64_v3": lambda r: peers_table(r, "x86_64_v3", "zhf, fastest path"),
     "peers_default_build": lambda r: peers_table(r, "default_build", "zhf::dispatch"),
@@ -331,6 +360,8 @@ SECTIONS = {
     "bench": bench_table,
     "tight_frame": tight_frame_table,
     "products": products_table,
+    "prt_reference": prt_reference_table,
+    "prt_errors": prt_errors_table,
 }
 BLOCK = re.compile(r"(<!-- table (\w+) from ([\w/.-]+): bench/performance_tables.py writes it, do not edit -->\n)(.*?)(<!-- end table -->)",
                    re.S)

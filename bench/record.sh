@@ -14,7 +14,9 @@ pin=()
 [ "${RECORD_ALL_CORES:-0}" != 1 ] && [ "$(nproc)" -ge 2 ] && command -v taskset > /dev/null && pin=(taskset -c 1)
 cpu=$(grep -m1 "model name" /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')
 isa=$(grep -q -w avx512f /proc/cpuinfo && echo "AVX2, AVX-512" || { grep -q -w avx2 /proc/cpuinfo && echo "AVX2, no AVX-512" || echo "no AVX2"; })
-tree=$(git diff --quiet HEAD -- && echo "clean tree" || echo "modified tree")
+# The outputs of a run (results, the plots drawn from them) do not count: a second run rewrites
+# the first's files before it records the next one.
+tree=$(git diff --quiet HEAD -- . ':(exclude)bench/results' ':(exclude)docs/*.svg' && echo "clean tree" || echo "modified tree")
 tmp=$(mktemp "$out.XXXXXX")
 trap 'rm -f "$tmp"' EXIT
 {
