@@ -13,8 +13,8 @@
 #   python_builds*.txt    the Python module of the two builds, paired call by call, both ways round
 #   bench.json            zhf bench (every method and scenario, time and error), whose plots are
 #                         drawn into docs/bench.svg, docs/bench_scenarios.svg, docs/bench_scaling.svg
-# then bench/performance_tables.py rewrites the table blocks of docs/performance.md that name
-# this results folder (a test checks they match the files). Refuses to run from a modified tree: the files name the commit they measured. About 40
+# then bench/performance_tables.py rewrites the table blocks of docs/performance.md (and the
+# bench tables of docs/frames.md and docs/products.md) from their files (a test checks they match). Refuses to run from a modified tree: the files name the commit they measured. About 40
 # minutes on 2 cores from a clean clone (the two builds take most of it). Keep the machine idle.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/../scripts/setup.sh"
@@ -79,5 +79,5 @@ export RECORD_ALL_CORES=1
 bash bench/record.sh "$results/bench.txt" "$default" \
   "$ZHF_BUILD/cli/zhf" bench --out "$results/bench.json" --plot docs/bench.svg > /dev/null
 
-/usr/bin/python3 bench/performance_tables.py --update docs/performance.md
-echo "performance.sh: wrote $results/ and docs/bench*.svg, and the tables of docs/performance.md that name $results"
+/usr/bin/python3 bench/performance_tables.py --update docs/performance.md docs/frames.md docs/products.md
+echo "performance.sh: wrote $results/ and docs/bench*.svg, and the docs' table blocks that name $results"

@@ -2,7 +2,8 @@
 # The figures of docs/frames.md's PRT section, in one run: the exact reference's convergence
 # (bench/prt_reference.cc) into bench/results/prt/reference.txt, then zhf needlets prt for every
 # scene and transfer (K = 4 .. 1024, bands 0..31) into bench/results/prt/<scene>_<transfer>.txt,
-# each through bench/record.sh; then the plots (scripts/plot_frames.sh). Refuses a modified tree.
+# each through bench/record.sh; then the plots (scripts/plot_frames.sh) and the tables of
+# docs/frames.md (bench/performance_tables.py). Refuses a modified tree.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/../scripts/setup.sh"
 cd "$ZHF_ROOT"
@@ -18,3 +19,4 @@ for scene in sphere corner spheres; do
   done
 done
 bash scripts/plot_frames.sh "$ZHF_BUILD/cli/zhf"
+/usr/bin/python3 bench/performance_tables.py --update docs/frames.md
