@@ -14,8 +14,8 @@ the file it comes from and that file's provenance line. In a document a block
     <!-- end table -->
 
 holds table NAME (peers_x86_64_v3, peers_default_build, goals, fma_bound, bulk, splat_builds, python,
-bench; tight_frame, prt_reference and prt_errors for docs/frames.md, products for docs/products.md)
-made from RESULTS_DIR, relative to the repository. Nothing is measured here.
+bench; tight_frame, prt_reference and prt_errors for docs/frames.md, products for docs/products.md,
+numerical_limits and chain for docs/verification.md) made from RESULTS_DIR, relative to the repository. Nothing is measured here.
 """
 import contextlib
 import io
@@ -349,6 +349,18 @@ def prt_errors_table(results):
     print()
 
 
+def markdown_of(name):
+    """A raw file's Markdown tables and its closing lines, as the program printed them."""
+    def table(results):
+        path = os.path.join(results, name)
+        print(f"Source: `{path}`.  \nRun: {header(path)}\n")
+        for line in list(open(path))[2:]:
+            if line.strip():
+                print(line.rstrip("\n") if line.startswith("|") else "\n" + line.rstrip("\n"))
+        print()
+    return table
+
+
 SECTIONS = {
     "peers_x86_64_v3": lambda r: peers_table(r, "x86_64_v3", "zhf, fastest path"),
     "peers_default_build": lambda r: peers_table(r, "default_build", "zhf::dispatch"),
@@ -362,6 +374,8 @@ SECTIONS = {
     "products": products_table,
     "prt_reference": prt_reference_table,
     "prt_errors": prt_errors_table,
+    "numerical_limits": markdown_of("numerical_limits.txt"),
+    "chain": markdown_of("chain.txt"),
 }
 BLOCK = re.compile(r"(<!-- table (\w+) from ([\w/.-]+): bench/performance_tables.py writes it, do not edit -->\n)(.*?)(<!-- end table -->)",
                    re.S)
