@@ -17,12 +17,7 @@
 # bench tables of docs/frames.md and docs/products.md) from their files (a test checks they match). Refuses to run from a modified tree: the files name the commit they measured. About 40
 # minutes on 2 cores from a clean clone (the two builds take most of it). Keep the machine idle.
 set -euo pipefail
-source "$(dirname "${BASH_SOURCE[0]}")/../scripts/setup.sh"
-cd "$ZHF_ROOT"
-if ! git diff --quiet HEAD -- || [ -n "$(git ls-files --others --exclude-standard -- bench docs)" ]; then
-  echo "performance.sh: the tree has changes; commit them first (the results name the commit they measured)" >&2
-  exit 1
-fi
+source "$(dirname "${BASH_SOURCE[0]}")/clean_tree.sh" performance.sh
 isa=$(grep -q -w avx512f /proc/cpuinfo && echo avx512 || { grep -q -w avx2 /proc/cpuinfo && echo avx2 || echo sse2; })
 results=bench/results/$isa
 mkdir -p "$results"

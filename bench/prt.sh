@@ -5,9 +5,7 @@
 # each through bench/record.sh; then the plots (scripts/plot_frames.sh) and the tables of
 # docs/frames.md (bench/performance_tables.py). Refuses a modified tree.
 set -euo pipefail
-source "$(dirname "${BASH_SOURCE[0]}")/../scripts/setup.sh"
-cd "$ZHF_ROOT"
-git diff --quiet HEAD -- || { echo "prt.sh: the tree has changes; commit them first" >&2; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/clean_tree.sh" prt.sh
 cmake --build "$ZHF_BUILD" -j "$ZHF_JOBS" --target zhf zhf_prt_reference
 mkdir -p bench/results/prt
 export RECORD_ALL_CORES=1  # vertices run on every core; the figures are errors, not times

@@ -5,9 +5,7 @@
 # bench/record.sh; then the page's table blocks (bench/performance_tables.py). Refuses a modified
 # tree. About a minute.
 set -euo pipefail
-source "$(dirname "${BASH_SOURCE[0]}")/../scripts/setup.sh"
-cd "$ZHF_ROOT"
-git diff --quiet HEAD -- || { echo "verification.sh: the tree has changes; commit them first" >&2; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/clean_tree.sh" verification.sh
 cmake --build "$ZHF_BUILD" -j "$ZHF_JOBS" --target zhf_numerical_limits zhf_chain_bench
 mkdir -p bench/results/verification
 export RECORD_ALL_CORES=1  # errors, not times
