@@ -9,7 +9,7 @@
 # is never changed). Writes, through bench/record.sh, peers_default_build.txt and
 # peers_x86_64_v3.txt (orders 2..8, 16, 32, 64), then peers_default_build_order128.txt and
 # peers_x86_64_v3_order128.txt (K = 4, 3 repetitions: google's rotation takes 0.1 s there) into
-# RESULTS (bench/performance.sh sets it), and prints the comparison (bench/peers_compare.py).
+# RESULTS (bench/performance.sh sets it; bench/performance_tables.py makes the tables).
 # Environment: PEERS, RESULTS (required), REPS (7), K (1024).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/../scripts/setup.sh"
@@ -68,4 +68,3 @@ run default peers_default_build.txt "$default" "$orders" "$k" "$reps"
 run v3 peers_x86_64_v3.txt "$v3" "$orders" "$k" "$reps"
 run default peers_default_build_order128.txt "$default" 128 4 3
 run v3 peers_x86_64_v3_order128.txt "$v3" 128 4 3
-python3 bench/peers_compare.py "$results/peers_default_build.txt" "$results/peers_x86_64_v3.txt"

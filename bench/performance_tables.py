@@ -13,7 +13,7 @@ the file it comes from and that file's provenance line. In a document a block
     ...
     <!-- end table -->
 
-holds table NAME (peers_x86_64_v3, peers_default_build, goals, fma_bound, bulk, splat_builds, python,
+holds table NAME (peers_x86_64_v3, peers_default_build, goals, builds, fma_bound, bulk, splat_builds, python,
 bench; tight_frame, prt_reference and prt_errors for docs/frames.md, products for docs/products.md,
 numerical_limits and chain for docs/verification.md) made from RESULTS_DIR, relative to the repository. Nothing is measured here.
 """
@@ -57,6 +57,25 @@ def read_peers(path):
     return orders
 
 
+def read_run(results, build):
+    """One build's peer runs, orders 2..64 and 128 together."""
+    orders = read_peers(os.path.join(results, f"peers_{build}.txt"))
+    orders.update(read_peers(os.path.join(results, f"peers_{build}_order128.txt")))
+    return orders
+
+
+def zhf_fastest(rows):
+    """The fastest zhf float row built with the run's flags (not the harness's baseline rows)."""
+    native = [r for r in rows if r[0].startswith("zhf") and r[1] == "float" and "no -march" not in r[0]]
+    return min(native, key=lambda r: r[2]) if native else None
+
+
+def peer_time(rows, name, precision):
+    """The median of the peer row whose method starts with name, or None."""
+    match = [r[2] for r in rows if r[0].startswith(name) and r[1] == precision]
+    return match[0] if match else None
+
+
 def path_name(method):
     """A zhf row's path, short: the harness's method names without the row's type and call."""
     isa = re.search(r"\[(\w+)\]$", method)
@@ -75,27 +94,17 @@ def fmt(ns):
 
 def peers_table(results, build, zhf_label):
     """One row per order: zhf's fastest path of the build against every peer, and the ratios."""
-    path = os.path.join(results, f"peers_{build}.txt")
-    orders = read_peers(path)
-    big = os.path.join(results, f"peers_{build}_order128.txt")
-    if os.path.exists(big):
-        orders.update(read_peers(big))
+    path, big = (os.path.join(results, f"peers_{build}{tail}.txt") for tail in ("", "_order128"))
     print(f"Source: `{path}` (order 128: `{big}`, K = 4, 3 repetitions).  ")
     print(f"Run: {header(path)}\n")
     print(f"| N | {zhf_label}: median ns (path) / max err | " + " | ".join(p[0] for p in PEERS) + " | DirectXMath / zhf | HEALPix / zhf |")
     print("| --- " * (len(PEERS) + 4) + "|")
-    for order in sorted(orders):
-        rows = orders[order]
-        native = [r for r in rows if r[0].startswith("zhf") and r[1] == "float" and "no -march" not in r[0]]
-        if not native:
+    for order, rows in sorted(read_run(results, build).items()):
+        best = zhf_fastest(rows)
+        if not best:
             continue
-        best = min(native, key=lambda r: r[2])
-        cells = [f"{fmt(best[2])} ({path_name(best[0])}) / {best[3]:.1e}"]
-        found = {}
-        for label, name, precision in PEERS:
-            match = [r for r in rows if r[0].startswith(name) and r[1] == precision]
-            found[label] = match[0][2] if match else None
-            cells.append(fmt(match[0][2]) if match else "-")
+        found = {label: peer_time(rows, name, precision) for label, name, precision in PEERS}
+        cells = [f"{fmt(best[2])} ({path_name(best[0])}) / {best[3]:.1e}"] + [fmt(t) if t else "-" for t in found.values()]
         ratio = lambda label: f"{found[label] / best[2]:.3g}x" if found[label] else "-"
         print(f"| {order} | " + " | ".join(cells) + f" | {ratio('DirectXMath')} | {ratio('HEALPix (double, with conversion)')} |")
     print()
@@ -114,14 +123,11 @@ def goals_table(results):
     """Each goal against both builds' peer runs."""
     builds = []
     for build in ("x86_64_v3", "default_build"):
-        orders = read_peers(os.path.join(results, f"peers_{build}.txt"))
-        orders.update(read_peers(os.path.join(results, f"peers_{build}_order128.txt")))
         times = {}
-        for order, rows in orders.items():
-            native = [r[2] for r in rows if r[0].startswith("zhf") and r[1] == "float" and "no -march" not in r[0]]
-            dx = [r[2] for r in rows if r[0].startswith("DirectXMath")]
-            hp = [r[2] for r in rows if r[0].startswith("HEALPix rotate_alm<double>")]
-            times[order] = (min(native) if native else None, dx[0] if dx else None, hp[0] if hp else None)
+        for order, rows in read_run(results, build).items():
+            best = zhf_fastest(rows)
+            times[order] = (best[2] if best else None, peer_time(rows, "DirectXMath", "float"),
+                            peer_time(rows, "HEALPix rotate_alm<double>", "double"))
         builds.append(times)
     print(f"Source: the two peer runs above (`{results}/peers_*.txt`).\n")
     print("| N | goal | `-march=x86-64-v3` | met | no `-march` (`zhf::dispatch`) | met |\n| --- | --- | --- | --- | --- | --- |")
@@ -140,6 +146,24 @@ def goals_table(results):
             met = value <= bound if against == "DirectXMath N = 6" else value >= bound
             cells += [f"{value:.2f}x", "yes" if met else "**no**"]
         print(f"| {order} | {what} | " + " | ".join(cells) + " |")
+    print()
+
+
+# The default build's zhf::dispatch within this factor of the x86-64-v3 build's fastest path.
+WITHIN = 1.10
+
+
+def builds_table(results):
+    """As users get it against -march=x86-64-v3: zhf::dispatch over the header-only fastest path."""
+    default, v3 = read_run(results, "default_build"), read_run(results, "x86_64_v3")
+    print(f"Source: the two peer runs above (`{results}/peers_*.txt`).\n")
+    print(f"| N | no `-march`: `zhf::dispatch` ns | `-march=x86-64-v3`: fastest ns (path) | no `-march` / x86-64-v3 (goal <= {WITHIN:.2f}) |")
+    print("| --- | --- | --- | --- |")
+    for order in sorted(default):
+        d, v = zhf_fastest(default[order]), zhf_fastest(v3.get(order, []))
+        if d and v:
+            ratio = d[2] / v[2]
+            print(f"| {order} | {fmt(d[2])} | {fmt(v[2])} ({path_name(v[0])}) | {ratio:.2f}{'' if ratio <= WITHIN else ' **missed**'} |")
     print()
 
 
@@ -254,8 +278,8 @@ def bench_table(results):
     path = os.path.join(results, "bench.json")
     report = json.load(open(path))
     print(f"Source: `{path}` ({report.get('cpu', '')}; {report.get('flags', '')}; {report.get('date', '')}).\n")
-    # RGB and the batches are in the file and the scenario plot.
-    panels = [("single", None, "One vector, a new rotation per call"), ("shared", None, "One rotation for 2^20 vectors")]
+    # The other scenarios are in the file and the scenario plot (bulk paths: their own table).
+    panels = [("single", None, "One vector, a new rotation per call")]
     for scenario, variant, title in panels:
         best = {}
         for r in report["rows"]:
@@ -365,6 +389,7 @@ SECTIONS = {
     "peers_x86_64_v3": lambda r: peers_table(r, "x86_64_v3", "zhf, fastest path"),
     "peers_default_build": lambda r: peers_table(r, "default_build", "zhf::dispatch"),
     "goals": goals_table,
+    "builds": builds_table,
     "fma_bound": fma_table,
     "bulk": bulk_table,
     "splat_builds": splat_table,

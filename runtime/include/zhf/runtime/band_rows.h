@@ -1,7 +1,7 @@
 // Band rows: the zxzxz rotation of one float vector of order 4..8 with every band across the
 // lanes of AVX2 registers, for builds that target AVX2 and FMA (kBandRowsBuilt). zhf_kernels.h
 // picks it for float where it was measured faster than the generated scalar kernels
-// (docs/performance.md, "Which path a Rotator takes"), and Rotator::from_table and
+// (docs/design.md, "Which path a Rotator takes"), and Rotator::from_table and
 // Rotator::zxzxz take it for float at its orders.
 //
 // The factorisation is ZxzxzRotation's (zxzxz_rotation.h): D(R) = Z(a + pi) X Z(b + pi) X Z(g),
