@@ -152,7 +152,9 @@ std::vector<std::pair<double, double>> phi_pieces(const std::vector<Cap>& caps) 
 
 // The visible theta intervals of [0, pi / 2] on the meridian (cos phi, sin phi): each cap hides
 // |theta - theta_0| < acos(k / rho) where w . axis = rho cos(theta - theta_0).
-void visible_thetas(const std::vector<Cap>& caps, double c, double s, std::vector<std::pair<double, double>>& visible) {
+// scratch: room for the next set, kept between calls so that a meridian allocates nothing.
+void visible_thetas(const std::vector<Cap>& caps, double c, double s, std::vector<std::pair<double, double>>& visible,
+                    std::vector<std::pair<double, double>>& scratch) {
   const double quarter = kPi / 2;
   visible.assign(1, {0.0, quarter});
   for (const Cap& cap : caps) {
@@ -162,12 +164,12 @@ void visible_thetas(const std::vector<Cap>& caps, double c, double s, std::vecto
     for (double shift : {-2 * kPi, 0.0, 2 * kPi}) {
       const double lo = centre + shift - half, hi = centre + shift + half;
       if (hi <= 0 || lo >= quarter) continue;
-      std::vector<std::pair<double, double>> left;
+      scratch.clear();
       for (const auto& [t0, t1] : visible) {
-        if (t0 < lo) left.push_back({t0, std::min(t1, lo)});
-        if (t1 > hi) left.push_back({std::max(t0, hi), t1});
+        if (t0 < lo) scratch.push_back({t0, std::min(t1, lo)});
+        if (t1 > hi) scratch.push_back({std::max(t0, hi), t1});
       }
-      visible.swap(left);
+      visible.swap(scratch);
     }
   }
 }
@@ -249,8 +251,7 @@ double prt_exact_shading(PrtScene scene, PrtTransfer transfer, const Radiance& s
   sh::gauss_legendre(kPrtExactNodes, x, w);
   for (double& v : x) v = 0.5 * (v + 1);  // nodes and weights on [0, 1]
   for (double& v : w) v *= 0.5;
-  const double quarter = kPi / 2;
-  std::vector<std::pair<double, double>> visible;
+  std::vector<std::pair<double, double>> visible, scratch;
   double total = 0;
   for (const auto& [a, b] : phi_pieces(caps)) {
     const int panels = static_cast<int>(std::ceil(1.5 * (b - a) / step));
@@ -259,14 +260,14 @@ double prt_exact_shading(PrtScene scene, PrtTransfer transfer, const Radiance& s
         const double u = (panel + x[i]) / panels, phi = a + (b - a) * u * u * (3 - 2 * u);
         const double phi_weight = (b - a) * 6 * u * (1 - u) * w[i] / panels;
         const double c = std::cos(phi), s = std::sin(phi);
-        visible_thetas(caps, c, s, visible);
+        visible_thetas(caps, c, s, visible, scratch);
         double inner = 0;
         for (const auto& [t0, t1] : visible) {
           const int theta_panels = static_cast<int>(std::ceil((t1 - t0) / step));
           const double width = (t1 - t0) / theta_panels;
           for (int tp = 0; tp < theta_panels; ++tp)
             for (int j = 0; j < kPrtExactNodes; ++j) {
-              const double theta = std::min(quarter, t0 + width * (tp + x[j])), st = std::sin(theta);
+              const double theta = t0 + width * (tp + x[j]), st = std::sin(theta);
               const Point dir{st * c, st * s, std::cos(theta)};
               const double t = unshadowed_transfer(transfer, dir);
               if (t != 0) inner += width * w[j] * st * t * sky(dir);
@@ -278,9 +279,9 @@ double prt_exact_shading(PrtScene scene, PrtTransfer transfer, const Radiance& s
   return total;
 }
 
-int prt_bytes_whole_bands(int coefficients) { return 4 * coefficients; }
+int prt_bytes_whole_bands(int coefficients) { return kPrtValueBytes * coefficients; }
 
-int prt_bytes_largest(int kept, int of) { return kept * (4 + (of <= 256 ? 1 : of <= 65536 ? 2 : 4)); }
+int prt_bytes_largest(int kept, int of) { return kept * (kPrtValueBytes + (of <= 256 ? 1 : of <= 65536 ? 2 : 4)); }
 
 Radiance equirectangular_sky(int width, int height, std::shared_ptr<const std::vector<float>> rgb) {
   return [width, height, rgb](const Point& w) {

@@ -35,8 +35,7 @@ TEST(Prt, NeedletShadingWithEveryCoefficientIsTheShSum) {
       EXPECT_GE(r.kept_energy_least[1], r.kept_energy_least[0]);
       EXPECT_GE(r.kept_energy_greatest[1], r.kept_energy_greatest[0]);
       EXPECT_LE(r.kept_energy_greatest[1], 1 + tol::kParsevalShading);
-      // The best-K SH control keeps the largest coefficients: with every SH coefficient (49 of
-      // 169 is not all) it is the band sum; at K = 9 it differs from the first two bands.
+      // The best-K SH control with every SH coefficient kept is the band sum.
       EXPECT_NEAR(all.sh_best_rms, all.sh_rms, tol::kParsevalShading);
       EXPECT_EQ(all.sh_bytes, 4 * 169);
       EXPECT_EQ(all.needlet_bytes, frame.size() * 6);  // a 2-byte index beside each 4-byte value
@@ -137,6 +136,18 @@ TEST(PrtExact, HalvingTheStepChangesNothing) {
         EXPECT_NEAR(coarse, fine, tol::kPrtExactReference * std::max(1.0, std::abs(fine)))
             << "scene " << static_cast<int>(scene) << ", transfer " << static_cast<int>(transfer) << ", vertex (" << p[0] << ", " << p[1] << ")";
       }
+}
+
+// The control keeps each vertex's largest |T_lm|, not its first ones. On the open ground the clamped
+// cosine's largest coefficient is y_1^0's (sqrt(pi / 3) / pi against y_0^0's sqrt(pi) / (2 pi)),
+// which a constant sky does not see: K = 1 shades nothing, where band 0 shades it all; K = 2 adds
+// y_0^0 and is band 0's shading.
+TEST(Prt, TheBestKShControlKeepsTheLargestCoefficients) {
+  const PrtReport r = prt_experiment(NeedletFrame(2.0, 4), PrtScene::kOpen, PrtTransfer::kDiffuse, constant_sky, 1, {1, 2}, 16);
+  ASSERT_EQ(r.rows.size(), 3u);
+  EXPECT_NEAR(r.rows[0].sh_best[0], 0.0, tol::kParsevalShading);
+  EXPECT_NEAR(r.exact[0], 1.0, tol::kPrtExactReference);  // what K = 1 misses
+  EXPECT_NEAR(r.rows[1].sh_best[0], r.rows[1].sh[0], tol::kParsevalShading);
 }
 
 TEST(Prt, VisibilityOfEachScene) {

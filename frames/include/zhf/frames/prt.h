@@ -61,9 +61,10 @@ inline constexpr int kPrtExactNodes = 16;
 double prt_exact_shading(PrtScene scene, PrtTransfer transfer, const Radiance& sky, const Point& p,
                          double step = kPrtExactStep);
 
-// Bytes a vertex stores for K coefficients, 4-byte values: SH by whole bands implies its indices;
-// the K largest of n coefficients (SH control, needlets) store an index each, of the fewest whole
-// bytes that count n.
+// Bytes a vertex stores for K coefficients of kPrtValueBytes each (float): SH by whole bands
+// implies its indices; the K largest of n coefficients (SH control, needlets) store an index each,
+// of the fewest whole bytes that count n.
+inline constexpr int kPrtValueBytes = 4;
 int prt_bytes_whole_bands(int coefficients);
 int prt_bytes_largest(int kept, int of);
 // A clear sky with a sun: 0.25 + 0.75 w_z above the horizon, 0.15 below (ground), plus a sun of
