@@ -40,8 +40,9 @@ std::string path_enum(RotationPath p) {
   return "Path::kScalar";
 }
 
-std::string times_text(const PathTimes& t) {
-  std::string out = rotation_path_name(t.fastest);
+// The path chosen, then each path's time.
+std::string times_text(RotationPath chosen, const PathTimes& t) {
+  std::string out = rotation_path_name(chosen);
   out += " (";
   for (size_t k = 0; k < t.ns.size(); ++k) {
     char value[32];
@@ -51,13 +52,15 @@ std::string times_text(const PathTimes& t) {
   return out + ")";
 }
 
-// Path, kBuildIsa and fastest_path<T>(order) for each instruction set, from its table.
-std::string path_choice(const std::vector<PathTable>& tables) {
+// Path, kBuildIsa and fastest_path<T>(order) for each instruction set, from its table: for each
+// order of the tree, the fastest path measured there that the tree has.
+std::string path_choice(const std::vector<PathTable>& tables, const std::vector<int>& orders, const std::vector<int>& lanes_orders) {
   std::ostringstream out;
   out << "// The rotation path of each generated order, by instruction set, from the measured tables in\n"
       << "// generated/paths (bench/path_bench.cc writes them, zhf generate turns them into what follows); a\n"
       << "// build whose instruction set has no table follows the one below it whose kernels it runs, or,\n"
-      << "// with none, the scalar kernels.\n"
+      << "// with none, the scalar kernels. The tables were measured on zhf's own lobe tables; each order\n"
+      << "// takes the fastest path measured there that this tree has (lanes only with lanes tables).\n"
       << "enum class Path { kScalar, kLanes, kBandRows, kBands01 };\n\n"
       << "// The name KernelSet::path gives a path.\n"
       << "constexpr const char* path_name(Path path) {\n"
@@ -76,20 +79,27 @@ std::string path_choice(const std::vector<PathTable>& tables) {
     }
     out << "// " << isa << ": " << (table->isa == isa ? "" : "no table of its own; " + table->isa + "'s, ")
         << "generated/paths/" << table->isa << ".json, measured on\n// " << comment_text(table->measured_on) << ".\n"
-        << "// The fastest path, with each path's ns per rotation, float; double:\n";
-    for (const OrderPaths& o : table->orders)
-      out << "//   order " << o.order << ": " << times_text(o.float_paths) << "; " << times_text(o.double_paths) << "\n";
+        << "// The path taken, with each path's ns per rotation, float; double:\n";
+    std::ostringstream cases;
+    for (int order : orders) {
+      const auto o = std::find_if(table->orders.begin(), table->orders.end(), [&](const OrderPaths& p) { return p.order == order; });
+      if (o == table->orders.end()) {
+        out << "//   order " << order << ": not measured; scalar\n";
+        continue;
+      }
+      const bool has_lanes = std::find(lanes_orders.begin(), lanes_orders.end(), order) != lanes_orders.end();
+      const RotationPath f = fastest_available(o->float_paths, has_lanes), d = fastest_available(o->double_paths, has_lanes);
+      out << "//   order " << order << ": " << times_text(f, o->float_paths) << "; " << times_text(d, o->double_paths) << "\n";
+      if (f == RotationPath::kScalar && d == RotationPath::kScalar) continue;
+      cases << "    case " << order << ": return ";
+      if (f == d) cases << "is_float || is_double ? " << path_enum(f) << " : Path::kScalar;\n";
+      else if (d == RotationPath::kScalar) cases << "is_float ? " << path_enum(f) << " : Path::kScalar;\n";
+      else cases << "is_float ? " << path_enum(f) << " : is_double ? " << path_enum(d) << " : Path::kScalar;\n";
+    }
     out << "template <class T>\nconstexpr Path fastest_path(int order) {\n"
         << "  [[maybe_unused]] constexpr bool is_float = std::is_same_v<T, float>, is_double = std::is_same_v<T, double>;\n"
-        << "  switch (order) {\n";
-    for (const OrderPaths& o : table->orders) {
-      if (o.float_paths.fastest == RotationPath::kScalar && o.double_paths.fastest == RotationPath::kScalar) continue;
-      const RotationPath f = o.float_paths.fastest, d = o.double_paths.fastest;
-      out << "    case " << o.order << ": return ";
-      if (f == d) out << "is_float || is_double ? " << path_enum(f) << " : Path::kScalar;\n";
-      else if (d == RotationPath::kScalar) out << "is_float ? " << path_enum(f) << " : Path::kScalar;\n";
-      else out << "is_float ? " << path_enum(f) << " : is_double ? " << path_enum(d) << " : Path::kScalar;\n";
-    }
+        << "  switch (order) {\n"
+        << cases.str();
     out << "    default: return Path::kScalar;\n  }\n}\n";
   }
   out << "#else\ninline constexpr char kBuildIsa[] = \"generic\";\n"
@@ -121,7 +131,7 @@ EmittedFile emit_paths_header(const std::vector<int>& orders, const std::vector<
   out << "// Whether order N has lanes tables (zhf_lanes_orderN.h).\n"
       << "template <int N>\ninline constexpr bool kHasLanes = false;\n";
   for (int n : lanes_orders) out << "template <>\ninline constexpr bool kHasLanes<" << n << "> = true;\n";
-  out << "\n" << path_choice(tables);
+  out << "\n" << path_choice(tables, orders, lanes_orders);
   out << "// The fastest verified rotation path of generated order N (its zhf_orderN.h included). One\n"
       << "// branch is instantiated per order and type: only the kernels chosen are compiled.\n"
       << "template <int N, class T>\nruntime::KernelSet<T> fastest_kernels() {\n"

@@ -246,7 +246,7 @@ GenerateResult generate(const GenerateOptions& options) {
     result.orders.push_back(summary);
   }
   if (full_tree && wants_cpp) {
-    const std::vector<PathTable> tables = read_path_tables(options.paths_dir, options.orders, lanes_orders);
+    const std::vector<PathTable> tables = read_path_tables(options.paths_dir);
     for (const EmittedFile& header : {emit_paths_header(options.orders, lanes_orders, tables, options.command),
                                       emit_dispatch_header(options.orders, options.command)})
       tree.add("cpp/" + header.file_name, header.text,

@@ -29,12 +29,13 @@ RotationPath parse_path(const Field& f) {
   return path;
 }
 
-// Whether a build for isa has path p for order in the type named.
-bool path_exists(RotationPath p, const std::string& isa, bool is_float, int order, const std::vector<int>& lanes_orders) {
+// Whether a build for isa can have path p for order in the type named (lanes: where the tree has
+// lanes tables, which every order with lobes may).
+bool path_exists(RotationPath p, const std::string& isa, bool is_float, int order) {
   const bool avx2 = isa == "avx2" || isa == "avx512";
   switch (p) {
     case RotationPath::kScalar: return true;
-    case RotationPath::kLanes: return std::find(lanes_orders.begin(), lanes_orders.end(), order) != lanes_orders.end();
+    case RotationPath::kLanes: return order > runtime::kMinTableOrder;
     case RotationPath::kBandRows:
       return avx2 && is_float && order >= runtime::kBandRowsMinOrder && order <= runtime::kBandRowsMaxOrder;
     case RotationPath::kBands01: return avx2 && is_float && order == 2;
@@ -42,19 +43,19 @@ bool path_exists(RotationPath p, const std::string& isa, bool is_float, int orde
   return false;
 }
 
-PathTimes parse_times(const Field& f, const std::string& isa, bool is_float, int order, const std::vector<int>& lanes_orders) {
+PathTimes parse_times(const Field& f, const std::string& isa, bool is_float, int order) {
   f.allow_only({"fastest", "ns"});
   PathTimes times;
   const Field fastest = f.member("fastest");
   times.fastest = parse_path(fastest);
-  if (!path_exists(times.fastest, isa, is_float, order, lanes_orders))
+  if (!path_exists(times.fastest, isa, is_float, order))
     fastest.fail(std::string(rotation_path_name(times.fastest)) + " does not exist for " + isa + ", " +
                  (is_float ? "float" : "double") + ", order " + std::to_string(order));
   const Field ns = f.member("ns");
   ns.expect(io::json::Kind::kObject);
   for (const auto& [p, name] : kPathNames)
     if (const auto t = ns.find(name)) {
-      if (!path_exists(p, isa, is_float, order, lanes_orders)) t->fail("a path that does not exist here");
+      if (!path_exists(p, isa, is_float, order)) t->fail("a path that does not exist here");
       const double ns_per_rotation = t->number();
       if (!(ns_per_rotation > 0)) t->fail("must be above 0");
       times.ns.emplace_back(p, ns_per_rotation);
@@ -65,8 +66,7 @@ PathTimes parse_times(const Field& f, const std::string& isa, bool is_float, int
   return times;
 }
 
-PathTable read_table(const std::string& file, const std::string& isa, const std::vector<int>& orders,
-                     const std::vector<int>& lanes_orders) {
+PathTable read_table(const std::string& file, const std::string& isa) {
   const io::json::Json root = io::json::read_file(file, codegen::kMaxPathTableBytes);
   const Field top(root, file);
   top.allow_only({"format", "isa", "measured_on", "orders"});
@@ -81,16 +81,16 @@ PathTable read_table(const std::string& file, const std::string& isa, const std:
   table.measured_on = measured.string();
   if (table.measured_on.empty() || table.measured_on.size() > codegen::kMaxPathTableNoteChars || !runtime::is_printable_text(table.measured_on))
     measured.fail("must be 1 to " + std::to_string(codegen::kMaxPathTableNoteChars) + " printable characters");
-  for (const Field& entry : top.member("orders").items(orders.size())) {
+  constexpr int kOrders = runtime::kMaxGeneratedOrder - runtime::kMinGeneratedOrder + 1;
+  for (const Field& entry : top.member("orders").items(1, kOrders)) {
     entry.allow_only({"order", "float", "double"});
     OrderPaths o;
     const Field order = entry.member("order");
-    o.order = order.integer(orders.front(), orders.back());
-    if (std::find(orders.begin(), orders.end(), o.order) == orders.end()) order.fail("not a generated order");
+    o.order = order.integer(runtime::kMinGeneratedOrder, runtime::kMaxGeneratedOrder);
     for (const OrderPaths& before : table.orders)
       if (before.order == o.order) order.fail("listed twice");
-    o.float_paths = parse_times(entry.member("float"), isa, true, o.order, lanes_orders);
-    o.double_paths = parse_times(entry.member("double"), isa, false, o.order, lanes_orders);
+    o.float_paths = parse_times(entry.member("float"), isa, true, o.order);
+    o.double_paths = parse_times(entry.member("double"), isa, false, o.order);
     table.orders.push_back(o);
   }
   std::sort(table.orders.begin(), table.orders.end(), [](const OrderPaths& a, const OrderPaths& b) { return a.order < b.order; });
@@ -106,16 +106,27 @@ const std::vector<std::string>& path_table_isas() {
   return isas;
 }
 
-std::vector<PathTable> read_path_tables(const std::string& dir, const std::vector<int>& orders,
-                                        const std::vector<int>& lanes_orders) {
+std::vector<PathTable> read_path_tables(const std::string& dir) {
   std::vector<PathTable> tables;
-  if (dir.empty() || orders.empty()) return tables;
+  if (dir.empty()) return tables;
   for (const std::string& isa : path_table_isas()) {
     const fs::path file = fs::path(dir) / (isa + ".json");
     std::error_code ec;
-    if (fs::exists(file, ec)) tables.push_back(read_table(file.string(), isa, orders, lanes_orders));
+    if (fs::exists(file, ec)) tables.push_back(read_table(file.string(), isa));
   }
   return tables;
+}
+
+RotationPath fastest_available(const PathTimes& times, bool has_lanes) {
+  if (times.fastest != RotationPath::kLanes || has_lanes) return times.fastest;
+  RotationPath best = RotationPath::kScalar;
+  double best_ns = 0;
+  for (const auto& [path, ns] : times.ns)
+    if ((path != RotationPath::kLanes || has_lanes) && (best_ns == 0 || ns < best_ns)) {
+      best = path;
+      best_ns = ns;
+    }
+  return best;
 }
 
 }  // namespace zhf::codegen

@@ -42,7 +42,8 @@ inline constexpr bool kHasLanes<8> = true;
 // The rotation path of each generated order, by instruction set, from the measured tables in
 // generated/paths (bench/path_bench.cc writes them, zhf generate turns them into what follows); a
 // build whose instruction set has no table follows the one below it whose kernels it runs, or,
-// with none, the scalar kernels.
+// with none, the scalar kernels. The tables were measured on zhf's own lobe tables; each order
+// takes the fastest path measured there that this tree has (lanes only with lanes tables).
 enum class Path { kScalar, kLanes, kBandRows, kBands01 };
 
 // The name KernelSet::path gives a path.
@@ -54,7 +55,7 @@ constexpr const char* path_name(Path path) {
 inline constexpr char kBuildIsa[] = "avx512";
 // avx512: no table of its own; avx2's, generated/paths/avx2.json, measured on
 // AMD EPYC, g++ 12.2.0 -O3 -march=x86-64-v3, 2026-11-29, 1024 rotations, best of 101.
-// The fastest path, with each path's ns per rotation, float; double:
+// The path taken, with each path's ns per rotation, float; double:
 //   order 2: bands01 (scalar 2.83, bands01 2.36); scalar (scalar 3.12)
 //   order 3: scalar (scalar 9.95, lanes 11.3); scalar (scalar 9.97, lanes 25.5)
 //   order 4: lanes (scalar 41.3, lanes 21, band_rows 28.5); lanes (scalar 44.6, lanes 41.9)
@@ -79,7 +80,7 @@ constexpr Path fastest_path(int order) {
 inline constexpr char kBuildIsa[] = "avx2";
 // avx2: generated/paths/avx2.json, measured on
 // AMD EPYC, g++ 12.2.0 -O3 -march=x86-64-v3, 2026-11-29, 1024 rotations, best of 101.
-// The fastest path, with each path's ns per rotation, float; double:
+// The path taken, with each path's ns per rotation, float; double:
 //   order 2: bands01 (scalar 2.83, bands01 2.36); scalar (scalar 3.12)
 //   order 3: scalar (scalar 9.95, lanes 11.3); scalar (scalar 9.97, lanes 25.5)
 //   order 4: lanes (scalar 41.3, lanes 21, band_rows 28.5); lanes (scalar 44.6, lanes 41.9)
@@ -104,7 +105,7 @@ constexpr Path fastest_path(int order) {
 inline constexpr char kBuildIsa[] = "sse2";
 // sse2: generated/paths/sse2.json, measured on
 // AMD EPYC, g++ 12.2.0 -O3, 2026-11-29, 1024 rotations, best of 101.
-// The fastest path, with each path's ns per rotation, float; double:
+// The path taken, with each path's ns per rotation, float; double:
 //   order 2: scalar (scalar 3.01); scalar (scalar 2.92)
 //   order 3: scalar (scalar 13.7, lanes 23.2); scalar (scalar 9.47, lanes 26.8)
 //   order 4: lanes (scalar 38.1, lanes 36.5); scalar (scalar 43.6, lanes 62.5)

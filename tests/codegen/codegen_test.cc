@@ -276,9 +276,10 @@ TEST(GeneratedFiles, MatchWhatTheGeneratorMakes) {
   }
 }
 
-// The measured path tables: one naming a path its instruction set, type or order lacks, leaving an
-// order out, naming another instruction set or holding more than JSON is refused in one line
-// naming the file and the field; a build without a table of its own follows the one below it.
+// The measured path tables: one naming a path its instruction set, type or order lacks, an order
+// that is not generated or twice, naming another instruction set or holding more than JSON is
+// refused in one line naming the file and the field; a build without a table of its own follows
+// the one below it.
 TEST(PathTables, RefusedInOneLineNamingFileAndField) {
   const test::TempDir temp;
   const std::string dir = fs::path(temp).string();
@@ -291,7 +292,7 @@ TEST(PathTables, RefusedInOneLineNamingFileAndField) {
   };
   const std::string order3 = R"(, {"order": 3, "float": )" + scalar + R"(, "double": )" + scalar + "}";
   test::write_text(file, table("sse2", scalar, order3));
-  ASSERT_EQ(read_path_tables(dir, orders, {}).size(), 1u);
+  ASSERT_EQ(read_path_tables(dir).size(), 1u);
   const struct {
     std::string text, field;
   } bad[] = {
@@ -299,7 +300,7 @@ TEST(PathTables, RefusedInOneLineNamingFileAndField) {
       {table("sse2", R"({"fastest": "lanes", "ns": {"lanes": 1}})", order3), "orders[0].float.fastest"},
       {table("sse2", R"({"fastest": "scalar", "ns": {"scalar": 1, "band_rows": 0.5}})", order3), "orders[0].float.ns.band_rows"},
       {table("sse2", R"({"fastest": "scalar", "ns": {"lanes_": 1}})", order3), "orders[0].float.ns"},
-      {table("sse2", scalar, ""), "orders"},
+      {table("sse2", scalar, R"(, {"order": 9, "float": )" + scalar + R"(, "double": )" + scalar + "}"), "orders[1].order"},
       {table("sse2", scalar, R"(, {"order": 2, "float": )" + scalar + R"(, "double": )" + scalar + "}"), "orders[1].order"},
       {table("avx2", scalar, order3), "isa"},
       {table("sse2", scalar, order3) + " x", "sse2.json"},
@@ -307,7 +308,7 @@ TEST(PathTables, RefusedInOneLineNamingFileAndField) {
   for (const auto& b : bad) {
     test::write_text(file, b.text);
     try {
-      read_path_tables(dir, orders, {});
+      read_path_tables(dir);
       ADD_FAILURE() << "accepted: " << b.text;
     } catch (const std::exception& e) {
       const std::string message = e.what();
@@ -320,10 +321,30 @@ TEST(PathTables, RefusedInOneLineNamingFileAndField) {
   test::write_text(file, table("sse2", scalar, order3));
   test::write_text((fs::path(dir) / "avx2.json").string(),
                    table("avx2", R"({"fastest": "bands01", "ns": {"scalar": 2, "bands01": 1}})", order3));
-  const std::string header = emit_paths_header(orders, {}, read_path_tables(dir, orders, {}), "test").text;
+  const std::string header = emit_paths_header(orders, {}, read_path_tables(dir), "test").text;
   EXPECT_NE(header.find("// avx512: no table of its own; avx2's, generated/paths/avx2.json"), std::string::npos) << header;
   EXPECT_NE(header.find("case 2: return is_float ? Path::kBands01 : Path::kScalar;"), std::string::npos) << header;
   EXPECT_NE(header.find("// neon: no table measured; the scalar kernels."), std::string::npos) << header;
+}
+
+// The path tables follow the tree: an order whose measured fastest path is lanes takes the next
+// fastest where the tree has no lanes tables (a user's own lobe tables), and an order the table
+// does not list runs the scalar kernels.
+TEST(PathTables, FollowTheTreesKernels) {
+  const test::TempDir temp;
+  const std::string dir = fs::path(temp).string();
+  const std::string scalar = R"({"fastest": "scalar", "ns": {"scalar": 1.5}})";
+  const std::string lanes = R"({"fastest": "lanes", "ns": {"scalar": 3, "lanes": 1}})";
+  test::write_text((fs::path(dir) / "sse2.json").string(),
+                   R"({"format": "zhf-paths-1", "isa": "sse2", "measured_on": "a test", "orders": [{"order": 2, "float": )" +
+                       scalar + R"(, "double": )" + scalar + R"(}, {"order": 3, "float": )" + lanes + R"(, "double": )" + scalar + "}]}");
+  const std::vector<PathTable> tables = read_path_tables(dir);
+  const std::string with_lanes = emit_paths_header({2, 3, 9}, {3}, tables, "test").text;
+  EXPECT_NE(with_lanes.find("case 3: return is_float ? Path::kLanes : Path::kScalar;"), std::string::npos) << with_lanes;
+  EXPECT_NE(with_lanes.find("//   order 9: not measured; scalar"), std::string::npos) << with_lanes;
+  const std::string without = emit_paths_header({2, 3}, {}, tables, "test").text;
+  EXPECT_EQ(without.find("case 3:"), std::string::npos) << without;
+  EXPECT_NE(without.find("//   order 3: scalar (scalar 3, lanes 1)"), std::string::npos) << without;
 }
 
 // An interrupt before the commit leaves the previous tree exactly as it was.

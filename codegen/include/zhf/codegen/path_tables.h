@@ -15,7 +15,7 @@ enum class RotationPath { kScalar, kLanes, kBandRows, kBands01 };
 const char* rotation_path_name(RotationPath path);
 
 struct PathTimes {
-  RotationPath fastest = RotationPath::kScalar;
+  RotationPath fastest = RotationPath::kScalar;     // of every path timed
   std::vector<std::pair<RotationPath, double>> ns;  // ns per rotation of each path timed
 };
 
@@ -35,11 +35,15 @@ struct PathTable {
 const std::vector<std::string>& path_table_isas();
 
 // The tables present in dir (<isa>.json for each of path_table_isas(); none if dir is empty or
-// holds none). Each must list every order of `orders` once, name only paths that exist for its
-// instruction set, type and order (lanes only where lanes_orders has the order; band rows and
-// bands 0 and 1 in one register for float with AVX2, orders 4..8 and 2). Throws io::InputError
-// naming the file and the field.
-std::vector<PathTable> read_path_tables(const std::string& dir, const std::vector<int>& orders,
-                                        const std::vector<int>& lanes_orders);
+// holds none), each checked on its own terms: orders runtime::kMinGeneratedOrder..kMaxGeneratedOrder,
+// each at most once, and only paths its instruction set, type and order can have (lanes from
+// order 3; band rows and bands 0 and 1 in one register for float with AVX2, orders 4..8 and 2).
+// They were measured on zhf's own lobe tables; a tree made from other tables takes them as they
+// are, for the paths it has (fastest_available). Throws io::InputError naming the file and field.
+std::vector<PathTable> read_path_tables(const std::string& dir);
+
+// The fastest timed path of `times` that a tree has: lanes only where it has lanes tables for the
+// order; the scalar kernels when it has none of them.
+RotationPath fastest_available(const PathTimes& times, bool has_lanes);
 
 }  // namespace zhf::codegen
