@@ -46,6 +46,7 @@ Width width_of(Isa isa) {
     case Isa::kAvx2: return {8, true};
     case Isa::kAvx512: return {16, true};
     case Isa::kNeon: return {4, true};
+    case Isa::kSimd128: return {4, false};  // relaxed-SIMD FMA is not in SIMD128
     case Isa::kGeneric: return {1, false};
   }
   return {1, false};

@@ -15,7 +15,7 @@ the file it comes from and that file's provenance line. In a document a block
 
 holds table NAME (peers_x86_64_v3, peers_default_build, goals, builds, fma_bound, bulk, splat_builds, python,
 bench; tight_frame, prt_reference and prt_errors for docs/frames.md, products for docs/products.md,
-numerical_limits and chain for docs/verification.md) made from RESULTS_DIR, relative to the repository. Nothing is measured here.
+numerical_limits and chain for docs/verification.md, web_splats for docs/web.md) made from RESULTS_DIR, relative to the repository. Nothing is measured here.
 """
 import contextlib
 import io
@@ -401,6 +401,7 @@ SECTIONS = {
     "prt_errors": prt_errors_table,
     "numerical_limits": markdown_of("numerical_limits.txt"),
     "chain": markdown_of("chain.txt"),
+    "web_splats": markdown_of("web_splats.txt"),
 }
 BLOCK = re.compile(r"(<!-- table (\w+) from ([\w/.-]+): bench/performance_tables.py writes it, do not edit -->\n)(.*?)(<!-- end table -->)",
                    re.S)

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <sstream>
@@ -10,6 +11,7 @@
 #include "zhf/io/files.h"
 #include "zhf/io/signals.h"
 #include "zhf/pipeline/project.h"
+#include "zhf/runtime/enum_names.h"
 #include "zhf/runtime/limits.h"
 #include "zhf/verify/limits.h"
 #include "zhf/verify/verify.h"
@@ -21,6 +23,7 @@ struct VerifyCommandOptions {
   std::string generated;
   std::string orders;     // empty: every order in the manifest
   std::string languages;  // empty: every language
+  std::string wgsl_on = "vulkan";
   std::string out;
   std::string work_dir;
   std::string compiler;
@@ -49,6 +52,20 @@ std::vector<codegen::Language> parse_languages(const std::string& text) {
   return languages;
 }
 
+std::vector<verify::WgslDevice> parse_wgsl_devices(const std::string& text) {
+  std::vector<verify::WgslDevice> devices;
+  std::stringstream s(text);
+  std::string item;
+  while (std::getline(s, item, ',')) {
+    verify::WgslDevice device = verify::WgslDevice::kVulkan;
+    if (!verify::parse_wgsl_device(item, device))
+      throw UsageError("--wgsl-on: '" + io::excerpt(item) + "' is not " + runtime::name_list(verify::wgsl_device_names()));
+    if (std::find(devices.begin(), devices.end(), device) == devices.end()) devices.push_back(device);
+  }
+  if (devices.empty()) throw UsageError("--wgsl-on: empty");
+  return devices;
+}
+
 int run_verify_command(const VerifyCommandOptions& o) {
   const pipeline::Project project = pipeline::project();
   verify::VerifyOptions options;
@@ -59,6 +76,8 @@ int run_verify_command(const VerifyCommandOptions& o) {
   options.work_dir = o.work_dir;
   options.runtime_include = project.runtime_include;
   options.naga_wasm = project.naga_wasm();
+  options.browser_scripts = project.browser_scripts();
+  options.wgsl_on = parse_wgsl_devices(o.wgsl_on);
   options.compiler = o.compiler;
   options.threads = threads_option(o.threads);
   Progress progress("verify", o.quiet, o.verbose);
@@ -91,6 +110,9 @@ void add_verify_command(CLI::App& app, Action& action) {
   c->add_option("--orders", o->orders, "Orders, e.g. 2..8 or 3,5 (default: every order in the manifest)");
   c->add_option("--langs", o->languages, "Languages, comma separated (default: every language, " + language_names() + ")");
   keep_old_spelling(c, c->add_option("--out", o->out, "Write the report as JSON here"), "--json", o->out);
+  c->add_option("--wgsl-on", o->wgsl_on,
+                "Where WGSL runs, comma separated: " + runtime::name_list(verify::wgsl_device_names()) +
+                    " (default vulkan, through naga; webgpu: headless Chromium's WebGPU, scripts/setup_web.sh)");
   c->add_option("--compiler", o->compiler, "C++ compiler and leading arguments (default $CXX, else c++)");
   add_threads_option(c, o->threads);
   add_progress_flags(c, o->quiet, o->verbose);

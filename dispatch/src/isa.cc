@@ -13,7 +13,8 @@ namespace {
 // The paths this library was built with, fastest first (dispatch/CMakeLists.txt sets the list).
 constexpr Isa kBuilt[] = {ZHF_DISPATCH_PATHS};
 constexpr runtime::EnumName<Isa> kIsaNames[] = {
-    {Isa::kGeneric, "generic"}, {Isa::kSse2, "sse2"}, {Isa::kAvx2, "avx2"}, {Isa::kAvx512, "avx512"}, {Isa::kNeon, "neon"}};
+    {Isa::kGeneric, "generic"}, {Isa::kSse2, "sse2"}, {Isa::kAvx2, "avx2"}, {Isa::kAvx512, "avx512"}, {Isa::kNeon, "neon"},
+    {Isa::kSimd128, "simd128"}};
 
 bool cpu_runs(Isa isa) {
   switch (isa) {

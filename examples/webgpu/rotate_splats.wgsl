@@ -5,11 +5,10 @@
 // (--convention 3dgs folds 3DGS's sign convention and axes into the kernel; generated/wgsl/ holds
 // zhf's own convention.) Layout per splat, as 3DGS's .ply stores it: f_dc_0..2, then f_rest_0..44
 // channel by channel (15 red, 15 green, 15 blue coefficients of bands 1..3): 48 floats.
-// The test suite runs this file on Vulkan through naga against the C++ kernel
-// (tests/verify/webgpu_example_test.cc).
+// Core WebGPU: the splat count is the input's length. The test suite runs this file on Vulkan
+// through naga against the C++ kernel (tests/verify/webgpu_example_test.cc); the npm package's
+// webgpu.mjs (web/js) makes the same shader for any degree and runs it in a browser.
 
-struct Params { count: u32 }
-var<immediate> params: Params;  // WebGPU without immediates: a uniform buffer works the same
 @group(0) @binding(0) var<storage, read> rotation: array<f32, 9>;  // R, row-major, v -> R v
 @group(0) @binding(1) var<storage, read> splats_in: array<f32>;
 @group(0) @binding(2) var<storage, read_write> splats_out: array<f32>;
@@ -19,7 +18,7 @@ const kFloatsPerSplat: u32 = 48u;
 @compute @workgroup_size(64)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
   let splat = id.x;
-  if (splat >= params.count) { return; }
+  if (splat >= arrayLength(&splats_in) / kFloatsPerSplat) { return; }
   let base = splat * kFloatsPerSplat;
   var coeffs: array<vec3<f32>, 16>;
   coeffs[0] = vec3<f32>(splats_in[base], splats_in[base + 1u], splats_in[base + 2u]);

@@ -13,11 +13,18 @@ runtime::LobeTable Project::table(int order) const {
   return runtime::read_lobe_table(runtime::table_path(lobes(), order), order);
 }
 
-std::string Project::naga_wasm() const {
-  const std::string package = "/tools/node/node_modules/naga-wasm";
+namespace {
+
+// relative under root when it is there, else under the source tree zhf was built from.
+std::string checkout_path(const std::string& root, const std::string& relative) {
   std::error_code ec;
-  return fs::is_directory(root + package, ec) ? root + package : std::string(ZHF_SOURCE_DIR) + package;
+  return fs::is_directory(root + relative, ec) ? root + relative : std::string(ZHF_SOURCE_DIR) + relative;
 }
+
+}  // namespace
+
+std::string Project::naga_wasm() const { return checkout_path(root, "/tools/node/node_modules/naga-wasm"); }
+std::string Project::browser_scripts() const { return checkout_path(root, "/web/browser"); }
 
 namespace {
 

@@ -50,12 +50,6 @@ double worst_error(const Rotator<T>& rotator, const sh::RotationMatrix& r, std::
 }
 
 template <class T>
-double tolerance(int order) {
-  if (std::is_same_v<T, double>) return runtime::tolerance::kDouble;
-  return order <= runtime::kMaxGeneratedOrder ? runtime::tolerance::kFloatRotation : runtime::tolerance::kRuntimeOrdersFloat;
-}
-
-template <class T>
 void check_every_order(const std::string& isa) {
   const char* type = std::is_same_v<T, float> ? "float" : "double";
   std::mt19937_64 rng(54);
@@ -66,7 +60,7 @@ void check_every_order(const std::string& isa) {
     for (int k = 0; k < 20; ++k) rotations.push_back({"random " + std::to_string(k), sh::random_rotation(rng)});
     for (const auto& [name, r] : rotations) {
       int at = 0;
-      EXPECT_LE(worst_error(rotator, r, rng, at), tolerance<T>(order))
+      EXPECT_LE(worst_error(rotator, r, rng, at), test::rotation_tolerance<T>(order))
           << isa << " (" << rotator.path() << "), " << type << ", order " << order << ", rotation '" << name << "', band "
           << runtime::band_of(at) << ", index " << at;
     }

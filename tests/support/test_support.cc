@@ -83,6 +83,21 @@ void remove_dir(const std::string& dir) {
 
 std::string source_path(const std::string& relative) { return std::string(ZHF_SOURCE_DIR) + "/" + relative; }
 
+bool browser_available(std::string& why) {
+  const char* chromium = std::getenv("ZHF_CHROMIUM");
+  if (!(chromium && *chromium) && !io::program_available("chromium")) why = "chromium not found (scripts/setup_web.sh)";
+  else if (!io::program_available("node")) why = "node not found";
+  else if (!std::filesystem::is_directory(source_path("tools/node/node_modules/puppeteer-core")))
+    why = "puppeteer-core not in tools/node (scripts/setup_web.sh)";
+  else return true;
+  return false;
+}
+
+bool browser_required() {
+  const char* required = std::getenv("ZHF_REQUIRE_BROWSER");
+  return required && std::string(required) == "1";
+}
+
 std::string checked_in_table(int order) { return runtime::table_path(source_path("generated/lobes"), order); }
 
 std::string data_path(const std::string& name) { return source_path("tests/data/" + name); }

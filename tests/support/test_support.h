@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -15,6 +16,8 @@
 
 #include "zhf/io/process.h"
 #include "zhf/runtime/band_recurrence.h"
+#include "zhf/runtime/limits.h"
+#include "zhf/runtime/tolerances.h"
 
 namespace zhf::test {
 
@@ -104,6 +107,20 @@ std::pair<T*, T*> aligned_pair(std::vector<T>& buffer, std::size_t size, std::si
   buffer.assign(2 * whole + step, T(0));
   T* const first = buffer.data() + (step - reinterpret_cast<std::uintptr_t>(buffer.data()) / sizeof(T) % step) % step;
   return {first, first + whole};
+}
+
+// Whether headless Chromium with WebGPU can run here (chromium on PATH or $ZHF_CHROMIUM, node, and
+// puppeteer-core in the checkout's tools/node: scripts/setup_web.sh), and why not; and whether the
+// test command demands it (ZHF_REQUIRE_BROWSER=1), so that a test fails where it would skip.
+bool browser_available(std::string& why);
+bool browser_required();
+
+// What a rotation of type T at this order is held to against the reference: double kDouble; float
+// kFloatRotation at the generated orders and kRuntimeOrdersFloat above them (zxzxz).
+template <class T>
+double rotation_tolerance(int order) {
+  if (std::is_same_v<T, double>) return runtime::tolerance::kDouble;
+  return order <= runtime::kMaxGeneratedOrder ? runtime::tolerance::kFloatRotation : runtime::tolerance::kRuntimeOrdersFloat;
 }
 
 // The largest |out_i - (D(R) f)_i| over the N^2 coefficients of one rotated vector, D(R) from the

@@ -22,6 +22,7 @@ VerifyOptions options_for(const fs::path& tree) {
   options.generated_dir = tree.string();
   options.runtime_include = test::source_path("runtime/include");
   options.naga_wasm = test::source_path("tools/node/node_modules/naga-wasm");
+  options.browser_scripts = test::source_path("web/browser");
   return options;
 }
 
@@ -82,21 +83,32 @@ TEST(Verify, TheReportIsTheSameOnAnyThreadCount) {
 
 class VerifyCorruption : public ::testing::TestWithParam<std::string> {};
 
+// "webgpu" is WGSL in headless Chromium's WebGPU (scripts/setup_web.sh installs it; the test
+// command sets ZHF_REQUIRE_BROWSER=1, where its absence fails instead of skipping).
 TEST_P(VerifyCorruption, OneWrongCoefficientFailsAndIsNamed) {
   const std::string language = GetParam();
+  const bool browser = language == "webgpu";
   std::string why;
-  if (language != "cpp" && !have_vulkan(why)) GTEST_SKIP() << "no Vulkan device: " << why;
+  if (browser && !test::browser_available(why)) {
+    if (test::browser_required()) FAIL() << "ZHF_REQUIRE_BROWSER=1: " << why;
+    GTEST_SKIP() << why;
+  }
+  if (language != "cpp" && !browser && !have_vulkan(why)) GTEST_SKIP() << "no Vulkan device: " << why;
   const test::TempDir dir;
   make_tree_of_order3(dir);
-  const std::map<std::string, std::string> files = {
-      {"cpp", "cpp/zhf_order3.h"}, {"glsl", "glsl/zhf_order3.glsl"}, {"hlsl", "hlsl/zhf_order3.hlsli"}, {"wgsl", "wgsl/zhf_order3.wgsl"}};
+  const std::map<std::string, std::string> files = {{"cpp", "cpp/zhf_order3.h"},
+                                                     {"glsl", "glsl/zhf_order3.glsl"},
+                                                     {"hlsl", "hlsl/zhf_order3.hlsli"},
+                                                     {"wgsl", "wgsl/zhf_order3.wgsl"},
+                                                     {"webgpu", "wgsl/zhf_order3.wgsl"}};
   const std::string file = files.at(language);
   corrupt_rotation_constant(dir / "tree" / file);
   VerifyOptions options = options_for(dir / "tree");
   options.orders = {3};
-  Language parsed = Language::kCpp;
-  codegen::parse_language(language, parsed);
+  Language parsed = Language::kWgsl;
+  if (!browser) codegen::parse_language(language, parsed);
   options.languages = {parsed};
+  if (browser) options.wgsl_on = {WgslDevice::kWebGpu};
   options.rotations = 50;
   const VerifyReport report = run_verify(options);
   EXPECT_FALSE(report.pass());
@@ -107,7 +119,7 @@ TEST_P(VerifyCorruption, OneWrongCoefficientFailsAndIsNamed) {
   EXPECT_NE(report.table().find("FAIL: order 3, " + language), std::string::npos) << report.table();
 }
 
-INSTANTIATE_TEST_SUITE_P(EachLanguage, VerifyCorruption, ::testing::Values("cpp", "glsl", "hlsl", "wgsl"));
+INSTANTIATE_TEST_SUITE_P(EachLanguage, VerifyCorruption, ::testing::Values("cpp", "glsl", "hlsl", "wgsl", "webgpu"));
 
 TEST(VerifyCli, BadOrdersGetOneLine) {
   const test::RunResult r = test::run_zhf("verify --orders 11..13");

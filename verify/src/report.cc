@@ -154,13 +154,13 @@ std::string VerifyReport::table() const {
   }
   std::ostringstream out;
   char line[200];
-  std::snprintf(line, sizeof line, "%5s  %-5s  %-9s  %9s  %12s  %11s  %9s  %9s  %s\n", "order", "lang", "precision",
+  std::snprintf(line, sizeof line, "%5s  %-6s  %-9s  %9s  %12s  %11s  %9s  %9s  %s\n", "order", "lang", "precision",
                 "functions", "rotation err", "other err", "RMS", "max ulps", "result");
   out << line;
   for (const auto& [key, row] : rows) {
     const auto& [order, language, precision] = key;
     const std::string ulps = row.ulps < 0 ? "-" : std::to_string(static_cast<long long>(std::min(row.ulps, 1e15)));
-    std::snprintf(line, sizeof line, "%5d  %-5s  %-9s  %9d  %12s  %11s  %9.2e  %9s  %s\n", order, language.c_str(),
+    std::snprintf(line, sizeof line, "%5d  %-6s  %-9s  %9d  %12s  %11s  %9.2e  %9s  %s\n", order, language.c_str(),
                   precision.c_str(), row.functions, error_text(row.rotation_error).c_str(), error_text(row.other_error).c_str(),
                   row.rms, ulps.c_str(), row.pass ? "pass" : "FAIL");
     out << line;

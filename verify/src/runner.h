@@ -25,6 +25,7 @@ struct RunRequest {
   VulkanDevice* device = nullptr;
   std::vector<std::string> compiler;  // the C++ compiler's argv prefix
   std::string naga_wasm;        // the naga-wasm package directory (WGSL)
+  std::string browser_scripts;  // web/browser (WGSL in a browser's WebGPU)
 };
 
 // outputs[p][m]: precision p (precisions[p]), mode m, in the layout of reference_outputs.

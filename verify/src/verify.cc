@@ -23,6 +23,7 @@
 #include "zhf/io/errors.h"
 #include "zhf/io/private_dir.h"
 #include "zhf/io/signals.h"
+#include "zhf/runtime/enum_names.h"
 #include "zhf/runtime/parallel.h"
 #include "zhf/runtime/table_io.h"
 
@@ -111,7 +112,20 @@ class WorkDir {
   std::string path_;
 };
 
+// One run of each order: a language's runner, named as the report names it ("wgsl" on Vulkan,
+// "webgpu" in a browser).
+struct Target {
+  codegen::Language language;
+  std::string name;
+  std::unique_ptr<Runner> runner;
+};
+
 }  // namespace
+
+constexpr runtime::EnumName<WgslDevice> kWgslDeviceNames[] = {{WgslDevice::kVulkan, "vulkan"}, {WgslDevice::kWebGpu, "webgpu"}};
+
+bool parse_wgsl_device(const std::string& name, WgslDevice& device) { return runtime::parse_enum(kWgslDeviceNames, name, device); }
+std::vector<std::string> wgsl_device_names() { return runtime::enum_names(kWgslDeviceNames); }
 
 bool vulkan_available(std::string& why) { return VulkanDevice::open(why) != nullptr; }
 
@@ -120,9 +134,27 @@ VerifyReport run_verify(const VerifyOptions& options) {
   const fs::path generated(options.generated_dir);
   const codegen::Manifest manifest = codegen::read_manifest((generated / "manifest.json").string());
   const std::vector<int> orders = options.orders.empty() ? manifest.orders() : options.orders;
-  std::vector<codegen::Language> languages_wanted = options.languages;
-  bool want_vulkan = false;
-  for (codegen::Language language : options.languages) want_vulkan = want_vulkan || make_runner(language)->needs_vulkan();
+  // The runs of each order: a runner per language, and WGSL on each device asked for.
+  std::vector<Target> targets;
+  for (codegen::Language language : options.languages) {
+    if (language != codegen::Language::kWgsl) {
+      targets.push_back({language, codegen::language_name(language), make_runner(language)});
+      continue;
+    }
+    for (WgslDevice on : options.wgsl_on) {
+      if (on == WgslDevice::kVulkan) {
+        if (const std::string why = wgsl_compiler_missing(options.naga_wasm); !why.empty())
+          report.errors.push_back("WGSL kernels were not run on Vulkan: " + why);
+        else
+          targets.push_back({language, "wgsl", make_runner(language)});
+      } else if (const std::string why = webgpu_missing(options.browser_scripts); !why.empty()) {
+        report.errors.push_back("WGSL kernels were not run in a browser: " + why);
+      } else {
+        targets.push_back({language, "webgpu", make_webgpu_runner()});
+      }
+    }
+  }
+  const bool want_vulkan = std::any_of(targets.begin(), targets.end(), [](const Target& t) { return t.runner->needs_vulkan(); });
   std::unique_ptr<VulkanDevice> device;
   if (want_vulkan) {
     std::string why;
@@ -134,17 +166,10 @@ VerifyReport run_verify(const VerifyOptions& options) {
       report.device = device->description();
     }
   }
-  if (std::find(languages_wanted.begin(), languages_wanted.end(), codegen::Language::kWgsl) != languages_wanted.end())
-    if (const std::string why = wgsl_compiler_missing(options.naga_wasm); !why.empty()) {
-      report.errors.push_back("WGSL kernels were not run: " + why);
-      languages_wanted.erase(std::remove(languages_wanted.begin(), languages_wanted.end(), codegen::Language::kWgsl),
-                             languages_wanted.end());
-    }
   const WorkDir work(options.work_dir);
   // C++ first: the shaders' float results are compared with its float results too.
-  std::vector<codegen::Language> languages = languages_wanted;
-  std::stable_partition(languages.begin(), languages.end(), [](codegen::Language l) { return l == codegen::Language::kCpp; });
-  const int steps = static_cast<int>(orders.size() * languages.size());
+  std::stable_partition(targets.begin(), targets.end(), [](const Target& t) { return t.language == codegen::Language::kCpp; });
+  const int steps = static_cast<int>(orders.size() * targets.size());
 
   // Each order's inputs, reference table and files, read in order; an order the manifest lacks is
   // reported where its turn comes.
@@ -183,12 +208,11 @@ VerifyReport run_verify(const VerifyOptions& options) {
     RunOutputs outputs;
     std::string error;
   };
-  const auto run_language = [&](const OrderWork& w, codegen::Language language) {
+  const auto run_target = [&](const OrderWork& w, const Target& target) {
     LanguageRun run;
-    const ManifestFile* file = manifest.kernels(w.order, language);
+    const ManifestFile* file = manifest.kernels(w.order, target.language);
     if (!file || file->precision == codegen::FilePrecision::kDouble) return run;  // shaders are run in float
-    const std::string name = codegen::language_name(language);
-    const std::unique_ptr<Runner> runner = make_runner(language);
+    const Runner* runner = target.runner.get();
     if (runner->needs_vulkan() && !device) return run;
     run.skipped = false;
     if (runner->needs_vulkan() && file->lobe_stage != runtime::LobeStage::kFloat && !device->float64()) {
@@ -201,16 +225,17 @@ VerifyReport run_verify(const VerifyOptions& options) {
     request.kernel_file = (generated / file->path).string();
     request.runtime_include = options.runtime_include;
     request.naga_wasm = options.naga_wasm;
+    request.browser_scripts = options.browser_scripts;
     request.inputs = &*w.in;
     for (const Mode& mode : modes_of(*file))
       if (runner->runs(mode)) request.modes.push_back(mode);
-    if (w.has_lanes && language == codegen::Language::kCpp && w.order >= 3)
+    if (w.has_lanes && target.language == codegen::Language::kCpp && w.order >= 3)
       request.modes.push_back({KernelKind::kRotate, 1, "rotate_lanes_order" + std::to_string(w.order), true});
     if (request.modes.empty()) {
       run.skipped = true;
       return run;
     }
-    request.work_dir = work.sub("order_" + std::to_string(w.order) + "/" + name);
+    request.work_dir = work.sub("order_" + std::to_string(w.order) + "/" + target.name);
     request.device = device.get();
     request.compiler = compiler_argv(options.compiler);
     try {
@@ -225,13 +250,13 @@ VerifyReport run_verify(const VerifyOptions& options) {
   // shaders share one Vulkan device and run after, one at a time). What each run gives is kept by
   // order, so the report is the same on any thread count.
   std::vector<LanguageRun> cpp_runs(orders.size());
-  const bool wants_cpp = std::find(languages.begin(), languages.end(), codegen::Language::kCpp) != languages.end();
+  const bool wants_cpp = !targets.empty() && targets.front().language == codegen::Language::kCpp;
   if (wants_cpp) {
     if (options.progress) options.progress(0, steps, "C++ kernel files (" + std::to_string(orders.size()) + " orders)");
     std::vector<std::exception_ptr> failures(orders.size());
     runtime::parallel_for(static_cast<int>(orders.size()), runtime::worker_count(options.threads), [&](int k) {
       try {
-        if (work_of[k].missing.empty()) cpp_runs[k] = run_language(work_of[k], codegen::Language::kCpp);
+        if (work_of[k].missing.empty()) cpp_runs[k] = run_target(work_of[k], targets.front());
       } catch (...) {
         failures[k] = std::current_exception();
       }
@@ -251,19 +276,19 @@ VerifyReport run_verify(const VerifyOptions& options) {
     std::map<std::string, std::vector<double>> cpp_float;  // by function name
     // Shaders are held to the C++ float kernel in ulps only where both run the lobe stage alike
     // (a WGSL file runs it in float where the C++ one may use double).
-    for (codegen::Language language : languages) {
-      const bool cpp = language == codegen::Language::kCpp;
+    for (const Target& target : targets) {
+      const bool cpp = target.language == codegen::Language::kCpp;
       if (options.progress && !cpp) options.progress(step, steps, "kernel files (order " + std::to_string(w.order) + ")");
       ++step;
-      const LanguageRun run = cpp ? std::move(cpp_runs[k]) : run_language(w, language);
+      const LanguageRun run = cpp ? std::move(cpp_runs[k]) : run_target(w, target);
       if (run.skipped) continue;
-      const std::string name = codegen::language_name(language);
+      const std::string& name = target.name;
       const std::string tag = o + ", " + name;
       if (!run.error.empty()) {
         report.errors.push_back(tag + ": " + run.error);
         continue;
       }
-      const ManifestFile* file = manifest.kernels(w.order, language);
+      const ManifestFile* file = manifest.kernels(w.order, target.language);
       const std::vector<std::vector<double>> expected = reference_outputs(*w.in, *w.table, run.request.modes);
       const Conditioning conditioning{w.table->order > 2 ? w.table->worst_condition() : 1.0, file->lobe_stage};
       for (size_t p = 0; p < run.outputs.precisions.size(); ++p)

@@ -80,6 +80,8 @@ std::string modes_of_width(const std::vector<Mode>& modes, int width) {
   return s;
 }
 
+}  // namespace
+
 std::string wgsl_wrapper(int order, const std::string& kernels, const std::vector<Mode>& modes) {
   const int n = order * order;
   const std::string ns = std::to_string(n), no = std::to_string(order), block = std::to_string(kMaxChannels * n);
@@ -89,15 +91,15 @@ std::string wgsl_wrapper(int order, const std::string& kernels, const std::vecto
     if (m.channels > 1) widths.insert(m.channels);
   auto vec = [](int w) { return "vec" + std::to_string(w) + "<f32>"; };
   std::ostringstream s;
-  s << "struct Params { count: u32 }\n"
-    << "var<immediate> params: Params;\n"
-    << "@group(0) @binding(0) var<storage, read> rotations: array<f32>;\n"
+  // Core WebGPU (no immediates): the count is the rotations' length over their stride.
+  s << "@group(0) @binding(0) var<storage, read> rotations: array<f32>;\n"
     << "@group(0) @binding(1) var<storage, read> coefficients: array<f32>;\n"
     << "@group(0) @binding(2) var<storage, read_write> results: array<f32>;\n\n"
     << kernels << "\n"
     << "@compute @workgroup_size(64)\nfn main(@builtin(global_invocation_id) id: vec3<u32>) {\n"
-    << "  let i = id.x;\n  if (i >= " << modes.size() << "u * params.count) { return; }\n"
-    << "  let v = i % params.count;\n  let mode = i / params.count;\n"
+    << "  let count = arrayLength(&rotations) / " << stride << "u;\n"
+    << "  let i = id.x;\n  if (i >= " << modes.size() << "u * count) { return; }\n"
+    << "  let v = i % count;\n  let mode = i / count;\n"
     << "  var r: array<f32, 9>;\n  var axis: array<f32, 3>;\n"
     << "  var c: array<array<f32, " << ns << ">, 4>;\n  var z: array<array<f32, " << no << ">, 4>;\n"
     << "  var c1: array<f32, " << ns << ">;\n  var z1: array<f32, " << no << ">;\n  var o1: array<f32, " << ns << ">;\n"
@@ -108,7 +110,7 @@ std::string wgsl_wrapper(int order, const std::string& kernels, const std::vecto
   s << "  for (var k = 0u; k < 9u; k++) { r[k] = rotations[" << stride << "u * v + k]; }\n"
     << "  for (var k = 0u; k < 3u; k++) { axis[k] = rotations[" << stride << "u * v + 9u + k]; }\n"
     << "  for (var ch = 0u; ch < 4u; ch++) {\n"
-    << "    for (var k = 0u; k < " << ns << "u; k++) { c[ch][k] = coefficients[" << ns << "u * ((v + ch) % params.count) + k]; }\n"
+    << "    for (var k = 0u; k < " << ns << "u; k++) { c[ch][k] = coefficients[" << ns << "u * ((v + ch) % count) + k]; }\n"
     << "    for (var k = 0u; k < " << no << "u; k++) { z[ch][k] = c[ch][k]; }\n"
     << "  }\n"
     << "  for (var k = 0u; k < " << ns << "u; k++) { c1[k] = c[0][k]; o1[k] = 0.0; }\n"
@@ -121,7 +123,7 @@ std::string wgsl_wrapper(int order, const std::string& kernels, const std::vecto
       << "  for (var k = 0u; k < " << no << "u; k++) { zv" << w << "[k] = " << vec(w) << "(" << zargs << "); }\n";
   }
   for (size_t k = 0; k < modes.size(); ++k) s << "  if (mode == " << k << "u) { " << wgsl_call(modes[k], order) << " }\n";
-  s << "  let base = (mode * params.count + v) * " << block << "u;\n"
+  s << "  let base = (mode * count + v) * " << block << "u;\n"
     << "  for (var k = 0u; k < " << ns << "u; k++) {\n"
     << "    results[base + k] = o1[k];\n";
   for (int w : widths) {
@@ -132,6 +134,8 @@ std::string wgsl_wrapper(int order, const std::string& kernels, const std::vecto
   s << "  }\n}\n";
   return s.str();
 }
+
+namespace {
 
 std::string wrapper(bool glsl, int order, const std::string& kernels, const std::vector<Mode>& modes) {
   const int n = order * order;
@@ -255,7 +259,7 @@ ShaderDialect glsl_dialect() { return {ShaderFront::kGlsl, "verify.comp", {"-V",
 // HLSL: glslangValidator's HLSL front end, entry main, compute stage; push constants as
 // [[vk::push_constant]] ConstantBuffer<T>.
 ShaderDialect hlsl_dialect() { return {ShaderFront::kHlsl, "verify.hlsl", {"-D", "-e", "main", "-S", "comp", "-V"}}; }
-// WGSL: naga's front end (its push constants are var<immediate>).
+// WGSL: naga's front end (the wrapper takes no push constants: core WebGPU).
 ShaderDialect wgsl_dialect() { return {ShaderFront::kWgsl, "verify.wgsl", {}}; }
 
 namespace {

@@ -21,6 +21,9 @@ struct Project {
   // The naga-wasm package scripts/setup.sh installs into a checkout's tools/node (verify turns
   // WGSL into SPIR-V with it): root's when it has one, else the source tree's.
   std::string naga_wasm() const;
+  // web/browser, the scripts that run WGSL in headless Chromium (with tools/node's puppeteer-core,
+  // scripts/setup_web.sh): root's when it has them, else the source tree's.
+  std::string browser_scripts() const;
   // generated/lobes/order_N.json (order 2: the lobe-free table).
   runtime::LobeTable table(int order) const;
 };

@@ -16,6 +16,15 @@
 #include "zhf/runtime/parallel.h"
 #include "zhf/runtime/sh_eval.h"
 
+// The bodies of the unrolled loops below (for_each_index) are inlined: GCC's [[gnu::flatten]] does
+// it for the function that holds them, Clang's does not reach into lambdas (under Emscripten the
+// order-4 splats ran 2x slower with each band's loop a call).
+#if defined(__GNUC__)
+#define ZHF_UNROLLED __attribute__((always_inline))
+#else
+#define ZHF_UNROLLED
+#endif
+
 namespace zhf::runtime {
 
 // Build-once, apply-many band matrices of one rotation.
@@ -83,6 +92,7 @@ class DenseRotation {
   // docs/performance.md compares it with memory bandwidth.
   void apply_splats(std::size_t count, const T* in, T* out, int threads = 0) const {
     switch (order_) {
+      case 2: return apply_splats_of<2>(count, in, out, threads);
       case 3: return apply_splats_of<3>(count, in, out, threads);
       case 4: return apply_splats_of<4>(count, in, out, threads);
       case 5: return apply_splats_of<5>(count, in, out, threads);
@@ -148,7 +158,7 @@ class DenseRotation {
   }
 
  private:
-  using P = Pack<T>;
+  using P = Pack<T, kBulkPackBytes>;
   using Line = Pack<T, kCacheLineBytes>;  // a cache line of items: two AVX2 registers
   // apply_planar's items per block: long runs per plane for the prefetchers (2048 and more
   // measured alike; 256 ran 1.6x slower at order 4), the band's planes within L2.
@@ -180,7 +190,9 @@ class DenseRotation {
         const T* f = in + item * v;
         T* g = out + item * v;
         for (int c = 0; c < 3; ++c) g[c] = f[c];
-        if constexpr (N > 0) {
+        if constexpr (N == 2) {
+          for (int c = 0; c < 3; ++c) apply_band1(f + 3 + c * rest, g + 3 + c * rest);
+        } else if constexpr (N > 0) {
           apply_splat_rest<N>(f + 3, g + 3);
         } else {
           for (int c = 0; c < 3; ++c) apply_rest(f + 3 + c * rest, g + 3 + c * rest);
@@ -216,6 +228,13 @@ class DenseRotation {
     }
   }
 
+  // y = D_1 x for band 1 alone (order 2, less than a pack of rows); x may be y.
+  void apply_band1(const T* x, T* y) const {
+    const T* d = columns_.data() + 1;  // D_1 column-major
+    const T x0 = x[0], x1 = x[1], x2 = x[2];
+    for (int i = 0; i < 3; ++i) y[i] = d[i] * x0 + d[3 + i] * x1 + d[6 + i] * x2;
+  }
+
   // apply_rest on the three channels of a splat (x: N^2 - 1 values of each, one after another) at
   // a fixed order of at least one whole pack of rows, as straight-line code: band by band, each
   // input broadcast once for the packs its band has rows in and each column pack loaded once for
@@ -227,23 +246,23 @@ class DenseRotation {
     static_assert(rest >= P::kLanes, "a whole pack of rows");
     const P* columns = rest_columns_.data();  // a local: the stores could alias the member
     P acc[3][packs];
-    for_each_index<packs>([&](auto p) { for_each_index<3>([&](auto c) { acc[c][p] = P(0.0); }); });
-    for_each_index<N>([&](auto l) {
+    for_each_index<packs>([&](auto p) ZHF_UNROLLED { for_each_index<3>([&](auto c) ZHF_UNROLLED { acc[c][p] = P(0.0); }); });
+    for_each_index<N>([&](auto l) ZHF_UNROLLED {
       if constexpr (l > 0) {
-        for_each_index<band_size(l)>([&](auto j) {
+        for_each_index<band_size(l)>([&](auto j) ZHF_UNROLLED {
           P input[3];
-          for_each_index<3>([&](auto c) { input[c] = P::broadcast(x[c * rest + l * l - 1 + j]); });
-          for_each_index<packs>([&](auto p) {
+          for_each_index<3>([&](auto c) ZHF_UNROLLED { input[c] = P::broadcast(x[c * rest + l * l - 1 + j]); });
+          for_each_index<packs>([&](auto p) ZHF_UNROLLED {
             if constexpr (band_in_pack(l, rest_pack_row(p, rest))) {
               const P d = columns[column_of(N, p, l) + j];
-              for_each_index<3>([&](auto c) { acc[c][p] += d * input[c]; });
+              for_each_index<3>([&](auto c) ZHF_UNROLLED { acc[c][p] += d * input[c]; });
             }
           });
         });
-        for_each_index<packs>([&](auto p) {
+        for_each_index<packs>([&](auto p) ZHF_UNROLLED {
           constexpr int start = rest_pack_row(p, rest);
           if constexpr (band_in_pack(l, start) && (l + 1 == N || !band_in_pack(l + 1, start)))
-            for_each_index<3>([&](auto c) { acc[c][p].store(y + c * rest + start); });
+            for_each_index<3>([&](auto c) ZHF_UNROLLED { acc[c][p].store(y + c * rest + start); });
         });
       }
     });
@@ -259,11 +278,11 @@ class DenseRotation {
   }
   // f(std::integral_constant<int, i>) for i = 0 .. Count - 1, unrolled.
   template <int Count, class F>
-  static void for_each_index(F&& f) {
+  ZHF_UNROLLED static void for_each_index(F&& f) {
     for_each_index(f, std::make_integer_sequence<int, Count>());
   }
   template <class F, int... I>
-  static void for_each_index(F& f, std::integer_sequence<int, I...>) {
+  ZHF_UNROLLED static void for_each_index(F& f, std::integer_sequence<int, I...>) {
     (f(std::integral_constant<int, I>()), ...);
   }
 
@@ -300,10 +319,10 @@ class DenseRotation {
   [[gnu::flatten]] void apply_planar_band_of(const T* d, const T* in, T* out, std::size_t stride) const {
     constexpr int n = band_size(L);
     V x[n];
-    for_each_index<n>([&](auto j) { x[j] = load<V>(in + j * stride); });
-    for_each_index<n>([&](auto i) {
+    for_each_index<n>([&](auto j) ZHF_UNROLLED { x[j] = load<V>(in + j * stride); });
+    for_each_index<n>([&](auto i) ZHF_UNROLLED {
       V even(T(0)), odd(T(0));
-      for_each_index<n>([&](auto j) { (j % 2 ? odd : even) += V(d[j * n + i]) * x[j]; });
+      for_each_index<n>([&](auto j) ZHF_UNROLLED { (j % 2 ? odd : even) += V(d[j * n + i]) * x[j]; });
       store_row<kStreamed>(even + odd, out + i * stride);
     });
   }

@@ -27,6 +27,15 @@ namespace zhf::runtime {
 inline constexpr int kCacheLineBytes = 64;
 inline constexpr int kCacheSetSpanBytes = 4096;
 
+// The packs the bulk layouts work in (dense_rotation.h): one SIMD128 register in WebAssembly, where
+// a 32-byte pack is a pair that the engine's 16 registers hold half as many of (order-4 splats:
+// 34 ns a splat in one register, 47 in pairs, under Node 20); an AVX2 register elsewhere.
+#if defined(__wasm_simd128__)
+inline constexpr int kBulkPackBytes = 16;
+#else
+inline constexpr int kBulkPackBytes = 32;
+#endif
+
 template <class T, int kBytes = 32>
 struct Pack {
   static constexpr int kLanes = kBytes / int(sizeof(T));

@@ -17,6 +17,10 @@ inline constexpr int kMaxVerifyRotations = 1000000;
 // before it is stopped and the order reported as failed.
 inline constexpr double kShaderCompileSeconds = 300;
 
+// Seconds verify gives headless Chromium to start, compile one WGSL wrapper with Tint and run it on
+// SwiftShader (order 8: about 20 s) before it is stopped and the order reported as failed.
+inline constexpr double kBrowserRunSeconds = 600;
+
 // A shader's SPIR-V read back from its compiler (an order-8 kernel's is about a megabyte).
 inline constexpr std::size_t kMaxSpirvBytes = std::size_t(1) << 30;
 

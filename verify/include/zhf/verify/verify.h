@@ -16,6 +16,13 @@
 
 namespace zhf::verify {
 
+// Where WGSL runs: on the Vulkan device, turned into SPIR-V by naga; or in a browser's WebGPU,
+// compiled by Chromium's Tint.
+enum class WgslDevice { kVulkan, kWebGpu };
+// "vulkan", "webgpu"; false for another name.
+bool parse_wgsl_device(const std::string& name, WgslDevice& device);
+std::vector<std::string> wgsl_device_names();
+
 struct VerifyOptions {
   std::string generated_dir = "generated";  // a tree with a manifest (zhf generate)
   std::vector<int> orders;     // empty: every order in the manifest
@@ -25,6 +32,8 @@ struct VerifyOptions {
   std::string work_dir;        // kept scratch (made if missing); empty: a private temp dir, removed afterwards
   std::string runtime_include; // runtime/include, for the lanes kernels
   std::string naga_wasm;       // the naga-wasm package (WGSL to SPIR-V under Node), for WGSL
+  std::vector<WgslDevice> wgsl_on = {WgslDevice::kVulkan};
+  std::string browser_scripts; // web/browser, for WGSL in a browser (results named "webgpu")
   // Threads for the C++ files (0: all cores): each order's compiler and program run beside the
   // others; the report is the same on any count.
   int threads = 1;
@@ -35,7 +44,7 @@ struct VerifyOptions {
 
 struct FunctionResult {
   int order = 0;
-  std::string language;        // cpp, glsl, hlsl
+  std::string language;        // cpp, glsl, hlsl, wgsl (on Vulkan), webgpu (WGSL in a browser)
   std::string precision;       // float, double
   std::string function;
   double max_error = 0;

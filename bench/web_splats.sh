@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# zhf's WebAssembly module against @playcanvas/splat-transform 3.7's SH rotation and against native
+# zhf on one thread, 10^6 splats of each SH degree 1..4, in one run of bench/web_splats.mjs, into
+# bench/results/web/web_splats.txt through bench/record.sh (pinned to one core); docs/web.md's
+# table is made from it (python3 bench/performance_tables.py --update docs/web.md). From a clean
+# tree only.
+#   bash bench/web_splats.sh [splats] [runs]
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/clean_tree.sh" web_splats.sh
+bash scripts/setup_web.sh
+cmake --build "$ZHF_BUILD" -j "$ZHF_JOBS" --target zhf_web_package zhf_web_splats_native
+source bench/splat_transform.sh
+mkdir -p bench/results/web
+bash bench/record.sh bench/results/web/web_splats.txt "Release; WebAssembly built by emscripten $(em++ --version | head -1 | sed 's/.*) //'), -O3" \
+  node bench/web_splats.mjs "$ZHF_BUILD/web/package" "$st_dir/node_modules/@playcanvas/splat-transform" \
+  "$ZHF_BUILD/bench/zhf_web_splats_native" "${1:-1000000}" "${2:-7}"
+python3 bench/performance_tables.py --update docs/web.md
