@@ -378,9 +378,13 @@ def markdown_of(name):
     def table(results):
         path = os.path.join(results, name)
         print(f"Source: `{path}`.  \nRun: {header(path)}\n")
+        table = False
         for line in list(open(path))[2:]:
             if line.strip():
-                print(line.rstrip("\n") if line.startswith("|") else "\n" + line.rstrip("\n"))
+                row = line.startswith("|")
+                # A table stands after a blank line, as does a line of text.
+                print(("\n" if not row or not table else "") + line.rstrip("\n"))
+                table = row
         print()
     return table
 

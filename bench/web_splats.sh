@@ -11,7 +11,7 @@ bash scripts/setup_web.sh
 cmake --build "$ZHF_BUILD" -j "$ZHF_JOBS" --target zhf_web_package zhf_web_splats_native
 source bench/splat_transform.sh
 mkdir -p bench/results/web
-bash bench/record.sh bench/results/web/web_splats.txt "Release; WebAssembly built by emscripten $(em++ --version | head -1 | sed 's/.*) //'), -O3" \
+bash bench/record.sh bench/results/web/web_splats.txt "Release; WebAssembly built by emscripten $(em++ --version | head -1 | grep -o '[0-9][0-9.]*' | tail -1) -O3 -msimd128" \
   node bench/web_splats.mjs "$ZHF_BUILD/web/package" "$st_dir/node_modules/@playcanvas/splat-transform" \
   "$ZHF_BUILD/bench/zhf_web_splats_native" "${1:-1000000}" "${2:-7}"
 python3 bench/performance_tables.py --update docs/web.md
