@@ -76,7 +76,8 @@ int run_needlet_tables(const NeedletOptions& o) {
   const double dilation = dilation_option(o.dilation);
   const int lmax = top_band(o, 1, frames::kMaxNeedletFrameBand);
   const std::vector<int> sizes = orders_option("--sizes", o.sizes, frames::kMinNeedletTableSize, frames::kMaxNeedletTableSize);
-  if (sizes.size() > 16) throw UsageError("--sizes: at most 16 sizes (got " + std::to_string(sizes.size()) + ")");
+  if (sizes.size() > frames::kMaxNeedletTableSizes)
+    throw UsageError("--sizes: at most " + std::to_string(frames::kMaxNeedletTableSizes) + " sizes (got " + std::to_string(sizes.size()) + ")");
   std::unique_ptr<io::PendingFile> out;
   if (!o.out.empty()) out = std::make_unique<io::PendingFile>(o.out);
   const frames::NeedletFrame frame = needlet_frame(dilation, lmax, o.gauss);

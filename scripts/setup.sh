@@ -14,7 +14,7 @@ packages=(
   libgtest-dev libbenchmark-dev
   glslang-tools spirv-tools libvulkan-dev mesa-vulkan-drivers
   libhealpix-cxx-dev libcfitsio-dev gnuplot-nox
-  python3 python3-dev pybind11-dev python3-numpy python3-pytest
+  python3 python3-dev pybind11-dev python3-numpy python3-pytest python3-clang-14
   qemu-user g++-aarch64-linux-gnu googletest
   libhwy-dev libxsimd-dev libwebp-dev
 )

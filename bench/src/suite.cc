@@ -40,6 +40,10 @@ namespace zhf::bench {
 namespace fs = std::filesystem;
 namespace {
 
+// The "pruned" rows drop the entries of A_l below these fractions of the band's largest.
+constexpr double kPruneSmall = 1e-3, kPruneLarge = 1e-2;  // an input, not a tolerance
+
+
 using Clock = std::chrono::steady_clock;
 
 // Scale of one run.
@@ -418,7 +422,7 @@ SuiteReport run_suite(const SuiteOptions& o) {
       say(single<float>(scale, pool, "zhf_runtime", "rgb", 3, [&](auto r, auto in, auto out) { t.rotate_rgb(r, in, out); }));
       if (generated) {
         // Knob: pruned tables, through the runtime path (which skips A's zeros).
-        for (double threshold : {zhf::tolerance::kBenchPruneSmall, zhf::tolerance::kBenchPruneLarge}) {
+        for (double threshold : {kPruneSmall, kPruneLarge}) {
           const runtime::LobeTable p = pruned(table, threshold);
           const auto pr = runtime::Rotator<float>::from_table(p);
           char variant[96];

@@ -56,14 +56,4 @@ FrameBounds frame_bounds(const std::vector<Point>& directions, int lmin, int lma
   return b;
 }
 
-std::vector<double> gram_matrix(const std::vector<Point>& directions, int lmin, int lmax) {
-  check(directions, lmin, lmax);
-  const Eigen::MatrixXd phi = analysis(directions, lmin, lmax);
-  const Eigen::MatrixXd g = phi * phi.transpose();
-  std::vector<double> out(g.size());
-  for (int i = 0; i < g.rows(); ++i)
-    for (int j = 0; j < g.cols(); ++j) out[size_t(i) * g.cols() + j] = g(i, j);
-  return out;
-}
-
 }  // namespace zhf::frames

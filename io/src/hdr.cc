@@ -7,10 +7,13 @@
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/io/limits.h"
-#include "zhf/tolerances/tolerances.h"
 
 namespace zhf::io {
 namespace {
+
+// Radiance RGBE: a pixel whose largest channel is below this is stored black (the format's rule).
+constexpr float kRgbeBlack = 1e-32f;  // an input, not a tolerance
+
 
 float component(std::uint8_t mantissa, std::uint8_t exponent) {
   return exponent == 0 ? 0.0f : std::ldexp(static_cast<float>(mantissa), static_cast<int>(exponent) - 136);
@@ -117,7 +120,7 @@ std::string encode_hdr(const HdrImage& image) {
       const float* p = &image.rgb[(static_cast<std::size_t>(row) * w + x) * 3];
       const float largest = std::fmax(p[0], std::fmax(p[1], p[2]));
       int e = 0;
-      if (!(largest > zhf::tolerance::kRgbeBlack)) {
+      if (!(largest > kRgbeBlack)) {
         scan[4 * x] = scan[4 * x + 1] = scan[4 * x + 2] = scan[4 * x + 3] = 0;
         continue;
       }

@@ -124,7 +124,7 @@ Header parse_header(std::istream& in, const std::string& source, bool any_elemen
       for (const Element& e : header.elements)
         if (e.name == w[1]) throw InputError(where + ": element '" + excerpt(w[1]) + "' appears twice");
       const std::string& count = w[2];
-      if (count.empty() || count.size() > 10 || count.find_first_not_of("0123456789") != std::string::npos ||
+      if (count.empty() || count.size() > kMaxPlyCountDigits || count.find_first_not_of("0123456789") != std::string::npos ||
           std::stoull(count) > kMaxPlyVertices)
         throw InputError(where + ": the " + (any_elements ? "'" + excerpt(w[1]) + "'" : std::string("vertex")) + " count '" +
                          excerpt(count) + "' is not a count up to 2^31");

@@ -325,7 +325,7 @@ PYBIND11_MODULE(_zhf, m) {
   m.attr("max_table_order") = rt::kMaxTableOrder;
   m.attr("max_generated_order") = rt::kMaxGeneratedOrder;
   m.attr("max_threads") = rt::kMaxThreads;
-  m.attr("default_zonal_fit") = zhf::tolerance::kDefaultZonalFit;
+  m.attr("default_zonal_fit") = zhf::sh::kDefaultZonalFit;
   // The named tolerances the Python tests hold results to (tolerances/tolerances.h).
   py::dict tolerances;
   tolerances["double"] = zhf::tolerance::kDouble;

@@ -208,7 +208,10 @@ class GlbReader : public SceneReader {
       if (chunk == 1 && get_uint32(chunk_header + 4) == kBinChunk) bin_at = at + kChunkHeaderBytes, bin_bytes = bytes;
       at += kChunkHeaderBytes + bytes;
     }
-    const io::json::Json json = io::json::parse(text, path + ": JSON chunk", kJsonLimits);
+    io::json::Limits limits;
+    limits.max_depth = kMaxGlbJsonDepth;
+    limits.max_values = kMaxGlbJsonValues;
+    const io::json::Json json = io::json::parse(text, path + ": JSON chunk", limits);
     interpret(Field(json, path), bin_at, bin_bytes);
   }
 
@@ -228,8 +231,6 @@ class GlbReader : public SceneReader {
   void finish() override {}  // the header's length is the file's: nothing follows
 
  private:
-  static constexpr io::json::Limits kJsonLimits{32, std::size_t(1) << 20, 1 << 16};
-
   void fill(std::uint64_t offset, unsigned char* to, std::uint64_t bytes) {
     file_.seekg(std::streamoff(offset));
     file_.read(reinterpret_cast<char*>(to), std::streamsize(bytes));

@@ -486,7 +486,6 @@ bool parse_file_format(const std::string& name, FileFormat& format) {
   return false;
 }
 
-const char* file_format_name(FileFormat format) { return named(format).name; }
 int file_format_max_sh_degree(FileFormat format) { return named(format).max_sh_degree; }
 
 bool parse_spz_axes(const std::string& name, SpzAxes& axes) {

@@ -38,6 +38,7 @@ class SplatFileReader : public SceneReader {
     file_.read(reinterpret_cast<char*>(buffer_.data()), std::streamsize(buffer_.size()));
     if (std::uint64_t(file_.gcount()) != buffer_.size()) throw InputError(path_ + ": truncated");
     static const char* const kFloatNames[] = {"x", "y", "z", "scale_0", "scale_1", "scale_2"};
+    constexpr int kFirstScale = 3;  // the scales, which must be above 0
     for (std::uint64_t s = 0; s < count; ++s) {
       const unsigned char* b = buffer_.data() + s * kSplatBytes;
       double* v = records + s * c.size();
@@ -45,7 +46,7 @@ class SplatFileReader : public SceneReader {
       for (int i = 0; i < 6; ++i) {
         f[i] = get_float(b + 4 * i);
         if (!std::isfinite(f[i])) throw InputError(where(path_, first + s, kFloatNames[i]) + " is " + runtime::format_number(f[i]));
-        if (i >= 3 && !(f[i] > 0)) throw InputError(where(path_, first + s, kFloatNames[i]) + " is " + runtime::format_number(f[i]) + ", not above 0");
+        if (i >= kFirstScale && !(f[i] > 0)) throw InputError(where(path_, first + s, kFloatNames[i]) + " is " + runtime::format_number(f[i]) + ", not above 0");
       }
       for (int i = 0; i < 3; ++i) {
         v[Canonical::kPosition + i] = f[i];

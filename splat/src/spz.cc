@@ -239,7 +239,8 @@ class SpzReader : public SceneReader {
     if (degree_ > kMaxSplatShDegree)
       throw InputError(path + ": SH degree " + std::to_string(degree_) + "; .spz holds degrees 0.." + std::to_string(kMaxSplatShDegree));
     fractional_bits_ = h[13];
-    if (fractional_bits_ > 23) throw InputError(path + ": " + std::to_string(fractional_bits_) + " fractional bits; at most 23");
+    if (fractional_bits_ > kMaxSpzFractionalBits)
+      throw InputError(path + ": " + std::to_string(fractional_bits_) + " fractional bits; at most " + std::to_string(kMaxSpzFractionalBits));
     const unsigned flags = h[14];
     if (flags & ~unsigned(kFlagAntialiased | kFlagExtensions))
       throw InputError(path + ": header flags " + hex32(flags) + ": zhf knows 0x1 (antialiased) and 0x2 (extension records)");

@@ -61,7 +61,7 @@ ZipReader::ZipReader(const std::string& path) : path_(path) {
   const std::uint32_t directory_size = get_uint32(end + 12), directory_at = get_uint32(end + 16);
   if (u16(end + 4) != 0 || u16(end + 6) != 0 || u16(end + 8) != count) throw InputError(path + ": a multi-part ZIP archive");
   if (count > kMaxZipEntries) throw InputError(path + ": " + std::to_string(count) + " entries; at most " + std::to_string(kMaxZipEntries));
-  if (directory_at == 0xffffffffu || std::uint64_t(directory_at) + directory_size > file_size_ - tail + at)
+  if (directory_at == kZip32Marker || std::uint64_t(directory_at) + directory_size > file_size_ - tail + at)
     throw InputError(path + ": the central directory is not inside the archive (ZIP64 is not read)");
   const std::string directory = read_at(file, directory_at, directory_size, path);
   for (std::size_t offset = 0, k = 0; k < count; ++k) {
@@ -82,7 +82,7 @@ ZipReader::ZipReader(const std::string& path) : path_(path) {
     const std::string what = path + ": entry '" + runtime::excerpt(name) + "'";
     if (flags & 1) throw InputError(what + ": encrypted");
     if (e.method != kStored && e.method != kDeflated) throw InputError(what + ": compression method " + std::to_string(e.method) + "; zhf reads stored and deflated");
-    if (e.compressed == 0xffffffffu || e.size == 0xffffffffu || e.local_header == 0xffffffffu) throw InputError(what + ": ZIP64 is not read");
+    if (e.compressed == kZip32Marker || e.size == kZip32Marker || e.local_header == kZip32Marker) throw InputError(what + ": ZIP64 is not read");
     if (e.method == kStored && e.compressed != e.size) throw InputError(what + ": stored, but its two sizes differ");
     // Deflate expands at most about 1032:1: a larger claim is refused before anything is allocated.
     if (double(e.size) > kMaxCompressionRatio * double(std::max<std::uint64_t>(e.compressed, 1)))
@@ -128,7 +128,8 @@ void write_zip(io::PendingFile& out, const std::vector<std::pair<std::string, st
   std::string directory;
   std::uint64_t offset = 0;
   for (const auto& [name, bytes] : entries) {
-    if (offset + kLocalHeaderBytes + name.size() + bytes.size() >= 0xffffffffu) throw io::OutputError("a .sog over 4 GiB (ZIP64 is not written)");
+    if (offset + kLocalHeaderBytes + name.size() + bytes.size() >= kZip32Marker)
+      throw io::OutputError("a .sog over 4 GiB (ZIP64 is not written)");
     const std::uint32_t crc = std::uint32_t(crc32(0, reinterpret_cast<const Bytef*>(bytes.data()), uInt(bytes.size())));
     std::string header;
     put32(header, kLocalHeader);

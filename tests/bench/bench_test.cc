@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "test_support.h"
+#include "test_tolerances.h"
 #include "zhf/codegen/kernels.h"
 #include "zhf/runtime/table_io.h"
 #include "zhf/tolerances/tolerances.h"

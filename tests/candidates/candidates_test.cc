@@ -6,6 +6,7 @@
 
 #include "zhf/candidates/candidates.h"
 #include "test_support.h"
+#include "test_tolerances.h"
 #include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/slow_reference.h"
 

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "test_support.h"
+#include "test_tolerances.h"
 #include "zhf/frames/designs.h"
 #include "zhf/tolerances/tolerances.h"
 

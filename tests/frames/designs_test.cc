@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "test_support.h"
+#include "test_tolerances.h"
 #include "zhf/frames/designs.h"
 #include "zhf/frames/frame.h"
 #include "zhf/frames/limits.h"

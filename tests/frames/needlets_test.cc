@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "test_support.h"
+#include "test_tolerances.h"
 
 #include "zhf/frames/limits.h"
 #include "zhf/frames/needlets.h"

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "test_support.h"
+#include "test_tolerances.h"
 #include "zhf/frames/projection.h"
 #include "zhf/io/hdr.h"
 #include "zhf/runtime/sh_eval.h"

@@ -9,6 +9,7 @@
 #include "zhf/frames/prt.h"
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/tolerances/tolerances.h"
+#include "test_tolerances.h"
 
 namespace zhf::frames {
 namespace {

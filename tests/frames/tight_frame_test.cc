@@ -11,6 +11,7 @@
 #include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
+#include "test_tolerances.h"
 
 namespace zhf::frames {
 namespace {

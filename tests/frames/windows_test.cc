@@ -12,6 +12,7 @@
 #include "zhf/frames/windows.h"
 #include "zhf/runtime/conventions.h"
 #include "zhf/tolerances/tolerances.h"
+#include "test_tolerances.h"
 
 namespace zhf::frames {
 namespace {

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "test_support.h"
+#include "test_tolerances.h"
 #include "zhf/healpix/fits.h"
 #include "zhf/healpix/maps.h"
 #include "zhf/runtime/sh_eval.h"

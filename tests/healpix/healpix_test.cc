@@ -10,6 +10,7 @@
 #include <random>
 
 #include "test_support.h"
+#include "test_tolerances.h"
 #include "zhf/healpix/fits.h"
 #include "zhf/healpix/maps.h"
 #include "zhf/io/errors.h"

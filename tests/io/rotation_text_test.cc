@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "test_support.h"
+#include "test_tolerances.h"
 
 #include "zhf/io/errors.h"
 #include "zhf/io/rotation_text.h"

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "test_support.h"
+#include "test_tolerances.h"
 #include "zhf/optimizer/amplification.h"
 #include "zhf/optimizer/exhaustive.h"
 #include "zhf/optimizer/genetic.h"

@@ -16,6 +16,7 @@
 
 #include "dispatch_paths.h"
 #include "test_support.h"
+#include "test_tolerances.h"
 #include "zhf/dispatch/rotator.h"
 #include "zhf/runtime/limits.h"
 #include "zhf/runtime/pack.h"

@@ -19,6 +19,7 @@
 #include "zhf/sh/random.h"
 #include "zhf/sh/rotation_matrix.h"
 #include "zhf_kernels.h"
+#include "test_tolerances.h"
 
 namespace zhf {
 namespace {

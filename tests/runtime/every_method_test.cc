@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "test_support.h"
+#include "test_tolerances.h"
 #include "zhf/runtime/lanes.h"
 #include "zhf/runtime/limits.h"
 #include "zhf/runtime/rotator.h"

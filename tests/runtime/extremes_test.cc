@@ -13,6 +13,7 @@
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/rotation_matrix.h"
 #include "zhf_kernels.h"
+#include "test_tolerances.h"
 
 namespace zhf {
 namespace {

@@ -10,6 +10,7 @@
 #include "zhf/sh/random.h"
 #include "zhf/sh/reference_rotation.h"
 #include "zhf/sh/slow_reference.h"
+#include "test_tolerances.h"
 
 // Gaunt coefficients (runtime/gaunt.h, Wigner 3j closed form) against an independent path: a
 // product quadrature (Gauss-Legendre in z x uniform phi, exact for degree 3(N-1)) of the slow

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "test_support.h"
+#include "test_tolerances.h"
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/random.h"

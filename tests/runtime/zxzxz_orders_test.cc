@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "test_support.h"
+#include "test_tolerances.h"
 #include "zhf/runtime/band_recurrence.h"
 #include "zhf/runtime/band_rows.h"
 #include "zhf/runtime/lanes.h"

@@ -7,6 +7,7 @@
 #include "zhf/tolerances/tolerances.h"
 #include "zhf/sh/legendre.h"
 #include "zhf/sh/slow_reference.h"
+#include "test_tolerances.h"
 
 namespace zhf::sh {
 namespace {

@@ -20,6 +20,7 @@
 #include <zlib.h>
 
 #include "test_support.h"
+#include "test_tolerances.h"
 #include "zhf/io/ply.h"
 #include "zhf/runtime/rotation.h"
 #include "zhf/sh/reference_rotation.h"

@@ -23,6 +23,7 @@
 #include "sh_bases.h"
 #include "spz_layout.h"
 #include "test_support.h"
+#include "test_tolerances.h"
 #include "zhf/io/ply.h"
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/sh_eval.h"

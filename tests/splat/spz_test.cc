@@ -21,6 +21,7 @@
 
 #include "spz_layout.h"
 #include "test_support.h"
+#include "test_tolerances.h"
 #include "zhf/io/ply.h"
 #include "zhf/runtime/rotation.h"
 #include "zhf/sh/random.h"

@@ -36,7 +36,4 @@ struct FrameBounds {
 // Throws std::invalid_argument for an empty set or a band range outside 0..frames::kMaxFrameBand.
 FrameBounds frame_bounds(const std::vector<Point>& directions, int lmin, int lmax);
 
-// The Gram matrix of the lobes, row-major M x M.
-std::vector<double> gram_matrix(const std::vector<Point>& directions, int lmin, int lmax);
-
 }  // namespace zhf::frames

@@ -28,6 +28,8 @@ inline constexpr int kMaxTightFrameOrder = 32;
 inline constexpr double kMinDilation = 1.05, kMaxDilation = 64;
 inline constexpr int kMaxNeedletBand = 4096;
 inline constexpr int kMaxNeedletFrameBand = 63;
+// zhf needlets tables: the table sizes one run compares.
+inline constexpr std::size_t kMaxNeedletTableSizes = 16;
 inline constexpr int kMinNeedletTableSize = 3, kMaxNeedletTableSize = 1 << 20;
 inline constexpr int kMaxProfileBand = 1023;
 // The levels zhf needlets profile and a window's localisation look at, and the equatorial cut of

@@ -26,6 +26,8 @@ inline constexpr std::size_t kMaxPlyHeaderBytes = std::size_t(64) << 10;
 inline constexpr std::size_t kMaxPlyProperties = 1024;
 inline constexpr std::size_t kMaxPlyElements = 8;
 inline constexpr std::uint64_t kMaxPlyVertices = std::uint64_t(1) << 31;
+// An element's count in the header, in digits: read before it is converted, so no count wraps.
+inline constexpr std::size_t kMaxPlyCountDigits = 10;
 inline constexpr std::size_t kMaxPlyAsciiLine = 64 << 10;
 // Radiance .hdr images: file and header size, width and height, pixels.
 inline constexpr std::size_t kMaxHdrBytes = std::size_t(256) << 20;

@@ -1,5 +1,5 @@
-// Where zhf's own data lives: the checked-in lobe tables and kernels (generated/), the runtime's
-// headers (the lanes kernels verify compiles), and the benchmark's extra tables. One place knows,
+// Where zhf's own data lives: the checked-in lobe tables and kernels (generated/) and the runtime's
+// headers (the lanes kernels verify compiles). One place knows,
 // so the CLI, the benchmarks and the tests all find the same files.
 #pragma once
 
@@ -10,14 +10,13 @@
 namespace zhf::pipeline {
 
 struct Project {
-  std::string root;             // holds generated/ and bench/tables
+  std::string root;             // holds generated/
   std::string runtime_include;  // holds zhf/runtime/*.h
 
   std::string generated() const { return root + "/generated"; }
   std::string lobes() const { return root + "/generated/lobes"; }
   std::string paths() const { return root + "/generated/paths"; }
   std::string designs() const { return root + "/generated/designs"; }
-  std::string bench_tables() const { return root + "/bench/tables"; }
   // The naga-wasm package scripts/setup.sh installs into a checkout's tools/node (verify turns
   // WGSL into SPIR-V with it): root's when it has one, else the source tree's.
   std::string naga_wasm() const;

@@ -32,4 +32,8 @@ struct EnergyReport {
 };
 EnergyReport analyze_energy(const std::vector<Eigen::VectorXd>& signals, double tolerance);
 
+// The relative L2 error within which a band limit or a zonal fit counts as found when the caller
+// names none (zhf analyze --tolerance, zhf.analyze): a goal the user may change.
+inline constexpr double kDefaultZonalFit = 1e-3;  // an input, not a tolerance
+
 }  // namespace zhf::sh

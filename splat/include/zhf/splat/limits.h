@@ -19,12 +19,20 @@ inline constexpr double kMaxCompressionRatio = 1100;
 // A .glb scene's JSON chunk (a splat file's is a few kilobytes; whole glTF scenes are larger);
 // its chunks, and its meshes, primitives, nodes, accessors, views and buffers (each).
 inline constexpr std::size_t kMaxGlbJsonBytes = std::size_t(16) << 20;
+// Its nesting depth and values (a splat scene's glTF is a few levels and hundreds of values).
+inline constexpr int kMaxGlbJsonDepth = 32;
+inline constexpr std::size_t kMaxGlbJsonValues = std::size_t(1) << 20;
 inline constexpr int kMaxGlbChunks = 16;
 inline constexpr int kMaxGlbObjects = 1 << 16;
 // A scene's SH degree: 0..4, as .ply (72 f_rest) and .spz version 4 carry it; each channel's
 // coefficients above band 0.
 inline constexpr int kMaxSplatShDegree = 4;
 inline constexpr int kMaxRestPerChannel = (kMaxSplatShDegree + 1) * (kMaxSplatShDegree + 1) - 1;
+// A .spz position is 24-bit signed fixed point: at most 23 bits after the point.
+inline constexpr int kMaxSpzFractionalBits = 23;
+// A ZIP archive without ZIP64 (a .sog as written): offsets and sizes below 2^32 - 1, the value
+// that marks a ZIP64 record.
+inline constexpr std::uint64_t kZip32Marker = 0xffffffffu;
 // A .spz file's extension records (the reference library's are a few bytes each).
 inline constexpr std::size_t kMaxSpzExtensionBytes = std::size_t(1) << 20;
 inline constexpr int kMaxSpzExtensionRecords = 64;

@@ -41,7 +41,6 @@ enum class FileFormat { kPly, kCompressedPly, kSplat, kSpz, kGlb, kSog };
 
 // "ply", "compressed-ply", "splat", "spz", "glb", "sog", or false.
 bool parse_file_format(const std::string& name, FileFormat& format);
-const char* file_format_name(FileFormat format);
 // ".ply", ".compressed.ply", ".splat", ".spz", ".glb", ".sog".
 const char* file_format_extension(FileFormat format);
 // "ply, compressed-ply, splat, spz, glb or sog", for messages.

@@ -1,7 +1,8 @@
-// zhf's named tolerances above the runtime, each with where it comes from: the checks of verify,
-// the benchmarks' accuracy columns and the tests, and the stopping rules and zero tests of the
-// numerical algorithms in sh/, candidates/, optimizer/, frames/, codegen/ and io/. With the
-// runtime's own (runtime/tolerances.h, brought in below) this is zhf's one tolerance table:
+// zhf's named tolerances above the runtime, each with where it comes from: the checks of verify and
+// the benchmarks' accuracy columns, the accuracy the libraries above the runtime state, and the
+// stopping rules and zero tests of the numerical algorithms in sh/, candidates/, optimizer/,
+// frames/ and codegen/. With the runtime's own (runtime/tolerances.h, brought in below) and the
+// tests' (tests/support/test_tolerances.h) this is zhf's one tolerance table:
 // scripts/check_one_place.py fails the tests on a tolerance literal anywhere else. A tolerance is
 // never loosened to make a check pass without finding out why it failed.
 //
@@ -20,7 +21,7 @@ using namespace runtime::tolerance;
 // exact 0.
 inline constexpr double kZeroRelative = 1e-10;
 
-// ---- Rotation kernels: the stage choice's margins and the tests' inputs ----------------------
+// ---- Rotation kernels: the stage choice's margins ---------------------------------------------
 // Emitted shading (a rotation integrated against a unit-norm transfer vector in one kernel): the rotated
 // vector's error, at most float_rotation per coefficient, dotted with t: |e . t| <= |e| <= N max|e|.
 inline double float_shading(int order, double worst_condition, bool lobe_stage_in_double) {
@@ -32,18 +33,6 @@ inline double float_shading(int order, double worst_condition, bool lobe_stage_i
 // to 1.13. The stage chosen per order is the cheapest whose model times its margin meets 1e-6.
 inline constexpr double kLanesFloatMargin = 2.5;
 inline constexpr double kLanesLobesInDoubleMargin = 1.25;
-// The worst unit input rather than random ones: kernels whose lobe stage runs (partly) in float
-// reach 1.4e-6 (scalar, order 4) and 1.75e-6 (lanes, order 6) over 20000 rotations, where random
-// unit vectors stay below 7.5e-7 (a random f meets the worst error row at a cosine of about 1/N).
-// 1.4x the largest measured.
-inline constexpr double kFloatLobeStageWorstUnitInput = 2.5e-6;
-// The worst unit input against a method's random-input tolerance: the largest row norm of the
-// error matrix, which a random unit f sees about N/3 times smaller; measured up to 1.75x.
-inline constexpr double kWorstUnitInputFactor = 3;
-// A float kernel chained 1000 times by small steps: the near-identity steps repeat one rounding
-// pattern, so the drift grows faster than a random walk (measured 2e-4; a double-stepped chain
-// through the float kernel drifts 2.9e-6). 2.5x the measured.
-inline constexpr double kFloatChain = 5e-4;
 
 // ---- Building blocks of the emitted kernels ---------------------------------------------------
 // sh_eval in float: l-1 recurrence steps of relative error ~4 eps on |y| <= 1.07 (order 8) bound
@@ -73,100 +62,20 @@ inline double hlsl_ulps(int order, double worst_condition) {
 inline constexpr double kSumShaderUlps = 64;
 
 // ---- Spherical designs (frames/) -------------------------------------------------------------
-// A design's equal-weight rule against the closed-form integrals of monomials of degree <= t, in
-// long double: the points carry double rounding (1e-16) and the design residual (<= 1e-14).
-inline constexpr double kDesignQuadrature = 1e-14;
-// The needlet window: psi's integrals against a long-double tanh-sinh rule, closed forms
-// (psi(0) = 1/2, psi(u) + psi(-u) = 1) and the partition of unity sum_j b^2(l / B^j) = 1, each a
-// few roundings of values below 1 (measured at most 2.3e-15, B = 1.2).
-inline constexpr double kNeedletWindow = 1e-14;
 // A Mexican needlet window is taken as zero where b^2 is below this fraction of its peak
 // (its Gaussian tail: the sum over levels changes by less than that).
 inline constexpr double kWindowNegligible = 1e-20;
-// The spline step against Simpson's rule on the cubic B-spline (2000 panels a piece: the
-// rule's error on a quartic is below 1e-16) and the Mexican square sums against a plain sum
-// over levels (a few roundings of ~20 terms, relative).
-inline constexpr double kSplineStepAgainstSimpson = 1e-13;
-inline constexpr double kWindowSquareSum = 1e-14;
-// A kernel's energy outside a cap against the midpoint rule in the angle on 200 000 panels:
-// the rule's error, h^2 / 24 times the integrand's second derivative (~band^2), relative.
-inline constexpr double kCapEnergyAgainstMidpoint = 1e-6;
-// The needlet frame on unit-norm signals of bands <= 16: reconstruction, Parseval, sampled analysis,
-// kernels and rotation, each sums of ~10^3 terms of size <= 1 over a cubature whose nodes carry
-// double rounding (the bound for exact reconstruction).
-inline constexpr double kNeedletFrame = 1e-12;
-// The tight-frame rotation in double against the reference band matrices, orders <= 16: sums of
-// M <= 500 lobe terms of size <= 1 for unit inputs, condition exactly 1.
-inline constexpr double kTightFrameRotation = 1e-13;
 // An emitted needlet evaluator (C++, GLSL, HLSL in float) against its CPU mirror (the same tables
 // read in double), relative to the sum of the terms' magnitudes: float rounding of the nodes, the
 // tables, the interpolation weight (u ~ table size, so its ulp grows with the table) and a sum of
 // a few hundred terms.
 inline constexpr double kNeedletLutFloat = 1e-5;
-// Projection of a function of bands <= 7 (coefficients ~1) on nodes exact for it (designs, Gauss
-// rules): sums of up to ~10^3 weighted samples of size <= 10.
-inline constexpr double kExactProjection = 1e-12;
 
-// ---- Reference math (tests of sh/ and candidates/) ----------------------------------------------
-// What is exact in exact arithmetic and rounds once or twice in double (the identity rotation's
-// band matrices, a recurrence at a pole).
-inline constexpr double kExactToRounding = 1e-15;
-// Fast double SH against the long-double closed form: both exact to rounding for l <= 12.
-inline constexpr double kDoubleVsClosedForm = 1e-13;
-// The two long-double slow paths (closed form, unnormalised recurrence), normalised, for l <= 12.
-inline constexpr double kSlowPathsAgreement = 1e-14;
-// The emitted sh_eval (the recurrence's coefficients folded into polynomials) against eval_sh.
-inline constexpr double kGeneratedVsRecurrence = 1e-14;
-// Float SH against double SH at the same (float) direction: coefficients rounded to float and
-// ~3l recurrence steps.
-inline constexpr double kFloatVsClosedForm = 2e-6;
-// Orthonormality by an exact product quadrature at N = 16.
-inline constexpr double kOrthonormality = 1e-13;
-// N = 64 against the long-double unnormalised recurrence, relative to the band's largest value
-// at that point (absolute error near a root of P_l^m is what a recurrence offers); measured
-// 1.6e-13.
-inline constexpr double kOrder64Relative = 1e-12;
-// The two double reference rotations (recurrence and quadrature projection): ~1e-15 per entry at
-// N = 8; at N = 32 the recurrence accumulates rounding over 31 steps (measured 1.9e-14).
-inline constexpr double kReferenceAgreement = 1e-13;
+// ---- Reference math ---------------------------------------------------------------------------
 // g(w) = f(R^T w) pointwise at N = 8, unit-norm f.
 inline constexpr double kPointwise = 1e-12;
-// A polished Legendre root, or a candidate theta from one, leaves |normalised P_l^m| at the
-// rounding floor of one evaluation.
-inline constexpr double kRootResidual = 1e-13;
-// Zeros of A_l counted by the search, recomputed in long double, sit at rounding level.
-inline constexpr double kZeroInLongDouble = 1e-13;
-// The axis and weights zhf analyze finds for a zonal function (and the function rebuilt from
-// them): measured to about 1e-15.
-inline constexpr double kZonalFit = 1e-9;
 // Two zonal axes are one axis when |a x b| is below this (a and -a are the same axis).
 inline constexpr double kSameAxis = 1e-6;
-
-// ---- Goals and defaults that reports and options state ---------------------------------------
-// zhf analyze / zhf.analyze: the relative L2 error within which a band limit or a zonal fit counts
-// as found, by default.
-inline constexpr double kDefaultZonalFit = 1e-3;
-// zhf bench: the pruning thresholds of its "pruned" rows (entries of A_l below this times the
-// band's largest dropped), and the error at which an exact result is drawn on a log axis (below
-// every measured error).
-inline constexpr double kBenchPruneSmall = 1e-3, kBenchPruneLarge = 1e-2;
-inline constexpr double kPlotErrorFloor = 1e-17;
-
-// ---- Checks the tests make that no section above covers -----------------------------------------
-// A quadratic look-up table reproduces a quadratic exactly, up to rounding of a few operations.
-inline constexpr double kQuadraticTableExact = 1e-14;
-// Cap energies of needlet kernels against a midpoint rule in theta (its own error, ~1e-5).
-inline constexpr double kCapEnergyMidpoint = 1e-4;
-// A cap's zonal coefficients against a 100000-step midpoint rule in cos theta (error ~h^2).
-inline constexpr double kCapCoefficientMidpoint = 1e-9;
-// A constant sky projected from float pixels: the pixel sum's float rounding.
-inline constexpr double kFloatProjection = 1e-6;
-// Float kernels on inputs scaled by 1e30 and 1e-30, relative to the scale: the float target with
-// the scaling's own rounding on top (no overflow, no subnormals).
-inline constexpr double kFloatExtremeScale = 2e-5;
-// Gaunt coefficients' symmetry in their three indices, and y_0^0 coupling as a delta: one rounding
-// of values below 0.6.
-inline constexpr double kGauntSymmetry = 1e-16;
 
 // ---- Frames, designs, products -------------------------------------------------------------------
 // A design's accepted residual: a few roundings of sums of M terms of size <= 1.
@@ -222,31 +131,8 @@ inline constexpr double kShortestDirection = 1e-150;
 // the rounding of its value (64 eps) is done.
 inline constexpr double kKronrodRelative = 1e-15;
 inline constexpr double kKronrodRounding = 64 * 2.220446049250313e-16;
-// Needlet window weights against an independent long-double tanh-sinh quadrature, relative: at
-// most 4.5e-13 measured for weights from 1e-4 down to 6e-62 (B = 1.2..2.4).
-inline constexpr double kNeedletWindowRelative = 1e-12;
-// Radiance RGBE: a pixel whose largest channel is below this is stored black (the format's rule).
-inline constexpr float kRgbeBlack = 1e-32f;
-
-// ---- Precomputed radiance transfer ------------------------------------------------------------
-// Needlet shading with every coefficient kept against the SH sum it equals (the frame is tight):
-// difference over the exact shading's RMS, measured at most 1.6e-14 (bands 0..31, 4667 needlets).
-inline constexpr double kParsevalShading = 1e-12;
-// The exact shading (frames/prt.h: caps integrated in closed-form theta intervals) against closed
-// forms (open ground, the sphere straight overhead, the corner's Lambert polygon) and against
-// itself at half the step: absolute, on shadings of order 1 (relative to max(1, |shading|)).
-inline constexpr double kPrtExactReference = 1e-10;
-
-// ---- Splat scenes ----------------------------------------------------------------------------
-// zhf splat's .ply values are float32: each is rounded to float once on the way in and once on
-// the way out, so a transformed value is within a few float steps of its double reference.
-inline constexpr double kSplatFloatStorage = 4 * kFloatEpsilon;
 
 // ---- HEALPix maps ----------------------------------------------------------------------------
-// A band-limited map (bands <= Nside / 2) synthesised on HEALPix pixels and projected back with 3
-// Jacobi steps: max coefficient error, measured 2.3e-10 at Nside 32, bands 0..16 (the pixel
-// quadrature alone 5.5e-4, one step 4.2e-6).
-inline constexpr double kHealpixProjection = 1e-9;
 // A pixel within this relative distance of UNSEEN (-1.6375e30) is UNSEEN: a float file stores the
 // marker rounded (6e-8 relative); healpy's own test is as loose.
 inline constexpr double kHealpixUnseenRelative = 1e-5;
