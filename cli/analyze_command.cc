@@ -20,7 +20,7 @@ namespace {
 
 struct AnalyzeOptions {
   std::string coeffs;
-  std::string tolerance = runtime::format_number(zhf::tolerance::kDefaultZonalFit);
+  std::string tolerance = runtime::format_number(sh::kDefaultZonalFit);
   int channels = 0;
   std::string json;
   std::string scene_out;
@@ -124,15 +124,14 @@ int run_analyze(const AnalyzeOptions& options) {
     scene.signals.push_back(signal);
     scene_text = io::json_text(scene.to_json());
   }
-  io::throw_if_interrupted();
-  if (!o.json.empty()) {
-    io::write_file_atomically(o.json, json_text);
-    std::printf("wrote %s\n", o.json.c_str());
-  }
-  if (!o.scene_out.empty()) {
-    io::write_file_atomically(o.scene_out, scene_text);
+  // The report and the scene spec are one result: both are written, or neither.
+  io::PendingFiles outputs;
+  if (!o.json.empty()) outputs.add(o.json).write(json_text);
+  if (!o.scene_out.empty()) outputs.add(o.scene_out).write(scene_text);
+  outputs.commit();
+  if (!o.json.empty()) std::printf("wrote %s\n", o.json.c_str());
+  if (!o.scene_out.empty())
     std::printf("wrote %s (a scene spec for zhf generate --scene; edit targets and variants to taste)\n", o.scene_out.c_str());
-  }
   return kExitOk;
 }
 
@@ -142,7 +141,7 @@ void add_analyze_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<AnalyzeOptions>();
   CLI::App* c = app.add_subcommand("analyze", "Per-band energy, the order the data needs, known-zero bands, zonal axis");
   c->add_option("--coeffs", o->coeffs, "SH coefficient vectors: JSON array or text, one vector per line")->required();
-  c->add_option("--tolerance", o->tolerance, "Relative L2 error allowed, " + runtime::format_number(sh::kMinZonalTolerance) + "..1 (default " + runtime::format_number(zhf::tolerance::kDefaultZonalFit) + "); also the zonal residual bound");
+  c->add_option("--tolerance", o->tolerance, "Relative L2 error allowed, " + runtime::format_number(sh::kMinZonalTolerance) + "..1 (default " + runtime::format_number(sh::kDefaultZonalFit) + "); also the zonal residual bound");
   c->add_option("--channels", o->channels, "Channels per vector (text: numbers per line split evenly; JSON: checked)")
       ->check(CLI::Range(1, io::kMaxChannels));
   keep_old_spelling(c, c->add_option("--out", o->json, "Write the analysis as JSON here"), "--json", o->json);

@@ -29,7 +29,10 @@ int redraw(const BenchOptions& o) {
   io::PendingFile check(o.plot);
   bench::check_plot_targets(o.plot);
   const bench::SuiteReport report = bench::read_report(o.from);
-  std::printf("%s\n", bench::write_plots(report, o.plot).c_str());
+  io::PendingFiles outputs;
+  const std::string plots = bench::stage_plots(report, o.plot, outputs);
+  outputs.commit();
+  std::printf("%s\n", plots.c_str());
   return kExitOk;
 }
 
@@ -57,13 +60,12 @@ int run_bench(const BenchOptions& o) {
     if (k == k) std::printf(" %s %.2f;", method, k);
   }
   std::printf("\n");
-  // The plots first: if gnuplot fails, nothing is written.
-  const std::string plots = o.plot.empty() ? "" : bench::write_plots(report, o.plot);
-  if (!o.json.empty()) {
-    io::throw_if_interrupted();
-    io::write_file_atomically(o.json, io::json_text(report.to_json()));
-    std::printf("wrote %s\n", o.json.c_str());
-  }
+  // The report and its plots are one result: if gnuplot fails, or a signal comes, nothing is written.
+  io::PendingFiles outputs;
+  const std::string plots = o.plot.empty() ? "" : bench::stage_plots(report, o.plot, outputs);
+  if (!o.json.empty()) outputs.add(o.json).write(io::json_text(report.to_json()));
+  outputs.commit();
+  if (!o.json.empty()) std::printf("wrote %s\n", o.json.c_str());
   if (!plots.empty()) std::printf("%s\n", plots.c_str());
   return kExitOk;
 }

@@ -124,7 +124,8 @@ int main(int argc, char** argv) {
     }
     return code;
   } catch (const zhf::io::Interrupted&) {
-    std::cerr << "zhf: interrupted; previous outputs are as they were\n";
+    // Which outputs changed: none, unless a commit the interrupt could not stop (or asked for) ran.
+    std::cerr << zhf::io::interrupted_message() << "\n";
     return zhf::io::interrupted_exit_code();
   } catch (const UsageError& e) {
     return fail(kExitUsage, e.what());

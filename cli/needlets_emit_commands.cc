@@ -28,9 +28,10 @@ int run_needlet_emit(const NeedletOptions& o, const std::string& command) {
   const int lmax = top_band(o, 1, frames::kMaxNeedletFrameBand);
   const codegen::NeedletLutOptions lut = lut_options(o, command);
   const codegen::Language language = language_option("--lang", o.lang);
-  io::PendingFile out(o.out);
-  std::unique_ptr<io::PendingFile> data;
-  if (!o.data.empty()) data = std::make_unique<io::PendingFile>(o.data);
+  // The evaluator and its data are one result: both are written, or neither.
+  io::PendingFiles outputs;
+  io::PendingFile& out = outputs.add(o.out);
+  io::PendingFile* data = o.data.empty() ? nullptr : &outputs.add(o.data);
   const frames::NeedletFrame frame = needlet_frame(dilation, lmax, o.gauss);
   const codegen::EmittedFile file = codegen::emit_needlet_lut(frame, language, lut);
   out.write(file.text);
@@ -43,9 +44,8 @@ int run_needlet_emit(const NeedletOptions& o, const std::string& command) {
       for (int b = 0; b < 4; ++b) bytes[4 * i + b] = static_cast<char>((word >> (8 * b)) & 0xff);
     }
     data->write(bytes);
-    data->commit();
   }
-  out.commit();
+  outputs.commit();
   std::printf("%s: %s, %d multiplies and %d adds per evaluation\n", o.out.c_str(), file.functions[0].name.c_str(),
               file.functions[0].ops.multiplies, file.functions[0].ops.adds);
   return kExitOk;

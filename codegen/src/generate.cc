@@ -15,6 +15,7 @@
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/io/lobe_table_writer.h"
+#include "zhf/io/signals.h"
 #include "zhf/codegen/limits.h"
 #include "zhf/runtime/limits.h"
 #include "zhf/runtime/table_io.h"
@@ -148,11 +149,14 @@ void commit(const fs::path& out, const Tree& tree, const std::atomic<bool>* stop
   name.push_back('\0');
   if (!mkdtemp(name.data())) throw io::OutputError(out.string() + ": cannot create a staging directory: " + std::strerror(errno));
   const fs::path staging(name.data());
+  // Known to the watchdog, which removes it if it has to end the run.
+  io::register_temporary(staging.string());
   struct Cleanup {
     fs::path path;
     ~Cleanup() {
       std::error_code ignored;
       fs::remove_all(path, ignored);
+      io::unregister_temporary(path.string());
     }
   } cleanup{staging};
   for (const auto& [relative, text] : tree.files) {
@@ -168,7 +172,9 @@ void commit(const fs::path& out, const Tree& tree, const std::atomic<bool>* stop
     return;
   }
   out_guard.created = false;
-  // Commit: every file is complete in staging; each rename replaces one old file whole.
+  // Commit: every file is complete in staging; each rename replaces one old file whole, and an
+  // interrupt waits for the last (the tree is all old or all new).
+  const io::CommitSection section;
   for (const auto& [relative, text] : tree.files) {
     fs::create_directories((out / relative).parent_path(), ec);
     fs::rename(staging / relative, out / relative, ec);

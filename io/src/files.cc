@@ -122,16 +122,27 @@ void PendingFile::write_at(std::uint64_t offset, const char* data, std::size_t s
 void PendingFile::commit(OnInterrupt on_interrupt) {
   // A signal that came after the work's last check leaves the old file.
   if (on_interrupt == OnInterrupt::kKeepThePrevious) throw_if_interrupted();
+  flush();
+  if (written_through()) return move_into_place();  // may wait for a reader: the watchdog may end it
+  const CommitSection section;
+  move_into_place();
+}
+
+void PendingFile::flush() {
   // fsync flushes the file whoever wrote it: zhf through fd_, or another program by name.
   const bool flushed = fsync(fd_) == 0;
   const bool closed = ::close(fd_) == 0;
   fd_ = -1;
   if (!flushed || !closed) throw OutputError(destination_ + ": flush failed: " + error_text());
+}
+
+void PendingFile::move_into_place() {
   if (private_dir_.empty()) {
     if (std::rename(temp_.c_str(), destination_.c_str()) != 0)
       throw OutputError(destination_ + ": cannot move the new file into place: " + error_text());
     committed_ = true;
     unregister_temporary(temp_);  // it is the output now
+    note_output_written(destination_);
     return;
   }
   // A FIFO or device: its bytes go through it; it stays what it is.
@@ -146,6 +157,22 @@ void PendingFile::commit(OnInterrupt on_interrupt) {
   }
   ::close(out);
   committed_ = true;
+  note_output_written(destination_);
+}
+
+PendingFile& PendingFiles::add(const std::string& destination) {
+  files_.push_back(std::make_unique<PendingFile>(destination));
+  return *files_.back();
+}
+
+void PendingFiles::commit() {
+  throw_if_interrupted();
+  for (const auto& file : files_) file->flush();
+  for (const auto& file : files_)
+    if (file->written_through()) file->move_into_place();
+  const CommitSection section;
+  for (const auto& file : files_)
+    if (!file->written_through()) file->move_into_place();
 }
 
 void write_file_atomically(const std::string& path, const std::string& content, OnInterrupt on_interrupt) {

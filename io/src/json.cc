@@ -1,7 +1,9 @@
 #include "zhf/io/json.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
+#include <vector>
 #include <utility>
 
 #include "zhf/io/errors.h"
@@ -37,40 +39,70 @@ std::string parse_error_text(const std::string& what) {
   return text.substr(0, last) + " (after '" + excerpt(token) + "')" + rest;
 }
 
-// The limits, duplicate keys and NUL characters, checked as nlohmann's parser reports each
-// event: a refusal throws out of the parse, so nothing beyond the limit is built.
-class Checker {
+// The document built from nlohmann's SAX events, with the limits, duplicate keys and NUL
+// characters checked as each arrives: a refusal throws out of the parse, so nothing beyond a
+// limit is built. It runs in time O(n log k) for n values and at most k keys an object: members
+// are appended in file order without the linear search of nlohmann's ordered_map (whose emplace
+// made the parse quadratic in the keys of an object), and each object's keys are sorted once when
+// it closes to find a duplicate.
+class Builder {
  public:
-  Checker(const std::string& source, const Limits& limits) : source_(source), limits_(limits) {}
+  Builder(const std::string& source, const Limits& limits) : source_(source), limits_(limits) {}
 
-  bool operator()(int depth, Json::parse_event_t event, Json& parsed) {
-    switch (event) {
-      case Json::parse_event_t::object_start:
-      case Json::parse_event_t::array_start:
-        if (depth >= limits_.max_depth) fail("nested deeper than " + std::to_string(limits_.max_depth) + " levels");
-        count();
-        if (event == Json::parse_event_t::object_start) keys_.emplace_back();
-        break;
-      case Json::parse_event_t::object_end: keys_.pop_back(); break;
-      case Json::parse_event_t::array_end: break;
-      case Json::parse_event_t::key: {
-        const std::string& key = parsed.get_ref<const std::string&>();
-        check_string(key);
-        std::vector<std::string>& seen = keys_.back();
-        for (const std::string& k : seen)
-          if (k == key) fail("the key '" + excerpt(key) + "' appears twice");
-        seen.push_back(key);
-        break;
-      }
-      case Json::parse_event_t::value:
-        count();
-        if (parsed.is_string()) check_string(parsed.get_ref<const std::string&>());
-        break;
-    }
+  Json take() { return std::move(root_); }
+
+  bool null() { return add(Json(nullptr)); }
+  bool boolean(bool value) { return add(Json(value)); }
+  bool number_integer(Json::number_integer_t value) { return add(Json(value)); }
+  bool number_unsigned(Json::number_unsigned_t value) { return add(Json(value)); }
+  bool number_float(Json::number_float_t value, const std::string&) { return add(Json(value)); }
+  bool string(std::string& value) {
+    check_string(value);
+    return add(Json(std::move(value)));
+  }
+  bool binary(Json::binary_t&) { fail("binary data"); }
+  bool start_object(std::size_t) { return open(Json::object()); }
+  bool start_array(std::size_t) { return open(Json::array()); }
+  bool key(std::string& key) {
+    check_string(key);
+    if (++open_.back().keys > limits_.max_object_keys)
+      fail("an object with more than " + std::to_string(limits_.max_object_keys) + " keys");
+    key_ = std::move(key);
     return true;
+  }
+  bool end_array() {
+    open_.pop_back();
+    return true;
+  }
+  bool end_object() {
+    const Json::object_t& members = open_.back().value->get_ref<const Json::object_t&>();
+    std::vector<const std::string*> keys;
+    keys.reserve(members.size());
+    for (const auto& member : members) keys.push_back(&member.first);
+    std::sort(keys.begin(), keys.end(), [](const std::string* a, const std::string* b) { return *a < *b; });
+    for (std::size_t k = 1; k < keys.size(); ++k)
+      if (*keys[k] == *keys[k - 1]) fail("the key '" + excerpt(*keys[k]) + "' appears twice");
+    open_.pop_back();
+    return true;
+  }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception& e) {
+    // The one range error of parsing: a number beyond a double ("number overflow parsing '1e400'").
+    const std::string what = e.what();
+    if (e.id == kNumberOverflow) {
+      const std::size_t quote = what.find('\'');
+      const std::string token = quote == std::string::npos ? what : what.substr(quote + 1, what.size() - quote - 2);
+      throw InputError(source_ + ": not valid JSON: the number '" + excerpt(token) + "' is beyond the range of a double");
+    }
+    throw InputError(source_ + ": not valid JSON " + parse_error_text(what));
   }
 
  private:
+  static constexpr int kNumberOverflow = 406;  // nlohmann's out_of_range.406
+  struct Open {
+    Json* value;
+    std::size_t keys = 0;
+  };
+
   [[noreturn]] void fail(const std::string& problem) const { throw InputError(source_ + ": not valid JSON: " + problem); }
   void count() {
     if (++values_ > limits_.max_values) fail("more than " + std::to_string(limits_.max_values) + " values");
@@ -79,28 +111,50 @@ class Checker {
     if (s.size() > limits_.max_string_bytes) fail("a string longer than " + std::to_string(limits_.max_string_bytes) + " bytes");
     if (s.find('\0') != std::string::npos) fail("a NUL character (\\u0000) inside a string");
   }
+  // Puts value where the document is at: the root, the open array's end or the open object's
+  // last key. The open containers' addresses stay valid: nothing is added to a container while a
+  // child of it is open.
+  Json* place(Json&& value) {
+    count();
+    if (open_.empty()) {
+      root_ = std::move(value);
+      return &root_;
+    }
+    Json& into = *open_.back().value;
+    if (into.is_array()) {
+      Json::array_t& items = into.get_ref<Json::array_t&>();
+      items.push_back(std::move(value));
+      return &items.back();
+    }
+    auto& members = static_cast<std::vector<Json::object_t::value_type>&>(into.get_ref<Json::object_t&>());
+    members.emplace_back(std::move(key_), std::move(value));
+    return &members.back().second;
+  }
+  bool add(Json&& value) {
+    place(std::move(value));
+    return true;
+  }
+  bool open(Json&& container) {
+    if (int(open_.size()) >= limits_.max_depth) fail("nested deeper than " + std::to_string(limits_.max_depth) + " levels");
+    open_.push_back({place(std::move(container))});
+    return true;
+  }
 
   const std::string& source_;
   const Limits& limits_;
+  Json root_;
+  std::vector<Open> open_;  // the open arrays and objects, innermost last
+  std::string key_;         // the open object's key awaiting its value
   std::size_t values_ = 0;
-  std::vector<std::vector<std::string>> keys_;  // of each open object, innermost last
 };
 
 }  // namespace
 
 Json parse(std::string_view text, const std::string& source, const Limits& limits) {
   if (text.find_first_not_of(" \t\r\n") == std::string_view::npos) throw InputError(source + ": file is empty");
-  try {
-    return Json::parse(text.begin(), text.end(), Checker(source, limits));
-  } catch (const Json::parse_error& e) {
-    throw InputError(source + ": not valid JSON " + parse_error_text(e.what()));
-  } catch (const Json::out_of_range& e) {
-    // The one range error of parsing: a number beyond a double ("number overflow parsing '1e400'").
-    const std::string what = e.what();
-    const std::size_t quote = what.find('\'');
-    const std::string token = quote == std::string::npos ? what : what.substr(quote + 1, what.size() - quote - 2);
-    throw InputError(source + ": not valid JSON: the number '" + excerpt(token) + "' is beyond the range of a double");
-  }
+  Builder builder(source, limits);
+  Json::sax_parse(text.begin(), text.end(), &builder);
+  return builder.take();
 }
 
 Json read_file(const std::string& path, std::size_t max_bytes, const Limits& limits) {

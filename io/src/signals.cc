@@ -14,8 +14,10 @@
 #include <mutex>
 #include <set>
 #include <thread>
+#include <vector>
 
 #include "zhf/io/limits.h"
+#include "zhf/runtime/errors.h"
 
 
 namespace zhf::io {
@@ -28,6 +30,10 @@ struct sigaction g_previous_int, g_previous_term, g_previous_pipe;
 // atomic because the handler reads it while the guard's end closes it.
 int g_wake_reader = -1;
 std::atomic<int> g_wake_writer{-1};
+
+std::atomic<int> g_commit_sections{0};
+std::mutex g_written_mutex;
+std::vector<std::string> g_written;  // outputs committed after the interrupt
 
 std::mutex g_temporaries_mutex;
 std::set<std::string>& temporaries() {
@@ -72,13 +78,15 @@ void watch() {
     if (ready > 0 && (wake.revents & (POLLHUP | POLLERR))) return;  // the guard ended
     if (ready > 0 && (wake.revents & POLLIN) && read_byte(g_wake_reader, &byte) == 0) return;
   }
+  // A commit under way finishes first: its renames take microseconds.
+  while (g_commit_sections.load() > 0) std::this_thread::sleep_for(std::chrono::milliseconds(1));
   {
     std::lock_guard<std::mutex> lock(g_temporaries_mutex);
     std::error_code ignored;
     for (const std::string& path : temporaries()) std::filesystem::remove_all(path, ignored);
   }
-  const char message[] = "zhf: interrupted; the work in progress did not stop, ended it; previous outputs are as they were\n";
-  [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, message, sizeof message - 1);
+  const std::string message = "zhf: interrupted; the work in progress did not stop, ended it; " + interrupted_message().substr(17) + "\n";
+  [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, message.data(), message.size());
   std::_Exit(interrupted_exit_code());
 }
 
@@ -92,6 +100,28 @@ int interrupted_exit_code() { return 128 + (g_signal.load() ? g_signal.load() : 
 
 void throw_if_interrupted() {
   if (g_interrupted.load()) throw Interrupted();
+}
+
+CommitSection::CommitSection() { ++g_commit_sections; }
+CommitSection::~CommitSection() { --g_commit_sections; }
+
+void note_output_written(const std::string& path) {
+  if (!g_interrupted.load()) return;
+  std::lock_guard<std::mutex> lock(g_written_mutex);
+  g_written.push_back(path);
+}
+
+std::vector<std::string> outputs_written_after_interrupt() {
+  std::lock_guard<std::mutex> lock(g_written_mutex);
+  return g_written;
+}
+
+std::string interrupted_message() {
+  const std::vector<std::string> written = outputs_written_after_interrupt();
+  if (written.empty()) return "zhf: interrupted; previous outputs are as they were";
+  std::string names;
+  for (const std::string& path : written) names += (names.empty() ? "" : ", ") + runtime::excerpt(path, 200);
+  return "zhf: interrupted after writing " + names + "; other previous outputs are as they were";
 }
 
 void register_temporary(const std::string& path) {

@@ -280,6 +280,32 @@ TEST(Hostile, DeeplyNestedJsonIsRefusedEverywhere) {
   EXPECT_THROW(runtime::read_lobe_table(box.path("deep.json")), runtime::InputError);
 }
 
+// 16 MiB of one object's distinct keys (about a million), fed to every JSON reader the CLI has:
+// each refuses it (past the keys an object may have, or the file's size) in one line naming the
+// file, with nothing written; none parses it quadratically.
+TEST(Hostile, AMillionKeysAreRefusedEverywhere) {
+  Sandbox box;
+  std::string keys = "{";
+  for (std::size_t k = 0; keys.size() < (std::size_t(16) << 20) - 32; ++k) keys += (k ? ",\"" : "\"") + std::to_string(k) + "\":0";
+  keys += "}";
+  box.write("keys.json", keys);
+  box.write("tables/order_3.json", keys);
+  box.write("tables9/order_9.json", keys);
+  box.write("tree/manifest.json", keys);
+  std::string coeffs81 = "[[";
+  for (int i = 0; i < 81; ++i) coeffs81 += std::string(i ? ", " : "") + "0.1";
+  box.write("c9.json", coeffs81 + "]]");
+  refused("emit --table", box, {"emit", "--table", box.path("keys.json"), "--lang", "cpp", "--out", box.path("out")}, 3, "keys.json");
+  refused("rotate --tables", box, {"rotate", "--coeffs", box.path("c9.json"), "--tables", box.path("tables9"), "--zyz", "1 2 3", "--out", box.path("r.json")}, 3, "order_9.json");
+  refused("generate --tables", box, {"generate", "--tables", box.path("tables"), "--out", box.path("out")}, 3, "order_3.json");
+  refused("generate --scene", box, {"generate", "--scene", box.path("keys.json"), "--out", box.path("out")}, 3, "keys.json");
+  refused("verify --generated", box, {"verify", "--generated", box.path("tree"), "--langs", "cpp"}, 3, "manifest.json");
+  refused("analyze --coeffs", box, {"analyze", "--coeffs", box.path("keys.json")}, 3, "keys.json");
+  refused("rotate --coeffs", box, {"rotate", "--coeffs", box.path("keys.json"), "--zyz", "1 2 3", "--out", box.path("r.json")}, 3, "keys.json");
+  refused("product --lhs", box, {"product", "--lhs", box.path("keys.json"), "--rhs", box.path("c9.json"), "--out", box.path("p.json")}, 3, "keys.json");
+  refused("frame --directions", box, {"frame", "--directions", box.path("keys.json"), "--bands", "0..2"}, 3, "keys.json");
+}
+
 TEST(Hostile, WrongTablesAreRefused) {
   Sandbox box;
   std::string coeffs81 = "[[";
@@ -501,6 +527,45 @@ TEST(Hostile, SignalsToEveryThreadStillEndTheRun) {
   EXPECT_EQ(leftovers(box), "");
   ++tally()["SignalsToEveryThreadStillEndTheRun"].first;
   tally()["SignalsToEveryThreadStillEndTheRun"].second += exit == 143 && snapshot(box.dir()) == before && leftovers(box).empty();
+}
+
+// Several outputs are one result, committed together or not at all: a SIGTERM while the commit
+// waits for a reader of one output (a FIFO, written through first) leaves the other, a regular
+// file, as it was, and the one line says so. (Committed one by one, the report was replaced before
+// the FIFO was opened, and the line said it was not.)
+TEST(Hostile, ASignalBetweenTwoOutputsChangesNeither) {
+  const struct {
+    std::string what;
+    std::vector<std::string> args;
+    std::string file;
+  } runs[] = {
+      {"analyze --out --scene-out", {"analyze", "--coeffs", source_path("examples/light.json"), "--out", "report.json", "--scene-out", "out.fifo"},
+       "report.json"},
+      {"needlets emit --out --data", {"needlets", "emit", "--order", "9", "--lang", "glsl", "--out", "kernel.glsl", "--data", "out.fifo"},
+       "kernel.glsl"},
+  };
+  for (const auto& run : runs) {
+    Sandbox box;
+    box.write(run.file, "previous output\n");
+    ASSERT_EQ(mkfifo(box.path("out.fifo").c_str(), 0600), 0);
+    std::vector<std::string> args = run.args;
+    for (std::string& a : args)
+      if (a == run.file || a == "out.fifo") a = box.path(a);
+    const Snapshot before = snapshot(box.dir());
+    const test::TempDir errors_dir;
+    const std::string errors = errors_dir.string() + "/stderr.txt";
+    const int exit = interrupted_exit(box, args, SIGTERM, 2500, errors);
+    const std::string err = read_text(errors);
+    EXPECT_EQ(exit, 143) << run.what << ": " << err;
+    EXPECT_EQ(read_text(box.path(run.file)), "previous output\n") << run.what;
+    EXPECT_TRUE(snapshot(box.dir()) == before) << run.what << ": the sandbox changed";
+    EXPECT_NE(err.find("previous outputs are as they were"), std::string::npos) << run.what << ": " << err;
+    EXPECT_EQ(line_count(err), 1) << run.what << ": " << err;
+    EXPECT_EQ(leftovers(box), "") << run.what;
+    ++tally()["ASignalBetweenTwoOutputsChangesNeither"].first;
+    tally()["ASignalBetweenTwoOutputsChangesNeither"].second +=
+        exit == 143 && snapshot(box.dir()) == before && leftovers(box).empty();
+  }
 }
 
 // A signal after the work's last check, while the output is being committed: here the commit

@@ -9,6 +9,7 @@
 #include "zhf/io/errors.h"
 #include "zhf/io/json.h"
 #include "zhf/runtime/json.h"
+#include "zhf/runtime/limits.h"
 
 namespace zhf::io::json {
 namespace {
@@ -112,6 +113,44 @@ TEST(IoJson, LimitsAreCheckedWhileParsing) {
   small.max_depth = 2;
   EXPECT_NE(refusal("[[[1]]]", small).find("nested deeper than 2 levels"), std::string::npos);
   EXPECT_EQ(refusal("[[1]]", small), "");
+}
+
+// An object of count distinct keys "k0".."k<count-1>", each holding 0.
+std::string object_of_keys(std::size_t count) {
+  std::string text = "{";
+  for (std::size_t k = 0; k < count; ++k) text += (k ? ",\"k" : "\"k") + std::to_string(k) + "\":0";
+  return text + "}";
+}
+
+// Both readers bound the keys of an object (runtime::kMaxJsonObjectKeys) and find a duplicate by
+// sorting an object's keys once when it closes, so a document parses in O(n log k): an object of
+// 16 MiB of distinct keys is refused at the key past the limit, before the rest is read, and one
+// at the limit is read whole, its members in file order, a duplicate anywhere in it named.
+TEST(IoJson, KeysPerObjectAreBoundedAndDuplicatesFoundWithoutAQuadraticSearch) {
+  const std::size_t most = runtime::kMaxJsonObjectKeys;
+  const std::string keys = "an object with more than " + std::to_string(most) + " keys";
+  std::string huge = "{";
+  for (std::size_t k = 0; huge.size() < (std::size_t(16) << 20) - 32; ++k) huge += (k ? ",\"" : "\"") + std::to_string(k) + "\":0";
+  huge += "}";
+  EXPECT_NE(refusal(huge).find(keys), std::string::npos) << refusal(huge).substr(0, 200);
+  EXPECT_NE(runtime_refusal(huge).find(keys), std::string::npos) << runtime_refusal(huge).substr(0, 200);
+  EXPECT_NE(refusal(object_of_keys(most + 1)).find(keys), std::string::npos);
+  EXPECT_NE(runtime_refusal(object_of_keys(most + 1)).find(keys), std::string::npos);
+  const std::string full = object_of_keys(most);
+  EXPECT_EQ(refusal(full), "");
+  EXPECT_EQ(runtime_refusal(full), "");
+  const Json parsed = parse(full, "t.json");
+  EXPECT_EQ(parsed.begin().key(), "k0");
+  EXPECT_EQ((--parsed.end()).key(), "k" + std::to_string(most - 1));
+  // A duplicate of the first key as the last, and of the last as the second.
+  for (const std::string& duplicated : {std::string("k0"), "k" + std::to_string(most - 2)}) {
+    std::string twice = object_of_keys(most - 1);
+    if (duplicated == "k0") twice.insert(twice.size() - 1, ",\"k0\":1");
+    else twice.insert(twice.find(',') + 1, "\"" + duplicated + "\":1,");
+    const std::string expected = "the key '" + duplicated + "' appears twice";
+    EXPECT_NE(refusal(twice).find(expected), std::string::npos) << refusal(twice);
+    EXPECT_NE(runtime_refusal(twice).find(expected), std::string::npos) << runtime_refusal(twice);
+  }
 }
 
 TEST(IoJson, MessagesQuoteOnlyAShortEscapedExcerpt) {

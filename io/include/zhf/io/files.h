@@ -9,7 +9,9 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -48,11 +50,31 @@ class PendingFile {
   void commit(OnInterrupt on_interrupt = OnInterrupt::kKeepThePrevious);
 
  private:
+  friend class PendingFiles;
+  bool written_through() const { return !private_dir_.empty(); }
+  void flush();            // to disk, and closed
+  void move_into_place();  // the rename, or the bytes copied through a FIFO or device
+
   std::string destination_;  // symlinks resolved
   std::string temp_;
   std::string private_dir_;  // holds temp_ when the destination is written through
   int fd_ = -1;
   bool committed_ = false;
+};
+
+// Several outputs that make one result (a report and its plots, a kernel and its data), committed
+// together or not at all: each is staged as a PendingFile; commit() throws Interrupted before
+// anything is moved when a signal has arrived, else flushes them all, copies the outputs that are
+// FIFOs or devices through (they cannot be undone, so they go first), and renames the others in
+// one CommitSection (signals.h): an interrupt during the renames waits for the last, so the files
+// are all as they were or all new.
+class PendingFiles {
+ public:
+  PendingFile& add(const std::string& destination);
+  void commit();
+
+ private:
+  std::vector<std::unique_ptr<PendingFile>> files_;
 };
 
 // PendingFile with content: the common case.

@@ -4,8 +4,9 @@
 //
 // Strict RFC 8259 as nlohmann-json reads it (no NaN or Infinity, no comments, no trailing commas
 // or characters, well-formed UTF-8, numbers beyond a double refused), and more: duplicate keys and
-// NUL characters in strings are refused, and the nesting depth, value count and string length are
-// checked while parsing, so hostile input is refused in bounded time and memory. Objects keep
+// NUL characters in strings are refused, and the nesting depth, value count, string length and keys
+// per object are checked while parsing, so hostile input is refused in bounded time and memory, and
+// a document parses in time O(n log k) (n values, k keys an object). Objects keep
 // their members in file order. Integers are kept exactly (nlohmann's integer types), so an integer
 // field converts without rounding or wrapping.
 //
@@ -26,14 +27,18 @@
 
 #include <nlohmann/json.hpp>
 
+#include "zhf/runtime/limits.h"
+
 namespace zhf::io::json {
 
 using Json = nlohmann::ordered_json;
 
+// The bounds of one parse (runtime/limits.h says what each is; a reader may ask for less).
 struct Limits {
-  int max_depth = 64;                             // arrays and objects inside each other
-  std::size_t max_values = std::size_t(1) << 24;  // every value, nested ones included
-  std::size_t max_string_bytes = 1 << 16;         // one string or key, after unescaping
+  int max_depth = runtime::kMaxJsonDepth;
+  std::size_t max_values = runtime::kMaxJsonValues;
+  std::size_t max_string_bytes = runtime::kMaxJsonStringBytes;
+  std::size_t max_object_keys = runtime::kMaxJsonObjectKeys;
 };
 
 // Parses a whole document; source names it in errors.

@@ -10,6 +10,7 @@
 #include <atomic>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "zhf/io/limits.h"
 
@@ -28,6 +29,24 @@ class InterruptGuard {
 const std::atomic<bool>& interrupt_requested();
 // The exit code for the signal that arrived: 130 (SIGINT) or 143 (SIGTERM).
 int interrupted_exit_code();
+
+// While one exists, the watchdog leaves the process alone: the renames of a commit (a few
+// microseconds each) run to their end, and an interrupt that arrived meanwhile is acted on after.
+class CommitSection {
+ public:
+  CommitSection();
+  ~CommitSection();
+  CommitSection(const CommitSection&) = delete;
+  CommitSection& operator=(const CommitSection&) = delete;
+};
+
+// The outputs written since the interrupt arrived (a commit it could not stop, or one it asked
+// for), so that the message at the end names them; empty when the previous outputs are as they
+// were.
+void note_output_written(const std::string& path);
+std::vector<std::string> outputs_written_after_interrupt();
+// The one line zhf ends an interrupted run with: what was left as it was, and what was written.
+std::string interrupted_message();
 
 // Thrown where work stops for an interrupt; main turns it into interrupted_exit_code().
 struct Interrupted : std::runtime_error {

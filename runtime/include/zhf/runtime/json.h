@@ -11,6 +11,7 @@
 // "scene.json: signals[1].channels: must be 1..4 (got 7)". Every error is a runtime::InputError.
 #pragma once
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstddef>
@@ -26,14 +27,17 @@
 
 #include "zhf/runtime/enum_names.h"
 #include "zhf/runtime/errors.h"
+#include "zhf/runtime/limits.h"
 
 namespace zhf::runtime::json {
 
+// The bounds of one parse (runtime/limits.h says what each is).
 struct Limits {
-  int max_depth = 64;                          // arrays and objects inside each other
-  std::size_t max_values = std::size_t(1) << 24;  // every value, nested ones included
-  std::size_t max_string_bytes = 1 << 16;      // one string, after unescaping
-  std::size_t max_number_chars = 64;           // one number's token
+  int max_depth = kMaxJsonDepth;
+  std::size_t max_values = kMaxJsonValues;
+  std::size_t max_string_bytes = kMaxJsonStringBytes;
+  std::size_t max_number_chars = kMaxJsonNumberChars;
+  std::size_t max_object_keys = kMaxJsonObjectKeys;
 };
 
 struct Value {
@@ -179,19 +183,19 @@ class Parser {
       if (c == '{') {
         v.kind = Value::Kind::kObject;
         if (take('}')) return v;
+        std::vector<std::size_t> key_at;  // where each key starts, for a duplicate's message
         do {
           skip_space();
           if (i_ >= s_.size() || s_[i_] != '"') fail("expected a key in quotes");
-          const std::size_t key_at = i_;
+          if (v.members.size() == limits_.max_object_keys)
+            fail("an object with more than " + std::to_string(limits_.max_object_keys) + " keys");
+          key_at.push_back(i_);
           std::string key = string();
-          if (v.find(key)) {
-            i_ = key_at;
-            fail("the key '" + excerpt(key) + "' appears twice");
-          }
           expect(':', "':' after a key");
           v.members.emplace_back(std::move(key), value(depth + 1));
         } while (take(','));
         expect('}', "',' or '}'");
+        refuse_duplicate_keys(v, key_at);
       } else {
         v.kind = Value::Kind::kArray;
         if (take(']')) return v;
@@ -217,6 +221,20 @@ class Parser {
       fail("unexpected character");
     }
     return v;
+  }
+
+  // The keys of a complete object sorted once (k log k, where a search per key was quadratic): a
+  // duplicate is named at its second place in the file.
+  void refuse_duplicate_keys(const Value& object, const std::vector<std::size_t>& key_at) {
+    std::vector<std::size_t> order(object.members.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+    const auto key = [&](std::size_t k) -> const std::string& { return object.members[k].first; };
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key(a) != key(b) ? key(a) < key(b) : a < b; });
+    for (std::size_t k = 1; k < order.size(); ++k)
+      if (key(order[k]) == key(order[k - 1])) {
+        i_ = key_at[order[k]];
+        fail("the key '" + excerpt(key(order[k])) + "' appears twice");
+      }
   }
 
   // -?(0|[1-9][0-9]*)(\.[0-9]+)?([eE][+-]?[0-9]+)?

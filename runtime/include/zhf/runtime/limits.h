@@ -37,6 +37,17 @@ inline constexpr int kMaxGeneratedOrder = 8;
 inline constexpr int kMaxGauntOrder = 16;
 inline constexpr int kMaxTripleCouplingOrder = 8;
 
+// JSON documents (runtime/json.h reads lobe tables with them, io/json.h every other file): arrays
+// and objects inside each other, values (nested ones included), the bytes of a string or key after
+// unescaping, the characters of a number's token, and the members of one object: each object's
+// keys are sorted once when it closes to find a duplicate, so a document of n values parses in
+// O(n log k) time.
+inline constexpr int kMaxJsonDepth = 64;
+inline constexpr std::size_t kMaxJsonValues = std::size_t(1) << 24;
+inline constexpr std::size_t kMaxJsonStringBytes = std::size_t(1) << 16;
+inline constexpr std::size_t kMaxJsonNumberChars = 64;
+inline constexpr std::size_t kMaxJsonObjectKeys = 4096;
+
 // Threads a caller may ask for (--threads, threads=): the bound on every thread pool zhf starts.
 inline constexpr int kMaxThreads = 256;
 
