@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# Builds the Python module and installs the zhf package into Debian Python's user site
+# Installs what the Python module needs (as root), builds it and installs the zhf package into
+# Debian Python's user site
 # (python3 -m site --user-site), or into the folder given as the first argument. A zhf package
 # already there is replaced only if zhf wrote it (its py.typed and _zhf module are there);
 # anything else of that name is left alone and the install refused.
 set -euo pipefail
-source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
+ZHF_SETUP=python source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 cmake --build "$ZHF_BUILD" -j "$ZHF_JOBS" --target _zhf
 python=/usr/bin/python3
 site=${1:-$("$python" -m site --user-site)}

@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# The main job on built-in defaults: build the zhf binary (only it), emit every kernel (orders
-# 2..8; C++, HLSL, GLSL) from the checked-in lobe tables into a scratch directory, print the
-# summary, then compile and run all of them against the double reference (GLSL/HLSL on Vulkan;
-# lavapipe when there is no GPU).
+# The main job on built-in defaults: install the packages it needs (only those), build the zhf
+# binary (only it), emit every kernel (orders 2..8; C++, HLSL, GLSL, WGSL) from the checked-in
+# lobe tables into a scratch directory, print the summary, then compile and run all of them against
+# the double reference (the shaders on Vulkan; lavapipe when there is no GPU).
 set -euo pipefail
-source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
+ZHF_SETUP=main source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 cmake --build "$ZHF_BUILD" -j "$ZHF_JOBS" --target zhf
 cd "$ZHF_ROOT"
 scratch=${ZHF_SCRATCH:-$(mktemp -d "${TMPDIR:-/tmp}/zhf-main-XXXXXX")}

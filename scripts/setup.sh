@@ -1,23 +1,36 @@
 #!/usr/bin/env bash
 # Installs the Debian packages zhf needs (when run as root), then configures the Release build.
-# Sourced by main.sh and test.sh, which build what they need; safe to run again (it only does
-# what is missing).
+# Sourced by main.sh, test.sh and the bench scripts, which build what they need; safe to run again
+# (it only does what is missing). ZHF_SETUP chooses: main (scripts/main.sh) the main job's
+# packages and a build of the zhf binary alone (no tests, Python module or benchmark programs);
+# python (scripts/install_python.sh) those and the Python module's; all (the default) everything.
 set -euo pipefail
 
-ZHF_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+ZHF_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd -P)
 ZHF_BUILD=${ZHF_BUILD_DIR:-$ZHF_ROOT/build}
 ZHF_JOBS=$(nproc)
 
+# The zhf binary and its main job (generate, verify on Vulkan: lavapipe without a GPU).
 packages=(
-  cmake ninja-build g++ clang libclang-rt-14-dev pkg-config
-  libeigen3-dev libnlopt-cxx-dev libcli11-dev nlohmann-json3-dev zlib1g-dev libzstd-dev
-  libgtest-dev libbenchmark-dev
+  cmake ninja-build g++ pkg-config
+  libeigen3-dev libnlopt-cxx-dev libcli11-dev nlohmann-json3-dev zlib1g-dev libzstd-dev libwebp-dev
   glslang-tools spirv-tools libvulkan-dev mesa-vulkan-drivers
-  libhealpix-cxx-dev libcfitsio-dev gnuplot-nox
-  python3 python3-dev pybind11-dev python3-numpy python3-pytest python3-clang-14
-  qemu-user g++-aarch64-linux-gnu googletest
-  libhwy-dev libxsimd-dev libwebp-dev
+  libhealpix-cxx-dev libcfitsio-dev
 )
+cmake_options=(-DZHF_TESTS=OFF -DZHF_PYTHON=OFF -DZHF_BENCH=OFF)
+if [ "${ZHF_SETUP:-all}" = python ]; then
+  packages+=(python3 python3-dev pybind11-dev python3-numpy)
+  cmake_options=(-DZHF_PYTHON=ON)
+elif [ "${ZHF_SETUP:-all}" != main ]; then
+  # The tests (a clang build with sanitizers and libFuzzer, GoogleTest, the aarch64 cross build
+  # under qemu, libclang's bindings for check_one_place), the Python module and the benchmarks.
+  packages+=(
+    clang libclang-rt-14-dev libgtest-dev googletest libbenchmark-dev gnuplot-nox
+    python3 python3-dev pybind11-dev python3-numpy python3-pytest python3-clang-14
+    qemu-user g++-aarch64-linux-gnu libhwy-dev libxsimd-dev
+  )
+  cmake_options=(-DZHF_TESTS=ON -DZHF_PYTHON=ON -DZHF_BENCH=ON)
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -54,4 +67,4 @@ if ! grep -qs "\"version\": \"$naga_version\"" "$naga_dir/node_modules/naga-wasm
   fi
 fi
 
-cmake -S "$ZHF_ROOT" -B "$ZHF_BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release -DZHF_WERROR=ON >/dev/null
+cmake -S "$ZHF_ROOT" -B "$ZHF_BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release -DZHF_WERROR=ON "${cmake_options[@]}" >/dev/null
