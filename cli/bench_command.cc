@@ -8,7 +8,7 @@
 #include "zhf/bench/plots.h"
 #include "zhf/io/files.h"
 #include "zhf/io/signals.h"
-#include "zhf/pipeline/project.h"
+#include "zhf/pipeline/data_root.h"
 
 namespace zhf::cli {
 namespace {
@@ -41,7 +41,7 @@ int run_bench(const BenchOptions& o) {
   bench::SuiteOptions options;
   options.quick = o.quick;
   if (!o.orders.empty()) options.orders = orders_option("--orders", o.orders, 2, bench::kMaxBenchOrder);
-  options.source_dir = pipeline::project().root;
+  options.source_dir = pipeline::data_root().root;
   // Refuse an unwritable output before minutes of measuring, not after.
   if (!o.json.empty()) io::PendingFile check(o.json);
   if (!o.plot.empty()) {

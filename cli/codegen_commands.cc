@@ -11,7 +11,7 @@
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/io/signals.h"
-#include "zhf/pipeline/project.h"
+#include "zhf/pipeline/data_root.h"
 #include "zhf/runtime/conventions.h"
 #include "zhf/runtime/enum_names.h"
 #include "zhf/runtime/errors.h"
@@ -120,10 +120,10 @@ struct GenerateCommandOptions {
 
 int run_generate(const GenerateCommandOptions& o, bool lobe_stage_given, bool method_given) {
   codegen::GenerateOptions options;
-  const pipeline::Project project = pipeline::project();
-  options.tables_dir = o.tables.empty() ? project.lobes() : o.tables;
-  options.out_dir = o.out.empty() ? project.generated() : o.out;
-  options.paths_dir = project.paths();
+  const pipeline::DataRoot root = pipeline::data_root();
+  options.tables_dir = o.tables.empty() ? root.lobes() : o.tables;
+  options.out_dir = o.out.empty() ? root.generated() : o.out;
+  options.paths_dir = root.paths();
   options.stop = &io::interrupt_requested();
   options.module.lobe_stage = lobe_stage(o.lobe_stage);
   options.module.band_method = band_method(o.method);

@@ -17,7 +17,7 @@
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/io/signals.h"
-#include "zhf/pipeline/project.h"
+#include "zhf/pipeline/data_root.h"
 #include "zhf/tolerances/tolerances.h"
 #include "zhf/verify/needlets.h"
 
@@ -65,7 +65,7 @@ int run_needlet_verify(const NeedletOptions& o) {
     start = comma + 1;
   }
   v.compiler = o.compiler;
-  v.naga_wasm = pipeline::project().naga_wasm();
+  v.naga_wasm = pipeline::data_root().naga_wasm();
   Progress progress("needlets verify", o.quiet, o.verbose);
   v.checkpoint = [&progress](std::size_t done, std::size_t languages) {
     io::throw_if_interrupted();

@@ -9,7 +9,7 @@
 #include "zhf/frames/cubature.h"
 #include "zhf/frames/limits.h"
 #include "zhf/io/errors.h"
-#include "zhf/pipeline/project.h"
+#include "zhf/pipeline/data_root.h"
 #include "zhf/runtime/enum_names.h"
 
 namespace zhf::cli {
@@ -26,7 +26,7 @@ double dilation_option(const std::string& text) {
 
 frames::NeedletFrame needlet_frame(double dilation, int lmax, bool gauss) {
   if (gauss) return frames::NeedletFrame(dilation, lmax);
-  const std::string designs = pipeline::project().designs();
+  const std::string designs = pipeline::data_root().designs();
   return frames::NeedletFrame(dilation, lmax, [&](int degree) { return frames::design_cubature(designs, degree); });
 }
 

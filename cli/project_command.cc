@@ -17,7 +17,7 @@
 #include "zhf/io/files.h"
 #include "zhf/io/hdr.h"
 #include "zhf/io/signals.h"
-#include "zhf/pipeline/project.h"
+#include "zhf/pipeline/data_root.h"
 
 namespace zhf::cli {
 namespace {
@@ -35,7 +35,7 @@ nlohmann::ordered_json coefficient_json(const std::vector<std::vector<double>>& 
 }
 
 frames::Cubature nodes_of(const std::string& kind, int degree) {
-  if (kind == "design") return frames::design_cubature(pipeline::project().designs(), degree);
+  if (kind == "design") return frames::design_cubature(pipeline::data_root().designs(), degree);
   if (kind == "gauss") return frames::gauss_product_cubature(degree);
   if (kind == "grid") return frames::equirectangular_nodes(2 * (degree + 1), degree + 1);
   throw UsageError("--nodes: '" + io::excerpt(kind) + "' is not design, gauss or grid");
@@ -49,7 +49,7 @@ int run_compare(const ProjectOptions& o, int order, int threads) {
   std::string text = "# zhf project --compare: nodes, samples, max error (band-limited), max error (30-degree cap)\n";
   std::printf("order %d: max coefficient error on a function of bands 0..7 and on a 30-degree cap\n", order);
   std::printf("%-22s %8s %16s %16s\n", "nodes", "samples", "bands 0..7", "cap");
-  const std::string designs = pipeline::project().designs();
+  const std::string designs = pipeline::data_root().designs();
   std::vector<frames::Cubature> sets;
   for (int t : {2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 25, 31}) {
     frames::Cubature c = frames::design_cubature(designs, t);

@@ -15,7 +15,7 @@
 #include "zhf/io/files.h"
 #include "zhf/io/limits.h"
 #include "zhf/io/signals.h"
-#include "zhf/pipeline/project.h"
+#include "zhf/pipeline/data_root.h"
 #include "zhf/runtime/conventions.h"
 #include "zhf/runtime/limits.h"
 #include "zhf/runtime/orthogonal.h"
@@ -50,7 +50,7 @@ int run_rotate(const RotateOptions& o) {
   if (order > 1 && order <= runtime::kMaxGeneratedOrder) {
     fastest.emplace(dispatch::Rotator<double>::make(order));
   } else if (order > runtime::kMaxGeneratedOrder) {
-    const std::string tables = o.tables.empty() ? pipeline::project().lobes() : o.tables;
+    const std::string tables = o.tables.empty() ? pipeline::data_root().lobes() : o.tables;
     const std::string table = runtime::table_path(tables, order);
     if (order > runtime::kMaxTableOrder || !std::filesystem::exists(table))
       throw io::InputError(o.coeffs + ": order " + std::to_string(order) + " has no lobe table (" + table + ")");

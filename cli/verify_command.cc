@@ -10,7 +10,7 @@
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/io/signals.h"
-#include "zhf/pipeline/project.h"
+#include "zhf/pipeline/data_root.h"
 #include "zhf/runtime/enum_names.h"
 #include "zhf/runtime/limits.h"
 #include "zhf/verify/limits.h"
@@ -67,16 +67,16 @@ std::vector<verify::WgslDevice> parse_wgsl_devices(const std::string& text) {
 }
 
 int run_verify_command(const VerifyCommandOptions& o) {
-  const pipeline::Project project = pipeline::project();
+  const pipeline::DataRoot root = pipeline::data_root();
   verify::VerifyOptions options;
-  options.generated_dir = o.generated.empty() ? project.generated() : o.generated;
+  options.generated_dir = o.generated.empty() ? root.generated() : o.generated;
   if (!o.orders.empty()) options.orders = orders_option("--orders", o.orders, runtime::kMinGeneratedOrder, codegen::kMaxEmitOrder);
   options.languages = parse_languages(o.languages);
   options.rotations = static_cast<int>(integer_option("--rotations", o.rotations, 1, verify::kMaxVerifyRotations));
   options.work_dir = o.work_dir;
-  options.runtime_include = project.runtime_include;
-  options.naga_wasm = project.naga_wasm();
-  options.browser_scripts = project.browser_scripts();
+  options.runtime_include = root.runtime_include;
+  options.naga_wasm = root.naga_wasm();
+  options.browser_scripts = root.browser_scripts();
   options.wgsl_on = parse_wgsl_devices(o.wgsl_on);
   options.compiler = o.compiler;
   options.threads = threads_option(o.threads);

@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <system_error>
 
-#include "zhf/codegen/dispatch.h"
+#include "zhf/codegen/path_headers.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/io/lobe_table_writer.h"

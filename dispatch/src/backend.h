@@ -37,10 +37,10 @@ class Backend {
   virtual void apply_planar(const T* q, std::size_t count, int channels, const T* in, T* out, int threads) const = 0;
 };
 
-// The fastest backend of an order 1..kMaxZxzxzOrder on path I (isa_any.cc, one unit per path).
+// The fastest backend of an order 1..kMaxZxzxzOrder on path I (isa_backend.cc, one unit per path).
 template <Isa I, class T>
 std::unique_ptr<Backend<T>> make_backend(int order);
-// runtime::all_finite compiled for path I (isa_any.cc).
+// runtime::all_finite compiled for path I (isa_backend.cc).
 template <Isa I, class T>
 bool all_finite_on(const T* p, std::size_t count);
 // The generated kernels' fastest path of order N on path I (isa_order.cc, one unit per path and

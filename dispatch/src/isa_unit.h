@@ -1,4 +1,4 @@
-// Included first by every unit of one instruction-set path (isa_order.cc, isa_any.cc), each
+// Included first by every unit of one instruction-set path (isa_order.cc, isa_backend.cc), each
 // compiled with that path's flags (dispatch/CMakeLists.txt) and with ZHF_DISPATCH_ISA (an Isa
 // enumerator) and ZHF_DISPATCH_NAMESPACE defined.
 //
@@ -57,7 +57,7 @@ class IsaPrepared final : public api::PreparedBackend<T> {
 };
 
 // A runtime::Rotator of this path behind the library's interface. Its members are compiled once
-// per path, in isa_any.cc (the extern declarations below): the per-order units only make one, so
+// per path, in isa_backend.cc (the extern declarations below): the per-order units only make one, so
 // the dense band products of every order are not compiled again in each of them.
 template <class T>
 class IsaBackend final : public api::Backend<T> {

@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "test_support.h"
-#include "zhf/codegen/dispatch.h"
+#include "zhf/codegen/path_headers.h"
 #include "zhf/codegen/generate.h"
 #include "zhf/codegen/path_tables.h"
 #include "zhf/candidates/candidates.h"

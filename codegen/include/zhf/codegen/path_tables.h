@@ -1,5 +1,5 @@
 // The measured path tables zhf_kernels.h is generated from: generated/paths/<isa>.json, one per
-// instruction set ("sse2", "avx2", "avx512", "neon"), written by bench/path_bench.cc built for
+// instruction set ("sse2", "avx2", "avx512", "neon"), written by benchmarks/path_bench.cc built for
 // that instruction set (zhf_path_bench_<isa> --write). Each names, for every generated order and
 // for float and double, the rotation path that was fastest there, with the times behind it.
 #pragma once

@@ -51,7 +51,7 @@ double prt_transfer(PrtScene scene, PrtTransfer transfer, const Point& p, const 
 
 // The exact reference's panel width (radians) and Gauss-Legendre nodes per panel: step 0.1 agrees
 // with 0.05 to 1e-11 of the shadings' RMS on every built-in scene and transfer under sun_and_sky
-// (bench/results/prt/reference.txt).
+// (benchmarks/results/prt/reference.txt).
 inline constexpr double kPrtExactStep = 0.1;
 inline constexpr int kPrtExactNodes = 16;
 // int L T_p for a vertex on the ground (z = 0; under the walls' tops and outside the spheres, as

@@ -4,7 +4,7 @@
 // zhf's real y_l^{+-m} have no Condon-Shortley phase; HEALPix's complex Y_lm have it:
 // y_{l,m} = sqrt2 (-1)^m Re Y_lm and y_{l,-m} = sqrt2 (-1)^m Im Y_lm for m > 0, so a real
 // function's a_lm = (-1)^m (f_{l,m} - i f_{l,-m}) / sqrt2 and a_l0 = f_l0. (Checked against
-// healpy, written independently, by bench/healpix_crosscheck.py.) Cost: O(N^2).
+// healpy, written independently, by crosscheck/healpix_crosscheck.py.) Cost: O(N^2).
 #pragma once
 
 #include <alm.h>

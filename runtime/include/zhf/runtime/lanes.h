@@ -8,14 +8,14 @@
 // costs less here than the sparse scalar one. With them each step runs in float where the
 // float error model allows (LanesTables<N>::kLobeStage), which halves the work per lane.
 // The fast choice for one vector per rotation where the build targets AVX2 or wider; zhf_kernels.h
-// picks it where bench/path_bench.cc measured it faster (generated/paths/).
+// picks it where benchmarks/path_bench.cc measured it faster (generated/paths/).
 // Where the build targets AVX2 and FMA (avx2_fma.h) and an order's 2N - 1 lobes fit one register
 // of 8 floats (orders 3 and 4) with its lobe stage in float, the float kernel is written out in
 // intrinsics instead: one register holds the lobes, the SH at them come from the generated
 // sh_eval run on packs, each band's samples are 2l + 1 fused multiply-adds, and A_l s is one
 // in-lane broadcast and one fused multiply-add per lobe and output register. No square root, no
 // division and no trigonometry: the whole call is one short dependency chain (order 4: about 75
-// vector instructions, 21 ns against the band rows' 31 ns, bench/NOTES.md).
+// vector instructions, 21 ns against the band rows' 31 ns, benchmarks/NOTES.md).
 // Accuracy: within 1e-6 of the reference on random unit inputs at the default stage (tested).
 #pragma once
 

@@ -51,8 +51,8 @@ struct Kernels;
 
 namespace zhf::runtime {
 
-// From this order on, Rotator::from_table runs zxzxz, by measurement (bench/runtime_paths_bench.cc,
-// bench/NOTES.md): built for AVX2 the lobe path is 1.06x ahead at order 3 and zxzxz from 4
+// From this order on, Rotator::from_table runs zxzxz, by measurement (benchmarks/runtime_paths_bench.cc,
+// benchmarks/NOTES.md): built for AVX2 the lobe path is 1.06x ahead at order 3 and zxzxz from 4
 // (1.2x at 4, 2.3x at 7, 4.9x at 12, 13x at 32); elsewhere (a 4-double pack is two or more
 // instructions) zxzxz is ahead at every order (2.4x at 3, 3.1x at 8).
 #if defined(__AVX2__)
