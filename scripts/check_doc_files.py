@@ -3,7 +3,8 @@
 the sources they cite. Scans README.md and docs/*.md for repository paths (a known top folder, then
 a path ending in a file extension, outside URLs) and fails, naming document, line and path, for
 each that is not in the tree. A library's public header may be named short: runtime/lanes.h for
-runtime/include/zhf/runtime/lanes.h. Placeholders (order_N.json, t_T.json, xyz.cc) are skipped.
+runtime/include/zhf/runtime/lanes.h. Placeholders (order_N.json, t_T.json, xyz.cc) are skipped, and
+so are provenance lines ("Run: ..."): they quote a raw file's command as it ran at its commit.
 
 Usage: check_doc_files.py [ROOT]   (default: the repository holding this script)
 """
@@ -24,6 +25,8 @@ def main():
     missing, named = [], 0
     for document in documents:
         for number, line in enumerate(open(document, encoding="utf-8"), 1):
+            if line.startswith("Run: "):
+                continue
             for match in PATH.finditer(re.sub(r"https?://\S+", "", line)):
                 named += 1
                 path = match.group(1)
