@@ -6,7 +6,7 @@
 # python (scripts/install_python.sh) those and the Python module's; all (the default) everything.
 set -euo pipefail
 
-ZHF_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd -P)
+ZHF_ROOT=$(cd "$(dirname "$(readlink -f "${BASH_SOURCE[0]}")")/.." && pwd)
 ZHF_BUILD=${ZHF_BUILD_DIR:-$ZHF_ROOT/build}
 ZHF_JOBS=$(nproc)
 
