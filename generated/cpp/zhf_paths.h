@@ -40,7 +40,7 @@ template <>
 inline constexpr bool kHasLanes<8> = true;
 
 // The rotation path of each generated order, by instruction set, from the measured tables in
-// generated/paths (bench/path_bench.cc writes them, zhf generate turns them into what follows); a
+// generated/paths (benchmarks/path_bench.cc writes them, zhf generate turns them into what follows); a
 // build whose instruction set has no table follows the one below it whose kernels it runs, or,
 // with none, the scalar kernels. The tables were measured on zhf's own lobe tables; each order
 // takes the fastest path measured there that this tree has (lanes only with lanes tables).
