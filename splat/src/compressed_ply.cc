@@ -163,8 +163,7 @@ class CompressedPlyReader : public SceneReader {
         const double t = unorm(word[3] >> (24 - 8 * i), 8);
         v[Canonical::kDc + i] = ((colours_ ? lerp(bounds[12 + i], bounds[15 + i], t) : t) - 0.5) / runtime::kInvSqrt4Pi;
       }
-      // Alpha 0 and 255 read as a quarter step inside, as in .splat: the logit stays finite.
-      v[c.opacity()] = logit(std::clamp(unorm(word[3], 8), 0.25 / 255, 254.75 / 255));
+      v[c.opacity()] = opacity_of_alpha(unorm(word[3], 8));
       const int largest = int(word[1] >> 30);
       double* q = v + c.rotation();
       double norm = 0;

@@ -1,6 +1,7 @@
 #include "format_io.h"
 
 #include <cerrno>
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -64,5 +65,10 @@ const std::array<double, kMaxRestPerChannel>& half_turn_signs(Axis axis) {
 
 double sigmoid(double x) { return 1 / (1 + std::exp(-x)); }
 double logit(double p) { return std::log(p / (1 - p)); }
+
+double opacity_of_alpha(double alpha) {
+  constexpr double kAlphaMargin = 1e-6;  // an input, not a tolerance: splat-transform's rule
+  return logit(std::clamp(alpha, kAlphaMargin, 1 - kAlphaMargin));
+}
 
 }  // namespace zhf::splat

@@ -64,5 +64,10 @@ const std::array<double, kMaxRestPerChannel>& half_turn_signs(Axis axis);
 // The logistic function and its inverse (3DGS stores opacity as a logit).
 double sigmoid(double x);
 double logit(double p);
+// The .ply's opacity (a logit) of an alpha stored in 0..1. Alpha 0 and 1 (bytes 0 and 255) have
+// no logit: an alpha within kAlphaMargin of either reads as that far from it, as splat-transform
+// reads them, so the two tools' conversions agree, the logit stays finite (-13.8 and 13.8) and
+// writes back as the same byte.
+double opacity_of_alpha(double alpha);
 
 }  // namespace zhf::splat

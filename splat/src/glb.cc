@@ -396,8 +396,7 @@ class GlbReader : public SceneReader {
           break;
         case Kind::kOpacity:
           if (x[0] < 0 || x[0] > 1) throw InputError(where(path_, splat, a.name) + " is " + runtime::format_number(x[0]) + ", outside [0, 1]");
-          // 0 and 1 read as a quarter float step inside, as .splat's bytes: the logit stays finite.
-          v[c.opacity()] = logit(std::clamp(x[0], double(std::numeric_limits<float>::denorm_min()) / 4, 1 - std::ldexp(1.0, -26)));
+          v[c.opacity()] = opacity_of_alpha(x[0]);
           break;
         case Kind::kSh:
           for (int ch = 0; ch < 3; ++ch)

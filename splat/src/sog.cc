@@ -85,10 +85,8 @@ Image decode_webp(const std::string& bytes, const std::string& where, int width,
   Image image;
   const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data());
   if (!WebPGetInfo(data, bytes.size(), &image.width, &image.height)) throw InputError(where + ": not a WebP image zhf can decode");
-  // A few bytes must not claim a huge image: checked before the texels are allocated.
-  if (4.0 * image.width * image.height > kMaxCompressionRatio * double(bytes.size()))
-    throw InputError(where + ": " + std::to_string(image.width) + " x " + std::to_string(image.height) + " texels from " +
-                     std::to_string(bytes.size()) + " bytes, more than WebP can hold");
+  // The size meta.json gives, whose total read_sog has held to kMaxSogDecodedBytes: checked
+  // before the texels are allocated.
   if (image.width != width || image.height != height)
     throw InputError(where + ": " + std::to_string(image.width) + " x " + std::to_string(image.height) + " texels; meta.json's count needs " +
                      std::to_string(width) + " x " + std::to_string(height));
@@ -198,6 +196,12 @@ Sog read_sog(const std::string& path) {
   Sog s;
   s.meta = parse_meta(files.read("meta.json", kMaxSogMetaBytes), files.where("meta.json"));
   const auto [width, height] = image_size(s.meta.count);
+  const std::uint64_t palette_texels =
+      s.meta.bands > 0 ? std::uint64_t(kPaletteRow) * coefficients_of(s.meta.bands) * ((s.meta.palette + kPaletteRow - 1) / kPaletteRow) : 0;
+  const std::uint64_t decoded = 4 * (std::uint64_t(width) * height * (s.meta.bands > 0 ? 6 : 5) + palette_texels);
+  if (decoded > kMaxSogDecodedBytes)
+    throw InputError(files.where("meta.json") + ": " + std::to_string(s.meta.count) + " splats decode to " + std::to_string(decoded) +
+                     " bytes of images; zhf reads a SOG of up to " + std::to_string(kMaxSogDecodedBytes));
   auto load = [&](const std::string& name, std::string* keep, int w, int h) {
     const std::string bytes = files.read(name, kMaxSogImageBytes);
     Image image = decode_webp(bytes, files.where(name), w, h);
@@ -237,8 +241,7 @@ void decode_splat(const Sog& sog, std::uint64_t i, double* v, const std::string&
     v[Canonical::kDc + a] = m.colours[colour[a]];
     v[c.scale() + a] = m.scales[scale[a]];
   }
-  // Alpha 0 and 255 read as a quarter step inside, as in .splat and .spz.
-  v[c.opacity()] = logit(std::clamp(colour[3] / 255.0, 0.25 / 255, 254.75 / 255));
+  v[c.opacity()] = opacity_of_alpha(colour[3] / 255.0);
   if (q[3] < kQuatTag) throw InputError(where(path, i, "quats") + ": tag " + std::to_string(q[3]) + " is not 252..255");
   const int largest = q[3] - kQuatTag;
   double* r = v + c.rotation();  // w x y z

@@ -54,10 +54,7 @@ class SplatFileReader : public SceneReader {
         v[c.scale() + i] = std::log(f[3 + i]);
         v[Canonical::kDc + i] = (b[24 + i] / 255.0 - 0.5) / runtime::kInvSqrt4Pi;
       }
-      // Alpha 0 and 255 stand for a quarter step inside: a logit stays finite and writes back as
-      // the same byte.
-      const double alpha = std::clamp(b[27] / 255.0, 0.25 / 255, 254.75 / 255);
-      v[c.opacity()] = logit(alpha);
+      v[c.opacity()] = opacity_of_alpha(b[27] / 255.0);
       // The quantised quaternion as it is (a writer normalises): reading a written file gives
       // back exactly what was written.
       for (int i = 0; i < 4; ++i) v[c.rotation() + i] = (b[28 + i] - 128.0) / 128;

@@ -142,8 +142,7 @@ std::vector<double> expected(const Built& b, int i, const Ply& like) {
     v[like.index("scale_" + std::to_string(a))] = b.scales[b.scale_bytes[i][a]];
     v[like.index("f_dc_" + std::to_string(a))] = b.colours[b.sh0[i][a]];
   }
-  const double alpha = b.sh0[i][3] / 255.0;
-  v[like.index("opacity")] = std::log(alpha / (1 - alpha));
+  v[like.index("opacity")] = test::opacity_of_alpha(b.sh0[i][3] / 255.0);
   const int stored[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
   const int largest = b.quats[i][3] - 252;
   double q[4], squares = 0;
@@ -173,6 +172,48 @@ TEST(Sog, EveryFieldReadsAsTheLayoutSays) {
     const std::vector<double> e = expected(b, i, p);
     for (std::size_t k = 0; k < e.size(); ++k) ASSERT_EQ(p.rows[i][k], float(e[k])) << "splat " << i << ", " << p.names[k];
   }
+}
+
+// tests/data/uniform.sog, as splat-transform 3.7 wrote it (crosscheck/uniform_sog.sh; entries
+// stored, and deflated in uniform_deflated.sog): 200 000 equal splats at the corners of a unit
+// square, whose images of a few dozen bytes each decode to 448 x 448 texels. Every splat reads as
+// the scene crosscheck/uniform_sog.py wrote: the codebooks hold its few distinct values exactly,
+// the alpha byte is 255 sigmoid(2) truncated (224, not 225: its writer stores into a Uint8Array)
+// and the quaternion's small components are within the format's step, sqrt(2) / 255, of 0.
+TEST(Sog, SplatTransformsUniformSceneReadsAsWritten) {
+  const test::TempDir dir;
+  const std::string out = (dir / "uniform.ply").string();
+  const test::RunResult run = test::run_zhf("splat --in '" + test::data_path("uniform.sog") + "' --out '" + out + "' --quiet");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const Ply p = read_ply(out);
+  ASSERT_EQ(p.rows.size(), 200000u);
+  const double alpha = std::floor(255 / (1 + std::exp(-2.0))) / 255, quaternion_step = std::sqrt(2.0) / 255;
+  std::array<int, 4> corners{};
+  for (std::size_t i = 0; i < p.rows.size(); ++i) {
+    const std::vector<double>& r = p.rows[i];
+    auto at = [&](const std::string& name) { return r[p.index(name)]; };
+    const double x = at("x"), y = at("y");
+    ASSERT_TRUE((x == 0 || std::abs(x - 1) <= tolerance::kSplatFloatStorage) && (y == 0 || std::abs(y - 1) <= tolerance::kSplatFloatStorage))
+        << "splat " << i << ": (" << x << ", " << y << ")";
+    ++corners[(x > 0.5) + 2 * (y > 0.5)];
+    ASSERT_NEAR(at("z"), 1, tolerance::kSplatFloatStorage) << "splat " << i;
+    const double dc[3] = {0.5, -0.25, 0.75};
+    for (int a = 0; a < 3; ++a) {
+      ASSERT_EQ(at("f_dc_" + std::to_string(a)), float(dc[a])) << "splat " << i << ", f_dc_" << a;
+      ASSERT_EQ(at("scale_" + std::to_string(a)), -3) << "splat " << i << ", scale_" << a;
+    }
+    for (int j = 0; j < 45; ++j)
+      ASSERT_EQ(at("f_rest_" + std::to_string(j)), float(0.25 * (j % 2 ? -1 : 1) / (1 + j / 15))) << "splat " << i << ", f_rest_" << j;
+    ASSERT_EQ(at("opacity"), float(test::opacity_of_alpha(alpha))) << "splat " << i;
+    ASSERT_NEAR(at("rot_0"), 1, quaternion_step * quaternion_step) << "splat " << i;
+    for (int k = 1; k < 4; ++k) ASSERT_LE(std::abs(at("rot_" + std::to_string(k))), quaternion_step) << "splat " << i << ", rot_" << k;
+  }
+  EXPECT_EQ(corners, (std::array<int, 4>{50000, 50000, 50000, 50000}));
+  // The same archive with its entries deflated (Python's zipfile): the same scene.
+  const std::string deflated = (dir / "deflated.ply").string();
+  const test::RunResult again = test::run_zhf("splat --in '" + test::data_path("uniform_deflated.sog") + "' --out '" + deflated + "' --quiet");
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_EQ(test::read_text(deflated), test::read_text(out));
 }
 
 // Turned .sog to .sog: read back, each splat where the turn puts it (within the format's steps),
@@ -263,6 +304,8 @@ TEST(Sog, HostileSogsAreRefusedInOneLine) {
   nlohmann::json lie = b.meta;
   lie["count"] = 5000;
   refused("a count the images cannot hold", scene(lie), "texels; meta.json's count needs");
+  lie["count"] = 200000000;
+  refused("a count past the decoded cap", scene(lie), "meta.json: 200000000 splats decode to");
   lie = b.meta;
   lie["shN"]["codebook"].erase(0);
   refused("a short codebook", scene(lie), "shN.codebook: expected 256 entries, found 255");
@@ -287,7 +330,7 @@ TEST(Sog, HostileSogsAreRefusedInOneLine) {
           "scales.webp: " + std::to_string(b.width) + " x " + std::to_string(b.height / 2) + " texels; meta.json's count needs " +
               std::to_string(b.width) + " x " + std::to_string(b.height));
   // A lossless WebP whose header claims 16000 x 16000 texels (its 14-bit sizes after the
-  // signature byte) in a few hundred bytes: refused before anything is allocated.
+  // signature byte) in a few hundred bytes: refused by its size before anything is allocated.
   const std::string huge = scene(b.meta);
   std::string claim = webp(b.quats, b.width, b.height);
   ASSERT_EQ(claim.substr(12, 4), "VP8L");
@@ -296,7 +339,8 @@ TEST(Sog, HostileSogsAreRefusedInOneLine) {
   bits = (bits & ~((1u << 28) - 1)) | 15999u | (15999u << 14);
   std::memcpy(claim.data() + 21, &bits, 4);
   test::write_text((fs::path(huge).parent_path() / "quats.webp").string(), claim);
-  refused("a WebP claiming more texels than its bytes hold", huge, "quats.webp: 16000 x 16000 texels from");
+  refused("a WebP claiming more texels than meta.json's count", huge,
+          "quats.webp: 16000 x 16000 texels; meta.json's count needs " + std::to_string(b.width) + " x " + std::to_string(b.height));
   Built tagged = b;
   tagged.quats[7][3] = 17;
   refused("a quaternion tag outside 252..255", write_unbundled(tagged, dir / "tag", b.meta), "splat 7: quats: tag 17 is not 252..255");

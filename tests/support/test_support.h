@@ -115,6 +115,14 @@ std::pair<T*, T*> aligned_pair(std::vector<T>& buffer, std::size_t size, std::si
 bool browser_available(std::string& why);
 bool browser_required();
 
+// The alpha rule of the splat formats (docs/formats.md), written here apart from splat/: an alpha
+// within 10^-6 of 0 or 1 reads as 10^-6 from it, as splat-transform reads it.
+inline double opacity_of_alpha(double alpha) {
+  const double margin = 1e-6;
+  const double a = alpha < margin ? margin : alpha > 1 - margin ? 1 - margin : alpha;
+  return std::log(a / (1 - a));
+}
+
 // What a rotation of type T at this order is held to against the reference: double kDouble; float
 // kFloatRotation at the generated orders and kRuntimeOrdersFloat above them (zxzxz).
 template <class T>

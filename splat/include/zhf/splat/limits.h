@@ -45,6 +45,11 @@ inline constexpr std::uint64_t kMaxSogMetaBytes = std::uint64_t(1) << 20;
 inline constexpr std::uint64_t kMaxSogImageBytes = std::uint64_t(1) << 30;
 inline constexpr std::uint64_t kMaxSogSplats = std::uint64_t(16380) * 16380;
 inline constexpr int kMaxSogPalette = 1 << 16;
+// A SOG's images decoded (4 bytes a texel; five or six images of the splats and the palette's):
+// the cap is checked from meta.json before any image is decoded. WebP's lossless coding has no
+// expansion bound (a uniform image of 448 x 448 texels takes 60 bytes), so no ratio to the file's
+// size can stand in for it. 4 GiB hold about 180 million splats of SH degree 3 (24 bytes a splat).
+inline constexpr std::uint64_t kMaxSogDecodedBytes = std::uint64_t(4) << 30;
 // sign(p) ln(|p| + 1) of a position: beyond 88 its inverse leaves float's range.
 inline constexpr double kMaxSogLogPosition = 88;
 // zhf splat --scale: a factor in [kMinSplatScale, kMaxSplatScale].
