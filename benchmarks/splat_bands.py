@@ -13,6 +13,7 @@ import argparse
 import os
 import re
 import subprocess
+import sys
 import tempfile
 from pathlib import Path
 
@@ -40,7 +41,12 @@ def main():
                     result = subprocess.run([a.zhf, "splat", "--in", scene, "--out", out, "--sh-degree", str(kept)],
                                             capture_output=True, text=True, check=True)
                     m = re.search(r"dropped energy (\S+) .* largest colour change (\S+) over", result.stdout)
-                    energy, colour = (m.group(1), m.group(2)) if m else ("0", "0")
+                    if kept == 4:  # nothing dropped, nothing printed
+                        energy, colour = "0", "0"
+                    elif m:
+                        energy, colour = m.group(1), m.group(2)
+                    else:
+                        sys.exit(f"splat_bands: --sh-degree {kept} printed no dropped figures:\n{result.stdout}")
                     print(f"| {name} | {fmt} | {kept} | {os.path.getsize(out)} | {energy} | {colour} |")
 
 
