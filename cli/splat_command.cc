@@ -22,7 +22,7 @@ struct SplatOptions {
   TransformOptions transform;
   std::string translate, scale = "1", convention = "3dgs", threads = "0", format, in_format, spz_version = "4", spz_axes = "raw";
   std::string sh_degree, max_sh_error;
-  bool identity = false, quiet = false, drop_spz_extensions = false, keep_order = false;
+  bool identity = false, quiet = false, drop_spz_extensions = false, keep_order = false, info = false, spz_as_reference = false;
 };
 
 std::array<double, 3> translation(const std::string& text) {
@@ -43,7 +43,41 @@ std::optional<splat::FileFormat> format_option(const std::string& option, const 
   return format;
 }
 
+void spz_axes_options(const SplatOptions& o, splat::Formats& formats) {
+  if (!splat::parse_spz_axes(o.spz_axes, formats.spz_axes)) throw UsageError("--spz-axes: '" + runtime::excerpt(o.spz_axes) + "' is not raw or rub");
+  formats.spz_as_reference = o.spz_as_reference;
+}
+
+// --info: what the scene holds, nothing written.
+int describe(const SplatOptions& o) {
+  if (!o.out.empty()) throw UsageError("--info: writes nothing; drop --out");
+  if (transform_given(o.transform) || o.identity || !o.translate.empty() || o.scale != "1")
+    throw UsageError("--info: transforms nothing; drop the rotation, --translate and --scale");
+  splat::Formats formats;
+  formats.in = format_option("--in-format", o.in_format);
+  spz_axes_options(o, formats);
+  const splat::SceneInfo info = splat::describe_file(o.in, formats);
+  std::printf("%s: %s, %llu splats, SH degree %d\n", o.in.c_str(), splat::file_format_extension(info.format),
+              (unsigned long long)info.splats, info.sh_degree);
+  std::printf("bounds in the .ply's axes: x %.6g .. %.6g, y %.6g .. %.6g, z %.6g .. %.6g\n", info.low[0], info.high[0], info.low[1],
+              info.high[1], info.low[2], info.high[2]);
+  if (!info.axes_source.empty()) std::printf(".spz axes: %s\n", info.axes_source.c_str());
+  if (info.format == splat::FileFormat::kSpz) {
+    std::printf("antialiased: %s\n", info.antialiased ? "yes" : "no");
+    std::string types;
+    for (std::uint32_t t : info.extension_types) {
+      char hex[16];
+      std::snprintf(hex, sizeof hex, "0x%08x", t);
+      types += (types.empty() ? "" : ", ") + std::string(hex);
+    }
+    std::printf("extension records: %zu%s\n", info.extension_types.size(), types.empty() ? "" : (" (" + types + ")").c_str());
+  }
+  return kExitOk;
+}
+
 int run_splat(const SplatOptions& o) {
+  if (o.info) return describe(o);
+  if (o.out.empty()) throw UsageError("--out: required (or --info, which writes nothing)");
   const runtime::Convention* convention = runtime::find_convention(o.convention);
   if (!convention)
     throw UsageError("--convention: '" + runtime::excerpt(o.convention) + "' is not one of " + runtime::convention_names());
@@ -62,7 +96,7 @@ int run_splat(const SplatOptions& o) {
   formats.in = format_option("--in-format", o.in_format);
   formats.out = format_option("--format", o.format);
   formats.spz_version = static_cast<int>(integer_option("--spz-version", o.spz_version, 3, 4));
-  if (!splat::parse_spz_axes(o.spz_axes, formats.spz_axes)) throw UsageError("--spz-axes: '" + runtime::excerpt(o.spz_axes) + "' is not raw or rub");
+  spz_axes_options(o, formats);
   formats.drop_spz_extensions = o.drop_spz_extensions;
   formats.keep_order = o.keep_order;
   if (!o.sh_degree.empty() && !o.max_sh_error.empty()) throw UsageError("--sh-degree: --max-sh-error is given too; give one or the other");
@@ -84,6 +118,11 @@ int run_splat(const SplatOptions& o) {
   if (summary.dropped_extensions > 0)
     std::fprintf(stderr, "zhf splat: %s: %d .spz extension records left out (--drop-spz-extensions)\n", io::excerpt(o.out).c_str(),
                  summary.dropped_extensions);
+  if (!summary.left_out.empty()) {
+    std::string phrases = summary.left_out[0];
+    for (std::size_t i = 1; i < summary.left_out.size(); ++i) phrases += "; " + summary.left_out[i];
+    std::fprintf(stderr, "zhf splat: %s: not kept from %s: %s\n", io::excerpt(o.out).c_str(), io::excerpt(o.in).c_str(), phrases.c_str());
+  }
   if (summary.clamped > 0)
     std::fprintf(stderr, "zhf splat: %s: %llu values beyond the %s format's range were written as its nearest\n",
                  io::excerpt(o.out).c_str(), (unsigned long long)summary.clamped, splat::file_format_extension(summary.out));
@@ -121,12 +160,16 @@ void add_splat_command(CLI::App& app, Action& action) {
       "Transform a 3D Gaussian Splatting scene (.ply, .compressed.ply, .splat, .spz, .glb, .sog): p' = s R p + t (rotate and scale about the origin, then translate), "
       "orientations, normals, log-scales and SH colours with it, in the .ply's axes (.spz and .glb are turned into them: docs/conventions.md); or convert it to another format");
   c->add_option("--in", o->in, "The scene: binary little-endian or ASCII .ply, compressed .ply, .splat, .spz, .glb (KHR_gaussian_splatting), or SOG (.sog, or a meta.json)")->required();
-  c->add_option("--out", o->out, "Write the transformed scene here (.ply to .ply: same format, columns and comments)")->required();
+  c->add_option("--out", o->out, "Write the transformed scene here (.ply to .ply: same format, columns and comments)");
+  c->add_flag("--info", o->info, "Say what the scene holds (format, splats, SH degree, bounds, axes, .spz records); write nothing");
   c->add_option("--format", o->format, "The output's format, " + splat::file_format_names() + " (default: --out's extension, else ply)");
   c->add_option("--spz-version", o->spz_version, "A .spz output's version: 4 (zstd, default) or 3 (gzip, for older readers)");
   c->add_option("--spz-axes", o->spz_axes,
                 "A .spz's axes where it has no coordinate-system record, read and written: raw (the .ply's, default: the reference "
                 "library's default, splat-transform) or rub (x right, y up, z back: Scaniverse, three.js)");
+  c->add_flag("--spz-as-reference", o->spz_as_reference,
+              "Convert a .spz's axes as the reference library (nianticlabs/spz) does where it differs from the systems' letters: "
+              "coordinate-system records LFD, RFD, LBU, RBU, and the sign of band 4's m = 4 coefficient (docs/formats.md)");
   c->add_flag("--drop-spz-extensions", o->drop_spz_extensions, "Leave out a .spz's extension records (else carried into a .spz, refused for other formats)");
   c->add_flag("--keep-order", o->keep_order, "A compressed .ply output keeps the input's splat order (default: Morton order, as splat-transform writes)");
   c->add_option("--sh-degree", o->sh_degree, "Keep SH bands 0..K only (at most the scene's degree)");

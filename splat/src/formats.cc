@@ -1,5 +1,6 @@
 #include "formats.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -16,6 +17,9 @@ namespace ply = io::ply;
 using io::InputError;
 
 // ---- .ply (binary little-endian or ASCII), any column order, to the canonical record ----
+
+// Extra properties named in a note before "and N more".
+constexpr std::size_t kNamedProperties = 4;
 
 class PlyReader : public SceneReader {
  public:
@@ -68,7 +72,38 @@ class PlyReader : public SceneReader {
       }
       const double* q = v + c.rotation();
       if (q[0] == 0 && q[1] == 0 && q[2] == 0 && q[3] == 0) throw InputError(where(path_, first + s, "rot_0..3 are all zero"));
+      nonzero_normals_ = nonzero_normals_ || v[Canonical::kNormal] != 0 || v[Canonical::kNormal + 1] != 0 || v[Canonical::kNormal + 2] != 0;
     }
+  }
+
+  std::vector<std::string> left_out(FileFormat to) const override {
+    std::vector<std::string> phrases;
+    std::vector<std::string> extra;
+    for (std::size_t p = 0; p < header_.properties.size(); ++p)
+      if (std::find(source_.begin(), source_.end(), int(p)) == source_.end()) extra.push_back(header_.properties[p].name);
+    if (!extra.empty()) {
+      std::string names = "property " + runtime::excerpt(extra[0]);
+      for (std::size_t i = 1; i < std::min<std::size_t>(extra.size(), kNamedProperties); ++i) names += ", " + runtime::excerpt(extra[i]);
+      if (extra.size() > kNamedProperties) names += " and " + std::to_string(extra.size() - kNamedProperties) + " more";
+      phrases.push_back(extra.size() == 1 ? names : "properties" + names.substr(8));
+    }
+    if (to == FileFormat::kPly) {
+      int comments = 0;
+      for (std::size_t at = 0; at < header_.text.size();) {
+        const std::size_t end = header_.text.find('\n', at);
+        const std::string_view line(header_.text.data() + at, (end == std::string::npos ? header_.text.size() : end) - at);
+        comments += line.rfind("comment", 0) == 0 || line.rfind("obj_info", 0) == 0;
+        at = end == std::string::npos ? header_.text.size() : end + 1;
+      }
+      if (comments > 0) phrases.push_back(std::to_string(comments) + " comment line" + (comments > 1 ? "s" : ""));
+      if (header_.format == ply::Format::kAscii) phrases.push_back("ASCII (written binary)");
+      bool doubles = false;
+      for (int p : source_) doubles = doubles || (p >= 0 && header_.properties[p].type == ply::Type::kFloat64);
+      if (doubles) phrases.push_back("double precision (written as float)");
+    } else if (nonzero_normals_) {
+      phrases.push_back("normals (nx, ny, nz; not all 0)");
+    }
+    return phrases;
   }
 
   void finish() override {
@@ -87,6 +122,7 @@ class PlyReader : public SceneReader {
   Layout layout_;
   std::vector<int> source_;  // canonical field -> header property, -1: none (normals: 0)
   std::vector<unsigned char> buffer_;
+  bool nonzero_normals_ = false;
 };
 
 class PlyWriter : public SceneWriter {
@@ -128,10 +164,10 @@ ply::Header canonical_header(int degree, std::uint64_t splats) {
   return ply::read_header(in, "canonical header");
 }
 
-std::unique_ptr<SceneReader> open_reader(FileFormat format, const std::string& path, SpzAxes spz_axes) {
+std::unique_ptr<SceneReader> open_reader(FileFormat format, const std::string& path, const Formats& formats) {
   if (format == FileFormat::kSplat) return open_splat_reader(path);
   if (format == FileFormat::kCompressedPly) return open_compressed_ply_reader(path);
-  if (format == FileFormat::kSpz) return open_spz_reader(path, spz_axes);
+  if (format == FileFormat::kSpz) return open_spz_reader(path, formats.spz_axes, formats.spz_as_reference);
   if (format == FileFormat::kGlb) return open_glb_reader(path);
   if (format == FileFormat::kSog) return open_sog_reader(path);
   return std::make_unique<PlyReader>(path);

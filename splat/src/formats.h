@@ -38,6 +38,10 @@ class SceneReader {
   const std::string& axes_source() const { return axes_source_; }
   bool antialiased() const { return antialiased_; }
   const std::vector<SpzExtension>& extensions() const { return extensions_; }
+  // What of the file an output of format `to` written from the canonical record does not hold, a
+  // phrase each ("" none): a .ply's properties outside the record; into a .ply its comments, ASCII
+  // and double precision; into other formats normals that are not all 0 (known after the last read).
+  virtual std::vector<std::string> left_out(FileFormat /*to*/) const { return {}; }
   // The next `count` records (canonical_header(degree()) properties each); `first` is the first
   // one's index, for messages. Throws io::InputError naming the file, splat and field.
   virtual void read(std::uint64_t first, std::uint64_t count, double* records) = 0;
@@ -59,6 +63,7 @@ struct WriteOptions {
   std::uint64_t splats = 0;
   int spz_version = 4;
   SpzAxes spz_axes = SpzAxes::kRaw;
+  bool spz_as_reference = false;
   bool antialiased = false;                 // .spz's flag
   std::vector<SpzExtension> spz_extensions;  // carried into a .spz
   bool keep_order = false;                   // a compressed .ply in the input's order, not Morton's
@@ -83,13 +88,14 @@ class SceneWriter {
   runtime::Matrix3 axes_ = runtime::kIdentity;
 };
 
-std::unique_ptr<SceneReader> open_reader(FileFormat format, const std::string& path, SpzAxes spz_axes);
+// A .spz's axes as formats.spz_axes and formats.spz_as_reference say.
+std::unique_ptr<SceneReader> open_reader(FileFormat format, const std::string& path, const Formats& formats);
 // Each format's own (splat_file.cc, compressed_ply.cc, spz.cc, glb.cc), behind open_reader and open_writer.
 std::unique_ptr<SceneReader> open_splat_reader(const std::string& path);
 std::unique_ptr<SceneWriter> open_splat_writer(io::PendingFile& out, int degree);
 std::unique_ptr<SceneReader> open_compressed_ply_reader(const std::string& path);
 std::unique_ptr<SceneWriter> open_compressed_ply_writer(io::PendingFile& out, int degree, std::uint64_t splats, bool morton);
-std::unique_ptr<SceneReader> open_spz_reader(const std::string& path, SpzAxes axes);
+std::unique_ptr<SceneReader> open_spz_reader(const std::string& path, SpzAxes axes, bool as_reference);
 std::unique_ptr<SceneWriter> open_spz_writer(io::PendingFile& out, const WriteOptions& options);
 std::unique_ptr<SceneReader> open_glb_reader(const std::string& path);
 std::unique_ptr<SceneReader> open_sog_reader(const std::string& path);

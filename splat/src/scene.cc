@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <future>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -304,7 +305,7 @@ DegreeChoice choose_degree(const std::string& in, const std::string& out, FileFo
       throw InputError(in + ": SH degree " + std::to_string(degree) + "; --sh-degree " + std::to_string(*formats.sh_degree) + " asks for more");
     choice.kept = *formats.sh_degree;
   } else if (formats.max_sh_error) {
-    const std::unique_ptr<SceneReader> pass = open_reader(from, in, formats.spz_axes);
+    const std::unique_ptr<SceneReader> pass = open_reader(from, in, formats);
     const Canonical c(degree);
     std::vector<double> records;
     choice.energy.assign(degree + 1, 0);
@@ -340,7 +341,7 @@ DegreeChoice choose_degree(const std::string& in, const std::string& out, FileFo
 // edges: into the .ply's after reading, the transform, back out before writing.
 Summary convert(const std::string& in, const std::string& out, FileFormat from, FileFormat to, const Formats& formats,
                 const Transform& transform, int threads, const std::function<void(std::uint64_t, std::uint64_t)>& progress) {
-  const std::unique_ptr<SceneReader> reader = open_reader(from, in, formats.spz_axes);
+  const std::unique_ptr<SceneReader> reader = open_reader(from, in, formats);
   DegreeChoice choice = choose_degree(in, out, from, to, formats, *reader);
   const int degree = reader->degree(), kept = choice.kept;
   const bool cut = kept < degree && choice.dropped_by_format < 0;
@@ -359,6 +360,7 @@ Summary convert(const std::string& in, const std::string& out, FileFormat from, 
   options.splats = reader->splats();
   options.spz_version = formats.spz_version;
   options.spz_axes = formats.spz_axes;
+  options.spz_as_reference = formats.spz_as_reference;
   options.antialiased = reader->antialiased();
   options.keep_order = formats.keep_order;
   if (!reader->extensions().empty()) {
@@ -375,7 +377,9 @@ Summary convert(const std::string& in, const std::string& out, FileFormat from, 
                        file_format_extension(to) + " cannot carry it; give --drop-spz-extensions to convert without it");
     }
   }
-  if (to == FileFormat::kSpz) summary.spz_axes_source = std::string(formats.spz_axes == SpzAxes::kRub ? "rub" : "raw") + " (written)";
+  if (to == FileFormat::kSpz)
+    summary.spz_axes_source = std::string(formats.spz_axes == SpzAxes::kRub ? "rub" : "raw") + " (written)" +
+                              (formats.spz_as_reference ? ", as the reference library writes it" : "");
   const Canonical whole(degree), written(kept);
   const ply::Header header = canonical_header(kept, reader->splats());
   const Layout layout = layout_of(header, "canonical record");
@@ -430,6 +434,7 @@ Summary convert(const std::string& in, const std::string& out, FileFormat from, 
   pending.commit();
   summary.clamped = writer->clamped();
   for (int band = 0; band <= kept; ++band) summary.sh_error[band] = writer->sh_error()[band];
+  summary.left_out = reader->left_out(to);
   if (cut) {
     summary.dropped_energy_error = kept_bands_error(choice.energy, kept);
     summary.dropped_colour_error = colour_error;
@@ -566,6 +571,42 @@ Summary transform_file(const std::string& in, const std::string& out, const Tran
   summary.sh_degree = layout.degree;
   summary.ascii = header.format == ply::Format::kAscii;
   return summary;
+}
+
+SceneInfo describe_file(const std::string& in, const Formats& formats) {
+  SceneInfo info;
+  info.format = formats.in ? *formats.in : FileFormat::kPly;
+  if (!formats.in && file_format_of(in, info.format) && info.format == FileFormat::kPly && looks_compressed(in))
+    info.format = FileFormat::kCompressedPly;
+  const std::unique_ptr<SceneReader> reader = open_reader(info.format, in, formats);
+  info.splats = reader->splats();
+  info.sh_degree = reader->degree();
+  info.axes_source = reader->axes_source();
+  info.antialiased = reader->antialiased();
+  for (const SpzExtension& e : reader->extensions()) info.extension_types.push_back(e.type);
+  const Canonical c(reader->degree());
+  const runtime::Matrix3& axes = reader->axes();
+  std::vector<double> records;
+  info.low.fill(std::numeric_limits<double>::infinity());
+  info.high.fill(-std::numeric_limits<double>::infinity());
+  for (std::uint64_t done = 0; done < info.splats;) {
+    const std::uint64_t count = std::min(kChunkSplats, info.splats - done);
+    records.resize(count * c.size());
+    reader->read(done, count, records.data());
+    for (std::uint64_t s = 0; s < count; ++s) {
+      const double* p = records.data() + s * c.size() + Canonical::kPosition;
+      for (int i = 0; i < 3; ++i) {
+        const double x = axes[3 * i] * p[0] + axes[3 * i + 1] * p[1] + axes[3 * i + 2] * p[2];
+        info.low[i] = std::min(info.low[i], x);
+        info.high[i] = std::max(info.high[i], x);
+      }
+    }
+    done += count;
+    io::throw_if_interrupted();
+  }
+  reader->finish();
+  if (info.splats == 0) info.low = info.high = {};
+  return info;
 }
 
 }  // namespace zhf::splat

@@ -46,6 +46,7 @@ constexpr unsigned char kFlagAntialiased = 1, kFlagExtensions = 2;
 constexpr int kFractionalBits = 12;  // written: positions to +-2048 in steps of 1/4096
 constexpr double kColourScale = 0.15;
 const double kSqrtHalf = std::sqrt(0.5);
+constexpr int kBand4M4 = 23;  // band 4's m = 4 among the coefficients above band 0
 
 int coefficients(int degree) { return (degree + 1) * (degree + 1) - 1; }
 
@@ -214,7 +215,7 @@ class ZstdReader : public AttributeStream {
 
 class SpzReader : public SceneReader {
  public:
-  SpzReader(const std::string& path, SpzAxes default_axes) : path_(path) {
+  SpzReader(const std::string& path, SpzAxes default_axes, bool as_reference) : path_(path) {
     const std::uint64_t size = regular_file_size(path, ".spz is checked against its size first");
     std::ifstream file = open_input(path);
     unsigned char h[kZstdHeaderBytes] = {};
@@ -262,9 +263,9 @@ class SpzReader : public SceneReader {
       if (flags & kFlagExtensions) {
         const std::string records = GzipReader(path, offset).read_rest(kMaxSpzExtensionBytes, "extension records");
         gzip_record_bytes_ = records.size();
-        take_records(parse_spz_records(records, path), default_axes);
+        take_records(parse_spz_records(records, path), default_axes, as_reference);
       } else {
-        take_records({}, default_axes);
+        take_records({}, default_axes, as_reference);
       }
       return;
     }
@@ -289,7 +290,7 @@ class SpzReader : public SceneReader {
     file.clear();
     file.seekg(kZstdHeaderBytes);
     file.read(records.data(), std::streamsize(records.size()));
-    take_records(parse_spz_records(records, path), default_axes);
+    take_records(parse_spz_records(records, path), default_axes, as_reference);
     std::uint64_t offset = table + 16 * std::uint64_t(streams);
     int stream = 0;
     for (int a = 0; a < kAttributes; ++a) {
@@ -333,8 +334,7 @@ class SpzReader : public SceneReader {
         v[Canonical::kDc + i] = (rgb[i] / 255.0 - 0.5) / kColourScale;
         v[c.scale() + i] = scale[i] / 16.0 - 10;
       }
-      // Alpha 0 and 255 read as a quarter step inside, as in .splat: the logit stays finite.
-      v[c.opacity()] = logit(std::clamp(buffers_[1][s] / 255.0, 0.25 / 255, 254.75 / 255));
+      v[c.opacity()] = opacity_of_alpha(buffers_[1][s] / 255.0);
       double xyzw[4];
       if (version_ >= 3) {
         std::uint32_t word = get_uint32(buffers_[4].data() + 4 * s);
@@ -363,6 +363,8 @@ class SpzReader : public SceneReader {
       const unsigned char* sh = buffers_[5].data() + 3 * dim * s;  // empty at degree 0
       for (int k = 0; k < dim; ++k)
         for (int ch = 0; ch < 3; ++ch) v[Canonical::kRest + ch * dim + k] = (sh[3 * k + ch] - 128.0) / 128;
+      if (negate_band4_m4_)
+        for (int ch = 0; ch < 3; ++ch) v[Canonical::kRest + ch * dim + kBand4M4] = -v[Canonical::kRest + ch * dim + kBand4M4];
     }
   }
 
@@ -381,14 +383,18 @@ class SpzReader : public SceneReader {
 
  private:
   // The coordinate-system record sets the axes; the others are carried.
-  void take_records(std::vector<SpzExtension> records, SpzAxes default_axes) {
-    axes_ = spz_read_axes(records, default_axes, path_, axes_source_);
+  void take_records(std::vector<SpzExtension> records, SpzAxes default_axes, bool as_reference) {
+    SpzFileAxes file = spz_read_axes(records, default_axes, as_reference, path_);
+    axes_ = file.axes;
+    axes_source_ = std::move(file.source);
+    negate_band4_m4_ = file.negate_band4_m4 && degree_ == 4;
     extensions_ = std::move(records);
   }
 
   std::string path_;
   std::uint32_t version_ = 3;
   int fractional_bits_ = 0;
+  bool negate_band4_m4_ = false;          // spz_records.h: SpzFileAxes
   std::uint64_t gzip_record_bytes_ = 0;  // version 3's extension records after the attributes
   std::array<std::unique_ptr<AttributeStream>, kAttributes> attributes_;  // none for an empty attribute's left-out stream
   std::array<std::vector<unsigned char>, kAttributes> buffers_;
@@ -409,7 +415,9 @@ class SpzWriter : public SceneWriter {
   SpzWriter(io::PendingFile& out, const WriteOptions& o)
       : out_(out), c_(o.degree), degree_(o.degree), version_(o.spz_version), splats_(o.splats), antialiased_(o.antialiased),
         records_(spz_record_bytes(o.spz_extensions)) {
-    axes_ = spz_write_axes(o.spz_axes);
+    const SpzFileAxes file = spz_write_axes(o.spz_axes, o.spz_as_reference);
+    axes_ = file.axes;
+    negate_band4_m4_ = file.negate_band4_m4 && degree_ == 4;
     if (records_.size() > kMaxSpzExtensionBytes) throw io::OutputError("extension records: more than " + std::to_string(kMaxSpzExtensionBytes) + " bytes");
     for (std::size_t a = 0; a < files_.size(); ++a) {
       files_[a].open(dir_.path() + "/" + std::to_string(a), std::ios::binary);
@@ -450,7 +458,7 @@ class SpzWriter : public SceneWriter {
       for (int b = 0; b < 4; ++b) bytes[4].push_back(static_cast<unsigned char>(word >> (8 * b)));
       for (int k = 0; k < dim; ++k)
         for (int ch = 0; ch < 3; ++ch) {
-          const double given = v[Canonical::kRest + ch * dim + k];
+          const double given = negate_band4_m4_ && k == kBand4M4 ? -v[Canonical::kRest + ch * dim + k] : v[Canonical::kRest + ch * dim + k];
           bytes[5].push_back(sh_byte(given, Canonical::band(k) == 1 ? 5 : 4, clamped_));
           stored(Canonical::band(k), given, (bytes[5].back() - 128.0) / 128);
         }
@@ -573,6 +581,7 @@ class SpzWriter : public SceneWriter {
   int degree_, version_;
   std::uint64_t splats_;
   bool antialiased_;
+  bool negate_band4_m4_ = false;  // spz_records.h: SpzFileAxes
   std::string records_;  // the extension records carried, as stored
   io::PrivateDir dir_{"zhf-spz"};  // each attribute's bytes until the end, in file order
   std::array<std::ofstream, kAttributes> files_;
@@ -580,7 +589,9 @@ class SpzWriter : public SceneWriter {
 
 }  // namespace
 
-std::unique_ptr<SceneReader> open_spz_reader(const std::string& path, SpzAxes axes) { return std::make_unique<SpzReader>(path, axes); }
+std::unique_ptr<SceneReader> open_spz_reader(const std::string& path, SpzAxes axes, bool as_reference) {
+  return std::make_unique<SpzReader>(path, axes, as_reference);
+}
 std::unique_ptr<SceneWriter> open_spz_writer(io::PendingFile& out, const WriteOptions& options) {
   return std::make_unique<SpzWriter>(out, options);
 }

@@ -19,6 +19,7 @@ constexpr std::size_t kRecordHeaderBytes = 8;
 constexpr std::uint32_t kCoordinateSystemRecord = 0xADBE0003;
 constexpr const char* kCoordinateSystems[] = {"RUB", "LDB", "RDB", "LUB", "RUB", "LDF", "RDF", "LUF", "RUF",
                                               "LFD", "RFD", "LFU", "RFU", "LBD", "RBD", "LBU", "RBU"};
+constexpr std::uint32_t kRubSystem = 4, kRdfSystem = 6;
 
 // A system's letters (the directions of its x, y, z) as the map into the .ply's axes (RDF: x
 // right, y down, z front): column i is the .ply direction of the file's axis i.
@@ -33,6 +34,30 @@ runtime::Matrix3 axes_of(std::string_view letters) {
 }
 
 std::string_view letters_of(SpzAxes axes) { return axes == SpzAxes::kRub ? "RUB" : "RDF"; }
+
+// The signs that take a system's axes to the .ply's (RDF) axis by axis, for two systems whose
+// axes lie along the same lines: +1 where their letters agree.
+runtime::Matrix3 flips_to_ply(std::string_view letters) {
+  runtime::Matrix3 f{};
+  for (int i = 0; i < 3; ++i) f[4 * i] = letters[i] == "RDF"[i] ? 1 : -1;
+  return f;
+}
+
+// The reference library's reading of a system into RDF, as its coordinateConverter builds it
+// (nianticlabs/spz, src/cc/splat-types.h). Systems 1..8 (x along R/L, y along U/D, z along F/B)
+// get a flip per axis: the letters' map. Systems 9..16 (y along F/B, z along U/D) are each
+// system 8 below turned a quarter about x; the library flips the file's values with the flips of
+// that partner, then turns them, (x, y, z) -> (x, z, -y). The letters' map turns first. The two
+// agree where the partner's y and z flips are equal, and differ by a half turn about x (y and z
+// negated) for LFD, RFD, LBU and RBU. `y_flipped`: the library's flip negates y.
+runtime::Matrix3 reference_axes_of(std::uint32_t system, bool& y_flipped) {
+  const bool rotated = system > 8;
+  const runtime::Matrix3 flip = flips_to_ply(kCoordinateSystems[rotated ? system - 8 : system]);
+  y_flipped = flip[4] < 0;
+  if (!rotated) return flip;
+  const runtime::Matrix3 quarter_turn = {1, 0, 0, 0, 0, 1, 0, -1, 0};
+  return runtime::multiply(quarter_turn, flip);
+}
 
 }  // namespace
 
@@ -77,9 +102,10 @@ std::string spz_record_bytes(const std::vector<SpzExtension>& records) {
   return out;
 }
 
-runtime::Matrix3 spz_read_axes(std::vector<SpzExtension>& records, SpzAxes default_axes, const std::string& path, std::string& source) {
-  std::string_view letters = letters_of(default_axes);
-  source = std::string(default_axes == SpzAxes::kRub ? "rub" : "raw") + " (--spz-axes; no coordinate-system record)";
+SpzFileAxes spz_read_axes(std::vector<SpzExtension>& records, SpzAxes default_axes, bool as_reference, const std::string& path) {
+  std::uint32_t system = default_axes == SpzAxes::kRub ? kRubSystem : kRdfSystem;
+  SpzFileAxes axes;
+  axes.source = std::string(default_axes == SpzAxes::kRub ? "rub" : "raw") + " (--spz-axes; no coordinate-system record)";
   std::vector<SpzExtension> others;
   bool seen = false;
   for (SpzExtension& r : records) {
@@ -90,16 +116,29 @@ runtime::Matrix3 spz_read_axes(std::vector<SpzExtension>& records, SpzAxes defau
     const std::string what = path + ": coordinate-system record";
     if (seen) throw InputError(what + ": given twice");
     if (r.payload.size() != 4) throw InputError(what + ": " + std::to_string(r.payload.size()) + " bytes; expected 4");
-    const std::uint32_t system = get_uint32(reinterpret_cast<const unsigned char*>(r.payload.data()));
+    system = get_uint32(reinterpret_cast<const unsigned char*>(r.payload.data()));
     if (system >= std::size(kCoordinateSystems)) throw InputError(what + ": " + std::to_string(system) + " is not a coordinate system (0..16)");
     seen = true;
-    letters = kCoordinateSystems[system];
-    source = std::string(letters) + " (coordinate-system record" + (system == 0 ? ", unspecified: RUB" : "") + ")";
+    axes.source = std::string(kCoordinateSystems[system]) + " (coordinate-system record" + (system == 0 ? ", unspecified: RUB" : "") + ")";
   }
   records = std::move(others);
-  return axes_of(letters);
+  if (system == 0) system = kRubSystem;
+  if (as_reference) {
+    bool y_flipped = false;
+    axes.axes = reference_axes_of(system, y_flipped);
+    axes.negate_band4_m4 = y_flipped;
+    axes.source += ", as the reference library reads it";
+  } else {
+    axes.axes = axes_of(kCoordinateSystems[system]);
+  }
+  return axes;
 }
 
-runtime::Matrix3 spz_write_axes(SpzAxes axes) { return runtime::transpose(axes_of(letters_of(axes))); }
+SpzFileAxes spz_write_axes(SpzAxes axes, bool as_reference) {
+  SpzFileAxes written;
+  written.axes = runtime::transpose(axes_of(letters_of(axes)));
+  written.negate_band4_m4 = as_reference && axes == SpzAxes::kRub;
+  return written;
+}
 
 }  // namespace zhf::splat

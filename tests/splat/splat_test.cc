@@ -363,11 +363,140 @@ TEST(Splat, SplatFilesHoldThePublishedBytesAndReadBackExactly) {
       ASSERT_EQ(value(("f_dc_" + std::to_string(i)).c_str()), float((r.rgba[i] / 255.0 - 0.5) / c0)) << at;
       ASSERT_EQ(value(("n" + "xyz"s.substr(i, 1)).c_str()), 0.0) << at;
     }
-    const double alpha = std::clamp(r.rgba[3] / 255.0, 0.25 / 255, 254.75 / 255);
-    ASSERT_EQ(value("opacity"), float(std::log(alpha / (1 - alpha)))) << at;
+    ASSERT_EQ(value("opacity"), float(test::opacity_of_alpha(r.rgba[3] / 255.0))) << at;
     for (int i = 0; i < 4; ++i) ASSERT_EQ(value(("rot_" + std::to_string(i)).c_str()), (r.rot[i] - 128.0) / 128) << at;
   }
   EXPECT_EQ(h.find("f_rest_0"), -1);
+}
+
+// The alpha rule (docs/formats.md) at its two ends: opacities of -30 and 30 store alpha bytes 0
+// and 255 (in a .glb floats within 1e-13 of 0 and 1); every format reads them back as
+// splat-transform does, -13.8 and 13.8, and a .splat written from those holds 0 and 255 again.
+TEST(Splat, AlphaZeroAnd255ReadAsSplatTransformReadsThem) {
+  const test::TempDir dir;
+  std::mt19937_64 rng(71);
+  Scene scene = random_scene(1, 64, rng);
+  const int opacity = index_of(scene, "opacity");
+  for (std::size_t k = 0; k < scene.rows.size(); ++k) scene.rows[k][opacity] = k % 2 ? 30 : -30;
+  const std::string in = (dir / "in.ply").string();
+  write_scene(scene, in, false);
+  for (const std::string format : {"splat", "compressed.ply", "spz", "glb"}) {
+    const std::string mid = (dir / ("mid." + format)).string(), back = (dir / ("back_" + format + ".ply")).string();
+    const std::string order = format == "compressed.ply" ? " --keep-order" : "";  // else Morton's
+    test::RunResult run = test::run_zhf("splat --in '" + in + "' --out '" + mid + "' --identity --quiet" + order);
+    ASSERT_EQ(run.exit_code, 0) << format << ": " << run.err;
+    run = test::run_zhf("splat --in '" + mid + "' --out '" + back + "' --identity --quiet");
+    ASSERT_EQ(run.exit_code, 0) << format << ": " << run.err;
+    // By name: the columns differ (a .splat holds no SH).
+    std::ifstream back_file(back, std::ios::binary);
+    const io::ply::Header h = io::ply::read_header(back_file, back);
+    const auto column = std::find_if(h.properties.begin(), h.properties.end(), [](const io::ply::Property& p) { return p.name == "opacity"; });
+    ASSERT_NE(column, h.properties.end()) << format;
+    std::vector<unsigned char> record(h.record_bytes);
+    for (std::size_t k = 0; k < scene.rows.size(); ++k) {
+      ASSERT_TRUE(back_file.read(reinterpret_cast<char*>(record.data()), std::streamsize(record.size()))) << format << ", splat " << k;
+      ASSERT_EQ(io::ply::read_binary(record.data(), *column), float(test::opacity_of_alpha(k % 2 ? 1.0 : 0.0))) << format << ", splat " << k;
+    }
+    if (format != "splat") continue;
+    const std::string again = (dir / "again.splat").string();
+    run = test::run_zhf("splat --in '" + back + "' --out '" + again + "' --identity --quiet");
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const std::vector<SplatRecord> records = read_splats(again);
+    for (std::size_t k = 0; k < records.size(); ++k) ASSERT_EQ(int(records[k].rgba[3]), k % 2 ? 255 : 0) << "splat " << k;
+  }
+}
+
+// --info reads the scene whole and writes nothing: its count, degree and the box of its positions
+// (computed here from the rows), for a .ply and for the same scene as a .spz (its axes and records
+// too); with an output or a transform it is refused in one line.
+TEST(Splat, InfoSaysWhatTheSceneHoldsAndWritesNothing) {
+  const test::TempDir dir;
+  std::mt19937_64 rng(73);
+  const Scene scene = random_scene(2, 3000, rng);
+  const std::string in = (dir / "in.ply").string(), spz = (dir / "in.spz").string();
+  write_scene(scene, in, false);
+  ASSERT_EQ(test::run_zhf("splat --in '" + in + "' --out '" + spz + "' --quiet").exit_code, 0);
+  std::array<double, 3> low{1e300, 1e300, 1e300}, high{-1e300, -1e300, -1e300};
+  for (const auto& row : scene.rows)
+    for (int i = 0; i < 3; ++i) {
+      low[i] = std::min(low[i], row[i]);
+      high[i] = std::max(high[i], row[i]);
+    }
+  char bounds[200];
+  std::snprintf(bounds, sizeof bounds, "bounds in the .ply's axes: x %.6g .. %.6g, y %.6g .. %.6g, z %.6g .. %.6g", low[0], high[0], low[1],
+                high[1], low[2], high[2]);
+  test::RunResult run = test::run_zhf("splat --in '" + in + "' --info");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find(".ply, 3000 splats, SH degree 2"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find(bounds), std::string::npos) << run.out << "\nexpected " << bounds;
+  run = test::run_zhf("splat --in '" + spz + "' --info");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find(".spz, 3000 splats, SH degree 2"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("extension records: 0"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("antialiased: no"), std::string::npos) << run.out;
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir.string()), fs::directory_iterator()), 2) << "--info wrote something";
+  for (const std::string& args : {" --info --out '" + (dir / "x.ply").string() + "'", std::string(" --info --zyz '1 2 3'")}) {
+    run = test::run_zhf("splat --in '" + in + "'" + args);
+    EXPECT_EQ(run.exit_code, 2) << args << ": " << run.err;
+    EXPECT_EQ(test::line_count(run.err), 1) << run.err;
+    EXPECT_NE(run.err.find("--info"), std::string::npos) << run.err;
+  }
+}
+
+// Every conversion keeps a field or names it on stderr in one line: a .ply's extra properties
+// (here `custom`, and `confidence`), its comments, ASCII and doubles where the canonical record
+// writes a .ply, and normals that are not all 0 where the output has none. A scene with nothing
+// to lose converts without a word.
+TEST(Splat, ConversionsNameWhatTheyDoNotKeep) {
+  const test::TempDir dir;
+  std::mt19937_64 rng(91);
+  Scene scene = random_scene(2, 50, rng);
+  const std::string in = (dir / "in.ply").string(), ascii = (dir / "ascii.ply").string();
+  write_scene(scene, in, false);
+  write_scene(scene, ascii, true);
+  auto note = [&](const std::string& from, const std::string& to, const std::string& options) {
+    const test::RunResult run = test::run_zhf("splat --in '" + from + "' --out '" + (dir / to).string() + "' --quiet " + options);
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    const std::size_t at = run.err.find(": not kept from ");
+    if (at == std::string::npos) return std::string();
+    EXPECT_EQ(run.err.find(": not kept from ", at + 1), std::string::npos) << "one line: " << run.err;
+    const std::size_t begin = run.err.find(": ", at + 16) + 2;
+    return run.err.substr(begin, run.err.find('\n', begin) + 1 - begin);
+  };
+  EXPECT_EQ(note(in, "cut.ply", "--sh-degree 1"), "property custom; 1 comment line\n");
+  EXPECT_EQ(note(ascii, "cut_ascii.ply", "--sh-degree 1"), "property custom; 1 comment line; ASCII (written binary)\n");
+  EXPECT_EQ(note(in, "out.spz", ""), "property custom; normals (nx, ny, nz; not all 0)\n");
+  EXPECT_EQ(note(in, "same.ply", "--zyz '0.1 0.2 0.3'"), "") << "a .ply turned in place keeps everything";
+  // Doubles and a second extra property; the scene's own record (normals 0) into .spz says nothing.
+  std::string text = test::read_text(in);
+  const std::string header = text.substr(0, text.find("end_header\n"));
+  std::string doubled = header;
+  for (const char* name : {"x", "y", "z"}) {
+    const std::string from = std::string("property float ") + name + "\n";
+    doubled.replace(doubled.find(from), from.size(), std::string("property double ") + name + "\n");
+  }
+  doubled += "property float confidence\nend_header\n";
+  const std::size_t record = 4 * (scene.names.size() + 1);
+  for (std::size_t k = 0; k < scene.rows.size(); ++k) {
+    const std::string row = text.substr(header.size() + 11 + k * record, record);
+    for (int i = 0; i < 3; ++i) {
+      float f;
+      std::memcpy(&f, row.data() + 4 * i, 4);
+      const double d = f;
+      doubled.append(reinterpret_cast<const char*>(&d), 8);
+    }
+    doubled += row.substr(12) + std::string(4, '\0');
+  }
+  const std::string wide = (dir / "wide.ply").string();
+  test::write_text(wide, doubled);
+  EXPECT_EQ(note(wide, "cut_wide.ply", "--sh-degree 0"), "properties custom, confidence; 1 comment line; double precision (written as float)\n");
+  const std::string plain = (dir / "plain.ply").string();
+  ASSERT_EQ(test::run_zhf("splat --in '" + in + "' --out '" + plain + "' --quiet --sh-degree 2").exit_code, 0);
+  std::string zeroed = test::read_text(plain);
+  const std::size_t body = zeroed.find("end_header\n") + 11, width = 4 * (9 + 24 + 8);
+  for (std::size_t k = 0; k < scene.rows.size(); ++k) std::memset(&zeroed[body + k * width + 12], 0, 12);
+  test::write_text(plain, zeroed);
+  EXPECT_EQ(note(plain, "plain.spz", ""), "") << "the canonical record with normals 0";
 }
 
 TEST(Splat, TransformingASplatFileMatchesTransformingItsPly) {
@@ -518,7 +647,10 @@ TEST(Splat, CompressedPlyHoldsTheLayoutAndReadsBackExactly) {
   write_scene(scene, in, false);
   test::RunResult run = test::run_zhf("splat --in '" + in + "' --out '" + packed + "' --identity --keep-order");
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  EXPECT_EQ(run.err, "");  // nothing dropped, nothing beyond the format's range
+  // Nothing beyond the format's range; the note names what the format does not hold.
+  EXPECT_EQ(test::line_count(run.err), 1) << run.err;
+  EXPECT_NE(run.err.find(": not kept from "), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find(": property custom; normals (nx, ny, nz; not all 0)\n"), std::string::npos) << run.err;
   // The error the format added, per SH band, reported: SH to half a step of 8 / 256.
   double error[4] = {-1, -1, -1, -1};
   const std::size_t report = run.out.find("largest per SH band:");
@@ -558,8 +690,7 @@ TEST(Splat, CompressedPlyHoldsTheLayoutAndReadsBackExactly) {
       const double colour = lerp(b[12 + i], b[15 + i], unorm(w[3], 24 - 8 * i, 8));
       ASSERT_EQ(row[index_of(scene, "f_dc_" + n)], float((colour - 0.5) / c0)) << at;
     }
-    const double alpha = std::clamp(unorm(w[3], 0, 8), 0.25 / 255, 254.75 / 255);
-    ASSERT_EQ(row[index_of(scene, "opacity")], float(std::log(alpha / (1 - alpha)))) << at;
+    ASSERT_EQ(row[index_of(scene, "opacity")], float(test::opacity_of_alpha(unorm(w[3], 0, 8)))) << at;
     // The quaternion: three of 10 bits, the largest (named by the top 2) from the unit norm; the
     // same rotation as the original, within a step.
     const int largest = int(w[1] >> 30);
@@ -717,7 +848,9 @@ TEST(Splat, SpzHoldsTheLayoutInItsAxesAndReadsBackExactly) {
   write_scene(scene, in, false);
   test::RunResult run = test::run_zhf("splat --in '" + in + "' --out '" + spz + "' --identity --quiet --spz-version 3 --spz-axes rub");
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  EXPECT_EQ(run.err, "");
+  // Nothing clamped: the one line is the note of what .spz does not keep (the extra property, normals).
+  EXPECT_EQ(test::line_count(run.err), 1) << run.err;
+  EXPECT_NE(run.err.find(": not kept from "), std::string::npos) << run.err;
   const std::string data = gunzip(test::read_text(spz));
   const std::size_t n = scene.rows.size();
   ASSERT_EQ(data.size(), 16 + n * (9 + 1 + 3 + 3 + 4 + 45));
@@ -746,8 +879,7 @@ TEST(Splat, SpzHoldsTheLayoutInItsAxesAndReadsBackExactly) {
       const double scale = byte(16 + 13 * n + 3 * k + i) / 16.0 - 10;
       ASSERT_EQ(row[index_of(scene, "scale_" + std::to_string(i))], float(scale)) << at;
     }
-    const double alpha = std::clamp(byte(16 + 9 * n + k) / 255.0, 0.25 / 255, 254.75 / 255);
-    ASSERT_EQ(row[index_of(scene, "opacity")], float(std::log(alpha / (1 - alpha)))) << at;
+    ASSERT_EQ(row[index_of(scene, "opacity")], float(test::opacity_of_alpha(byte(16 + 9 * n + k) / 255.0))) << at;
     std::uint32_t word;
     std::memcpy(&word, &data[16 + 16 * n + 4 * k], 4);
     const std::array<double, 4> xyzw = test::spz_smallest_three(word);
@@ -923,7 +1055,7 @@ TEST(Splat, GlbHoldsTheLayoutInGltfAxesAndReadsBackExactly) {
     }
     const float opacity = glb_float(g, "KHR_gaussian_splatting:OPACITY", k, 0);
     ASSERT_EQ(opacity, float(1 / (1 + std::exp(-value("opacity"))))) << at;
-    ASSERT_EQ(row[index_of(scene, "opacity")], float(std::log(opacity / (1.0 - opacity)))) << at;
+    ASSERT_EQ(row[index_of(scene, "opacity")], float(test::opacity_of_alpha(opacity))) << at;
     // Stored x y z w: the unit quaternion turned by the half turn k (k q = (-z, -y, x, w) as w x y z).
     const double w = value("rot_0"), x = value("rot_1"), y = value("rot_2"), z = value("rot_3");
     const double norm = std::sqrt(w * w + x * x + y * y + z * z);

@@ -115,6 +115,10 @@ inline constexpr double kPrtExactReference = 1e-10;
 // zhf splat's .ply values are float32: each is rounded to float once on the way in and once on
 // the way out, so a transformed value is within a few float steps of its double reference.
 inline constexpr double kSplatFloatStorage = 4 * kFloatEpsilon;
+// zhf's reading of a .spz against the reference library's, both from the same bytes: the library
+// decodes and turns in float, zhf in double, each output rounded to float: over the checked-in
+// files at most 1.19e-7 apart (2 kFloatEpsilon; relative above 1), one float step of a value near 1.
+inline constexpr double kSpzReferenceLibraryReading = 4 * kFloatEpsilon;
 
 // ---- HEALPix maps ----------------------------------------------------------------------------
 // A band-limited map (bands <= Nside / 2) synthesised on HEALPix pixels and projected back with 3

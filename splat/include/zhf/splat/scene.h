@@ -23,6 +23,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "zhf/runtime/conventions.h"
 #include "zhf/runtime/rotation.h"
@@ -76,6 +77,7 @@ struct Summary {
   int carried_extensions = 0;         // .spz extension records carried unchanged
   int dropped_extensions = 0;         // left out, as --drop-spz-extensions asks
   std::uint64_t palette_entries = 0;  // a .sog turned: its SH palette's entries, each turned once
+  std::vector<std::string> left_out;  // what of the input the output does not hold, a phrase each (converted scenes)
   std::uint64_t clamped = 0;   // values outside the output's range, written as its nearest
   // Converted (any pair but .ply to .ply): per SH band (0: f_dc), the largest |written - exact|
   // of the transformed values, what the output format's steps cost; -1 for a band not written.
@@ -97,6 +99,9 @@ struct Formats {
   std::optional<FileFormat> in, out;
   int spz_version = 4;  // written: 4 (zstd streams, the reference library's default) or 3 (gzip)
   SpzAxes spz_axes = SpzAxes::kRaw;  // of a .spz read without a coordinate-system record, and of one written
+  // A .spz's axes converted as the reference library converts them, where it differs from the
+  // systems' letters (docs/formats.md): LFD, RFD, LBU and RBU, and band 4's m = 4 coefficient.
+  bool spz_as_reference = false;
   bool drop_spz_extensions = false;  // records a non-.spz output cannot carry: left out (else refused)
   bool keep_order = false;           // a compressed .ply in the input's order (default: Morton order)
   // The SH bands written: 0..sh_degree (at most the scene's), or the smallest degree whose
@@ -106,5 +111,19 @@ struct Formats {
 };
 Summary transform_file(const std::string& in, const std::string& out, const Transform& transform, int threads,
                        const std::function<void(std::uint64_t, std::uint64_t)>& progress, const Formats& formats = {});
+
+// What zhf splat --info reports of a scene, read whole (every value checked as a conversion checks
+// it) and nothing written: its format, splats, SH degree, the box of its positions in the .ply's
+// axes, its axes and where they came from, the antialiasing mark and its extension records.
+struct SceneInfo {
+  FileFormat format = FileFormat::kPly;
+  std::uint64_t splats = 0;
+  int sh_degree = 0;
+  std::array<double, 3> low{}, high{};  // of the positions (empty scene: zeros)
+  std::string axes_source;              // "" for a format in the .ply's axes
+  bool antialiased = false;
+  std::vector<std::uint32_t> extension_types;  // .spz extension records, in file order
+};
+SceneInfo describe_file(const std::string& in, const Formats& formats = {});
 
 }  // namespace zhf::splat
