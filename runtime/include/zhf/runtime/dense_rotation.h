@@ -16,13 +16,17 @@
 #include "zhf/runtime/parallel.h"
 #include "zhf/runtime/sh_eval.h"
 
-// The bodies of the unrolled loops below (for_each_index) are inlined: GCC's [[gnu::flatten]] does
-// it for the function that holds them, Clang's does not reach into lambdas (under Emscripten the
-// order-4 splats ran 2x slower with each band's loop a call).
-#if defined(__GNUC__)
+// The bodies of the unrolled loops below (for_each_index) are inlined: GCC's flatten does it for
+// the function that holds them, Clang's does not reach into lambdas (under Emscripten the order-4
+// splats ran 2x slower with each band's loop a call). Only when optimising: at -O0 (the sanitized
+// runtime tests) forced inlining buys nothing and doubles clang's compile time (transforms_test's
+// unit under ASan: 88 s with it, 44 s without).
+#if defined(__GNUC__) && defined(__OPTIMIZE__)
 #define ZHF_UNROLLED __attribute__((always_inline))
+#define ZHF_FLATTEN __attribute__((flatten))
 #else
 #define ZHF_UNROLLED
+#define ZHF_FLATTEN
 #endif
 
 namespace zhf::runtime {
@@ -170,13 +174,13 @@ class DenseRotation {
   // to 1.35x faster in most runs and 2x slower in others (the one output stream right behind the
   // one input stream, as if the two collided in memory).
   static constexpr std::size_t kStreamedOutputBytes = std::size_t(64) << 20;
-  // Splats apply_splats rotates per step: two in WebAssembly, where a column pack loaded once for
-  // six channels beat once for three (order 4, Node 20, in cache: 26 to 28 ns a splat against 30
-  // to 31); one elsewhere.
+  // Splats apply_splats rotates per step at order N: two in WebAssembly up to order 5 (the 3DGS
+  // degrees the files carry), where a column pack loaded once for six channels beat once for three
+  // (order 4, Node 20, in cache: 26 to 28 ns a splat against 30 to 31); one elsewhere.
 #if defined(__wasm_simd128__)
-  static constexpr std::size_t kSplatsPerStep = 2;
+  static constexpr std::size_t splats_per_step(int order) { return order <= 5 ? 2 : 1; }
 #else
-  static constexpr std::size_t kSplatsPerStep = 1;
+  static constexpr std::size_t splats_per_step(int) { return 1; }
 #endif
 
   // Bands 1.. are cut into packs of kLanes output rows. Pack p starts at row p kLanes, except
@@ -195,11 +199,12 @@ class DenseRotation {
     const std::size_t rest = static_cast<std::size_t>(coefficients() - 1), item = 3 + 3 * rest;
     parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
       std::size_t v = begin;
-      if constexpr (N > 2 && kSplatsPerStep > 1) {
-        for (; v + kSplatsPerStep <= end; v += kSplatsPerStep) {
-          for (std::size_t k = 0; k < kSplatsPerStep; ++k)
+      constexpr std::size_t kStep = splats_per_step(N);
+      if constexpr (N > 2 && kStep > 1) {
+        for (; v + kStep <= end; v += kStep) {
+          for (std::size_t k = 0; k < kStep; ++k)
             for (int c = 0; c < 3; ++c) out[item * (v + k) + c] = in[item * (v + k) + c];
-          apply_splat_rest<N, kSplatsPerStep>(in + item * v + 3, out + item * v + 3);
+          apply_splat_rest<N, kStep>(in + item * v + 3, out + item * v + 3);
         }
       }
       for (; v < end; ++v) {
@@ -258,7 +263,7 @@ class DenseRotation {
   // with rows in it is done, when those rows' inputs have all been read, so x may be y. Each
   // channel's arithmetic is the same whatever S.
   template <int N, int S>
-  [[gnu::flatten]] ZHF_UNROLLED void apply_splat_rest(const T* x, T* y) const {
+  ZHF_FLATTEN ZHF_UNROLLED void apply_splat_rest(const T* x, T* y) const {
     constexpr int rest = N * N - 1, packs = (rest + P::kLanes - 1) / P::kLanes, item = 3 * N * N;
     static_assert(rest >= P::kLanes, "a whole pack of rows");
     const P* columns = rest_columns_.data();  // a local: the stores could alias the member
