@@ -5,7 +5,7 @@
 #   2. one clang build under AddressSanitizer + UndefinedBehaviorSanitizer: the tests of the
 #      runtime's memory paths and of the readers' libraries (tests/CMakeLists.txt's sanitized set;
 #      those that run the CLI run the Release build's), then each libFuzzer target for
-#      ZHF_FUZZ_SECONDS (default 20) on its seed corpus with its dictionary, one per core at a time;
+#      ZHF_FUZZ_SECONDS (default 10: a smoke run; longer runs by hand) on its seed corpus with its dictionary, one per core at a time;
 #      a fuzzer that finds a failing input, fails to start or runs no input fails the stage;
 #   3. the runtime's, the generated kernels' and zhf::dispatch's tests cross-built for aarch64 and
 #      run under qemu-aarch64 (scripts/test_aarch64.sh: correctness on ARM, never timing).
@@ -46,7 +46,7 @@ fuzz_one() {
   local corpus=$1 dict=$2 target="fuzz_$1" work status=0 runs
   work=$(mktemp -d)
   cp "$ZHF_ROOT"/tests/fuzz_corpus/$corpus/* "$work/"
-  "$fuzz_build/fuzz/$target" -max_total_time="${ZHF_FUZZ_SECONDS:-20}" -dict="$ZHF_ROOT/tests/fuzz_corpus/$dict.dict" \
+  "$fuzz_build/fuzz/$target" -max_total_time="${ZHF_FUZZ_SECONDS:-10}" -dict="$ZHF_ROOT/tests/fuzz_corpus/$dict.dict" \
     -max_len=200000 -artifact_prefix="$work/" -print_final_stats=1 "$work" >"$work/log" 2>&1 || status=$?
   runs=$(grep -E '^stat::number_of_executed_units' "$work/log" | tr -s ' ' | cut -d' ' -f2 || true)
   echo "-- $target: ${runs:-no} runs, exit status $status"
