@@ -1,3 +1,5 @@
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -11,6 +13,7 @@
 #include "zhf/io/errors.h"
 #include "zhf/io/rotation_text.h"
 #include "zhf/runtime/conventions.h"
+#include "zhf/runtime/errors.h"
 #include "zhf/splat/limits.h"
 #include "zhf/splat/scene.h"
 
@@ -21,8 +24,9 @@ struct SplatOptions {
   std::string in, out;
   TransformOptions transform;
   std::string translate, scale = "1", convention = "3dgs", threads = "0", format, in_format, spz_version = "4", spz_axes = "raw";
-  std::string sh_degree, max_sh_error;
+  std::string sh_degree, max_sh_error, crop_box, crop_sphere, min_opacity;
   bool identity = false, quiet = false, drop_spz_extensions = false, keep_order = false, info = false, spz_as_reference = false;
+  bool drop_nonfinite = false;
 };
 
 std::array<double, 3> translation(const std::string& text) {
@@ -33,6 +37,38 @@ std::array<double, 3> translation(const std::string& text) {
   } catch (const io::InputError& e) {
     throw UsageError(e.what());
   }
+}
+
+template <std::size_t N>
+std::array<double, N> numbers_option(const std::string& option, const std::string& text) {
+  try {
+    const std::vector<double> v = io::parse_numbers(text, N, option);
+    std::array<double, N> a{};
+    std::copy(v.begin(), v.end(), a.begin());
+    return a;
+  } catch (const io::InputError& e) {
+    throw UsageError(e.what());
+  }
+}
+
+// --drop-nonfinite, --crop-box, --crop-sphere, --min-opacity.
+splat::Filters filter_options(const SplatOptions& o) {
+  splat::Filters f;
+  f.drop_nonfinite = o.drop_nonfinite;
+  if (!o.crop_box.empty()) {
+    f.crop_box = numbers_option<6>("--crop-box", o.crop_box);
+    const std::array<double, 6>& b = *f.crop_box;
+    for (int i = 0; i < 3; ++i)
+      if (b[i] > b[3 + i])
+        throw UsageError("--crop-box: x0 y0 z0 x1 y1 z1 with each low bound at most its high one; " + std::string(1, "xyz"[i]) + " runs " +
+                         runtime::format_number(b[i]) + " to " + runtime::format_number(b[3 + i]));
+  }
+  if (!o.crop_sphere.empty()) {
+    f.crop_sphere = numbers_option<4>("--crop-sphere", o.crop_sphere);
+    if (!((*f.crop_sphere)[3] >= 0)) throw UsageError("--crop-sphere: x y z r with r >= 0; r is " + runtime::format_number((*f.crop_sphere)[3]));
+  }
+  if (!o.min_opacity.empty()) f.min_opacity = number_option("--min-opacity", o.min_opacity, 0, 1);
+  return f;
 }
 
 std::optional<splat::FileFormat> format_option(const std::string& option, const std::string& name) {
@@ -53,6 +89,7 @@ int describe(const SplatOptions& o) {
   if (!o.out.empty()) throw UsageError("--info: writes nothing; drop --out");
   if (transform_given(o.transform) || o.identity || !o.translate.empty() || o.scale != "1")
     throw UsageError("--info: transforms nothing; drop the rotation, --translate and --scale");
+  if (filter_options(o).any()) throw UsageError("--info: describes the whole scene; drop the filters");
   splat::Formats formats;
   formats.in = format_option("--in-format", o.in_format);
   spz_axes_options(o, formats);
@@ -102,6 +139,7 @@ int run_splat(const SplatOptions& o) {
   if (!o.sh_degree.empty() && !o.max_sh_error.empty()) throw UsageError("--sh-degree: --max-sh-error is given too; give one or the other");
   if (!o.sh_degree.empty()) formats.sh_degree = static_cast<int>(integer_option("--sh-degree", o.sh_degree, 0, splat::kMaxSplatShDegree));
   if (!o.max_sh_error.empty()) formats.max_sh_error = number_option("--max-sh-error", o.max_sh_error, 0, 1);
+  formats.filters = filter_options(o);
   const bool bar = !o.quiet && isatty(STDERR_FILENO);
   const splat::Summary summary = splat::transform_file(o.in, o.out, t, threads, [bar](std::uint64_t done, std::uint64_t total) {
     if (bar) std::fprintf(stderr, "\rzhf splat: %3d%% (%llu of %llu splats)", int(100.0 * done / total), (unsigned long long)done,
@@ -122,6 +160,18 @@ int run_splat(const SplatOptions& o) {
     std::string phrases = summary.left_out[0];
     for (std::size_t i = 1; i < summary.left_out.size(); ++i) phrases += "; " + summary.left_out[i];
     std::fprintf(stderr, "zhf splat: %s: not kept from %s: %s\n", io::excerpt(o.out).c_str(), io::excerpt(o.in).c_str(), phrases.c_str());
+  }
+  // What the filters left out is said even with --quiet, as a count by reason.
+  if (formats.filters.any()) {
+    std::string reasons;
+    auto add = [&](std::uint64_t n, const char* why) {
+      if (n > 0) reasons += (reasons.empty() ? "; left out " : ", ") + std::to_string(n) + " " + why;
+    };
+    add(summary.nonfinite, "with a NaN or infinite value");
+    add(summary.outside, "outside the crop");
+    add(summary.transparent, "below --min-opacity");
+    std::fprintf(stderr, "zhf splat: %s: wrote %llu of %llu splats%s\n", io::excerpt(o.out).c_str(), (unsigned long long)summary.written(),
+                 (unsigned long long)summary.splats, reasons.c_str());
   }
   if (summary.clamped > 0)
     std::fprintf(stderr, "zhf splat: %s: %llu values beyond the %s format's range were written as its nearest\n",
@@ -175,6 +225,10 @@ void add_splat_command(CLI::App& app, Action& action) {
   c->add_option("--sh-degree", o->sh_degree, "Keep SH bands 0..K only (at most the scene's degree)");
   c->add_option("--max-sh-error", o->max_sh_error,
                 "Keep the fewest SH bands whose dropped energy, relative L2 over the scene as zhf analyze measures it, is at most E");
+  c->add_flag("--drop-nonfinite", o->drop_nonfinite, "Leave out splats with a NaN or infinite value (else refused); the count goes to stderr");
+  c->add_option("--crop-box", o->crop_box, "x0 y0 z0 x1 y1 z1: keep the splats inside this box, where the transform puts them");
+  c->add_option("--crop-sphere", o->crop_sphere, "x y z r: keep the splats within r of (x, y, z), where the transform puts them");
+  c->add_option("--min-opacity", o->min_opacity, "Keep the splats whose opacity, sigmoid of the stored logit, is at least A (0..1)");
   c->add_option("--in-format", o->in_format, "The input's format, " + splat::file_format_names() + " (default: --in's extension and header, else ply)");
   add_transform_options(c, o->transform);
   c->add_flag("--identity", o->identity, "No rotation, the default when none is given (refused with one)");

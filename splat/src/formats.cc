@@ -67,7 +67,7 @@ class PlyReader : public SceneReader {
       double* v = records + s * c.size();
       for (int i = 0; i < c.size(); ++i) {
         v[i] = source_[i] < 0 ? 0 : ascii ? values[source_[i]] : ply::read_binary(record, header_.properties[source_[i]]);
-        if (!std::isfinite(v[i]))
+        if (!std::isfinite(v[i]) && !keep_nonfinite_)
           throw InputError(where(path_, first + s, "property " + header_.properties[source_[i]].name) + " is " + runtime::format_number(v[i]));
       }
       const double* q = v + c.rotation();
@@ -165,12 +165,15 @@ ply::Header canonical_header(int degree, std::uint64_t splats) {
 }
 
 std::unique_ptr<SceneReader> open_reader(FileFormat format, const std::string& path, const Formats& formats) {
-  if (format == FileFormat::kSplat) return open_splat_reader(path);
-  if (format == FileFormat::kCompressedPly) return open_compressed_ply_reader(path);
-  if (format == FileFormat::kSpz) return open_spz_reader(path, formats.spz_axes, formats.spz_as_reference);
-  if (format == FileFormat::kGlb) return open_glb_reader(path);
-  if (format == FileFormat::kSog) return open_sog_reader(path);
-  return std::make_unique<PlyReader>(path);
+  std::unique_ptr<SceneReader> reader;
+  if (format == FileFormat::kSplat) reader = open_splat_reader(path);
+  else if (format == FileFormat::kCompressedPly) reader = open_compressed_ply_reader(path);
+  else if (format == FileFormat::kSpz) reader = open_spz_reader(path, formats.spz_axes, formats.spz_as_reference);
+  else if (format == FileFormat::kGlb) reader = open_glb_reader(path);
+  else if (format == FileFormat::kSog) reader = open_sog_reader(path);
+  else reader = std::make_unique<PlyReader>(path);
+  if (formats.filters.drop_nonfinite) reader->keep_nonfinite();
+  return reader;
 }
 
 std::unique_ptr<SceneWriter> open_writer(FileFormat format, io::PendingFile& out, const WriteOptions& o) {

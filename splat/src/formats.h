@@ -47,8 +47,12 @@ class SceneReader {
   virtual void read(std::uint64_t first, std::uint64_t count, double* records) = 0;
   // Throws when bytes follow the last splat.
   virtual void finish() = 0;
+  // A NaN or infinite value is read as it is, for the caller to leave its splat out, instead of
+  // refused (the formats that store floats: .ply, .splat, .glb; the others cannot hold one).
+  void keep_nonfinite() { keep_nonfinite_ = true; }
 
  protected:
+  bool keep_nonfinite_ = false;
   std::uint64_t splats_ = 0;
   int degree_ = 0;
   runtime::Matrix3 axes_ = runtime::kIdentity;

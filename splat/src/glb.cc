@@ -371,12 +371,14 @@ class GlbReader : public SceneReader {
   }
 
   void decode(std::uint64_t splat, std::uint64_t s, double* v, const Canonical& c) {
+    bool nonfinite = false;
     for (const Attribute& a : attributes_) {
       const unsigned char* at = a.bytes.data() + s * a.stride;
       double x[4];
       for (int i = 0; i < a.spec.components; ++i) {
         x[i] = component(at + i * component_bytes(a.type), a.type, a.normalized);
-        if (!std::isfinite(x[i])) throw InputError(where(path_, splat, a.name) + " is " + runtime::format_number(x[i]));
+        if (!std::isfinite(x[i]) && !keep_nonfinite_) throw InputError(where(path_, splat, a.name) + " is " + runtime::format_number(x[i]));
+        nonfinite = nonfinite || !std::isfinite(x[i]);
       }
       switch (a.spec.kind) {
         case Kind::kPosition:
@@ -389,13 +391,13 @@ class GlbReader : public SceneReader {
           break;
         case Kind::kScale:
           for (int i = 0; i < 3; ++i) {
-            if (x[i] < 0) throw InputError(where(path_, splat, a.name) + " is " + runtime::format_number(x[i]) + ", below 0");
+            if (x[i] < 0 && std::isfinite(x[i])) throw InputError(where(path_, splat, a.name) + " is " + runtime::format_number(x[i]) + ", below 0");
             // Zero reads as a quarter of the least float: its log stays finite and writes back as 0.
             v[c.scale() + i] = std::log(std::max(x[i], double(std::numeric_limits<float>::denorm_min()) / 4));
           }
           break;
         case Kind::kOpacity:
-          if (x[0] < 0 || x[0] > 1) throw InputError(where(path_, splat, a.name) + " is " + runtime::format_number(x[0]) + ", outside [0, 1]");
+          if (std::isfinite(x[0]) && (x[0] < 0 || x[0] > 1)) throw InputError(where(path_, splat, a.name) + " is " + runtime::format_number(x[0]) + ", outside [0, 1]");
           v[c.opacity()] = opacity_of_alpha(x[0]);
           break;
         case Kind::kSh:
@@ -404,6 +406,9 @@ class GlbReader : public SceneReader {
           break;
       }
     }
+    // A kept non-finite value may map to a finite one (a scale of -inf to the least log-scale):
+    // the opacity, which nothing turns, marks the splat for the caller to leave out.
+    if (nonfinite) v[c.opacity()] = std::numeric_limits<double>::quiet_NaN();
     if (math_) math_->apply(v);
     turn_half_about_z(v, c, false);
   }

@@ -288,6 +288,51 @@ void keep_bands(const double* in, const Canonical& from, double* out, const Cano
   std::copy(in + from.opacity(), in + from.size(), out + to.opacity());
 }
 
+// The filters (Filters) on read records: the position judged is where the transform puts it,
+// s R A p + t with A the file's axes in the .ply's (the value written, up to rounding).
+class Selection {
+ public:
+  Selection(const Filters& filters, const runtime::Matrix3& axes, const Transform& t) : f_(filters), t_(t.translation) {
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        for (int k = 0; k < 3; ++k) m_[3 * i + j] += t.scale * t.r[3 * i + k] * axes[3 * k + j];
+  }
+  // Moves the kept ones of `count` records to the front, in order, and returns how many; the
+  // others are counted by their first reason.
+  std::uint64_t keep(double* records, std::uint64_t count, const Canonical& c) {
+    std::uint64_t kept = 0;
+    for (std::uint64_t s = 0; s < count; ++s) {
+      double* v = records + s * c.size();
+      if (std::uint64_t* why = reason(v, c)) {
+        ++*why;
+      } else {
+        if (kept != s) std::copy(v, v + c.size(), records + kept * c.size());
+        ++kept;
+      }
+    }
+    return kept;
+  }
+  std::uint64_t nonfinite = 0, outside = 0, transparent = 0;
+
+ private:
+  std::uint64_t* reason(const double* v, const Canonical& c) {
+    if (f_.drop_nonfinite && !std::all_of(v, v + c.size(), [](double x) { return std::isfinite(x); })) return &nonfinite;
+    double p[3];
+    for (int i = 0; i < 3; ++i) p[i] = m_[3 * i] * v[0] + m_[3 * i + 1] * v[1] + m_[3 * i + 2] * v[2] + t_[i];
+    if (const auto& b = f_.crop_box; b && !(p[0] >= (*b)[0] && p[1] >= (*b)[1] && p[2] >= (*b)[2] && p[0] <= (*b)[3] && p[1] <= (*b)[4] && p[2] <= (*b)[5]))
+      return &outside;
+    if (const auto& b = f_.crop_sphere) {
+      const double d[3] = {p[0] - (*b)[0], p[1] - (*b)[1], p[2] - (*b)[2]};
+      if (!(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= (*b)[3] * (*b)[3])) return &outside;
+    }
+    if (f_.min_opacity && !(sigmoid(v[c.opacity()]) >= *f_.min_opacity)) return &transparent;
+    return nullptr;
+  }
+  const Filters& f_;
+  std::array<double, 9> m_{};
+  std::array<double, 3> t_;
+};
+
 // The SH degree to write: --sh-degree, the smallest within --max-sh-error (one pass over the
 // scene first), or the scene's; then what the output format holds.
 struct DegreeChoice {
@@ -296,28 +341,32 @@ struct DegreeChoice {
 };
 
 DegreeChoice choose_degree(const std::string& in, const std::string& out, FileFormat from, FileFormat to, const Formats& formats,
-                           const SceneReader& reader) {
+                           const SceneReader& reader, Selection& selection) {
   DegreeChoice choice;
   const int degree = reader.degree();
   choice.kept = degree;
-  if (formats.sh_degree) {
-    if (*formats.sh_degree > degree)
-      throw InputError(in + ": SH degree " + std::to_string(degree) + "; --sh-degree " + std::to_string(*formats.sh_degree) + " asks for more");
-    choice.kept = *formats.sh_degree;
-  } else if (formats.max_sh_error) {
+  if (formats.sh_degree && *formats.sh_degree > degree)
+    throw InputError(in + ": SH degree " + std::to_string(degree) + "; --sh-degree " + std::to_string(*formats.sh_degree) + " asks for more");
+  // The first pass, for --max-sh-error's energies and the filters' count (of the splats kept).
+  if (formats.max_sh_error || formats.filters.any()) {
     const std::unique_ptr<SceneReader> pass = open_reader(from, in, formats);
     const Canonical c(degree);
     std::vector<double> records;
-    choice.energy.assign(degree + 1, 0);
+    if (formats.max_sh_error) choice.energy.assign(degree + 1, 0);
     for (std::uint64_t done = 0; done < pass->splats();) {
       const std::uint64_t count = std::min(kChunkSplats, pass->splats() - done);
       records.resize(count * c.size());
       pass->read(done, count, records.data());
-      add_band_energy(records.data(), count, c, choice.energy);
+      const std::uint64_t kept = formats.filters.any() ? selection.keep(records.data(), count, c) : count;
+      if (formats.max_sh_error) add_band_energy(records.data(), kept, c, choice.energy);
       done += count;
       io::throw_if_interrupted();
     }
     pass->finish();
+  }
+  if (formats.sh_degree) {
+    choice.kept = *formats.sh_degree;
+  } else if (formats.max_sh_error) {
     choice.kept = 0;
     while (choice.kept < degree && kept_bands_error(choice.energy, choice.kept) > *formats.max_sh_error) ++choice.kept;
   }
@@ -342,11 +391,16 @@ DegreeChoice choose_degree(const std::string& in, const std::string& out, FileFo
 Summary convert(const std::string& in, const std::string& out, FileFormat from, FileFormat to, const Formats& formats,
                 const Transform& transform, int threads, const std::function<void(std::uint64_t, std::uint64_t)>& progress) {
   const std::unique_ptr<SceneReader> reader = open_reader(from, in, formats);
-  DegreeChoice choice = choose_degree(in, out, from, to, formats, *reader);
+  const bool filtering = formats.filters.any();
+  Selection counted(formats.filters, reader->axes(), transform), selection(formats.filters, reader->axes(), transform);
+  DegreeChoice choice = choose_degree(in, out, from, to, formats, *reader, counted);
   const int degree = reader->degree(), kept = choice.kept;
   const bool cut = kept < degree && choice.dropped_by_format < 0;
   Summary summary;
   summary.splats = reader->splats();
+  summary.nonfinite = counted.nonfinite;
+  summary.outside = counted.outside;
+  summary.transparent = counted.transparent;
   summary.sh_degree = degree;
   summary.in = from;
   summary.out = to;
@@ -357,7 +411,7 @@ Summary convert(const std::string& in, const std::string& out, FileFormat from, 
   summary.spz_axes_source = reader->axes_source();
   WriteOptions options;
   options.degree = kept;
-  options.splats = reader->splats();
+  options.splats = summary.written();
   options.spz_version = formats.spz_version;
   options.spz_axes = formats.spz_axes;
   options.spz_as_reference = formats.spz_as_reference;
@@ -381,7 +435,7 @@ Summary convert(const std::string& in, const std::string& out, FileFormat from, 
     summary.spz_axes_source = std::string(formats.spz_axes == SpzAxes::kRub ? "rub" : "raw") + " (written)" +
                               (formats.spz_as_reference ? ", as the reference library writes it" : "");
   const Canonical whole(degree), written(kept);
-  const ply::Header header = canonical_header(kept, reader->splats());
+  const ply::Header header = canonical_header(kept, summary.written());
   const Layout layout = layout_of(header, "canonical record");
   io::PendingFile pending(out);
   const std::unique_ptr<SceneWriter> writer = open_writer(to, pending, options);
@@ -401,16 +455,21 @@ Summary convert(const std::string& in, const std::string& out, FileFormat from, 
   std::vector<double> records, read;
   std::mutex colour_mutex;
   double colour_error = 0;  // a maximum: the same whichever worker finds it
+  std::uint64_t written_splats = 0;
   for (std::uint64_t done = 0; done < reader->splats();) {
     const std::uint64_t count = std::min(kChunkSplats, reader->splats() - done);
-    records.resize(count * size);
-    if (kept == degree) {
+    std::uint64_t n = count;  // the chunk's splats written
+    if (kept == degree && !filtering) {
+      records.resize(count * size);
       reader->read(done, count, records.data());
     } else {
       read.resize(count * whole.size());
       reader->read(done, count, read.data());
-      if (measure_energy) add_band_energy(read.data(), count, whole, choice.energy);
-      runtime::parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
+      if (filtering) n = selection.keep(read.data(), count, whole);
+      records.resize(n * size);
+      if (measure_energy) add_band_energy(read.data(), n, whole, choice.energy);
+      if (kept == degree) std::copy(read.begin(), read.begin() + n * size, records.begin());
+      else runtime::parallel_chunks(n, threads, [&](std::size_t begin, std::size_t end) {
         if (colour) {
           const double e = colour->largest(&read[begin * whole.size()], end - begin, whole);
           const std::lock_guard<std::mutex> lock(colour_mutex);
@@ -419,17 +478,21 @@ Summary convert(const std::string& in, const std::string& out, FileFormat from, 
         for (std::size_t s = begin; s < end; ++s) keep_bands(&read[s * whole.size()], whole, &records[s * size], written);
       });
     }
-    runtime::parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
+    runtime::parallel_chunks(n, threads, [&](std::size_t begin, std::size_t end) {
       if (into) into->apply_many(&records[begin * size], end - begin, size);
       math.apply_many(&records[begin * size], end - begin, size);
       if (out_of) out_of->apply_many(&records[begin * size], end - begin, size);
     });
-    writer->write(count, records.data());
+    // The first pass counted what the output's header holds: a file changed since is refused.
+    if (written_splats + n > summary.written()) throw InputError(in + ": changed while it was read");
+    if (n > 0) writer->write(n, records.data());
+    written_splats += n;
     done += count;
     io::throw_if_interrupted();
     progress(done, reader->splats());
   }
   reader->finish();
+  if (written_splats != summary.written()) throw InputError(in + ": changed while it was read");
   writer->finish();
   pending.commit();
   summary.clamped = writer->clamped();
@@ -534,6 +597,8 @@ Summary transform_file(const std::string& in, const std::string& out, const Tran
   if (formats.out) to = *formats.out;
   else file_format_of(out, to);
   if (to == FileFormat::kSog) {
+    if (formats.filters.any())
+      throw InputError(out + ": a .sog is written from a .sog whole (its palette turned once); filter into another format");
     if (from != FileFormat::kSog)
       throw InputError(out + ": zhf writes a .sog from a .sog only (turning its palette); convert " + std::string(file_format_extension(from)) +
                        " to .ply, .spz, .glb, compressed .ply or .splat");
@@ -541,7 +606,7 @@ Summary transform_file(const std::string& in, const std::string& out, const Tran
     summary.in = summary.out = FileFormat::kSog;
     return transform_sog(in, out, transform, formats, summary);
   }
-  if (from != FileFormat::kPly || to != FileFormat::kPly || formats.sh_degree || formats.max_sh_error)
+  if (from != FileFormat::kPly || to != FileFormat::kPly || formats.sh_degree || formats.max_sh_error || formats.filters.any())
     return convert(in, out, from, to, formats, transform, threads, progress);
   std::ifstream file(in, std::ios::binary);
   if (!file) throw InputError(in + ": cannot open: " + std::strerror(errno));

@@ -45,7 +45,10 @@ class SplatFileReader : public SceneReader {
       double f[6];
       for (int i = 0; i < 6; ++i) {
         f[i] = get_float(b + 4 * i);
-        if (!std::isfinite(f[i])) throw InputError(where(path_, first + s, kFloatNames[i]) + " is " + runtime::format_number(f[i]));
+        if (!std::isfinite(f[i])) {
+          if (keep_nonfinite_) continue;
+          throw InputError(where(path_, first + s, kFloatNames[i]) + " is " + runtime::format_number(f[i]));
+        }
         if (i >= kFirstScale && !(f[i] > 0)) throw InputError(where(path_, first + s, kFloatNames[i]) + " is " + runtime::format_number(f[i]) + ", not above 0");
       }
       for (int i = 0; i < 3; ++i) {

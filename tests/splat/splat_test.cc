@@ -499,6 +499,116 @@ TEST(Splat, ConversionsNameWhatTheyDoNotKeep) {
   EXPECT_EQ(note(plain, "plain.spz", ""), "") << "the canonical record with normals 0";
 }
 
+// The filters against a verdict computed here for each splat, in this order: a NaN or infinite
+// value, then the box (where the transform puts the splat, 2 R p + t), then sigmoid(opacity)
+// below the bound. The kept splats come out in the input's order, where the transform puts them.
+TEST(Splat, FiltersKeepTheSplatsTheTestComputes) {
+  const test::TempDir dir;
+  std::mt19937_64 rng(73);
+  Scene scene = random_scene(1, 3000, rng);
+  const int x = index_of(scene, "x"), opacity = index_of(scene, "opacity");
+  for (std::size_t k = 0; k < scene.rows.size(); k += 97) scene.rows[k][index_of(scene, "f_rest_4")] = std::nan("");
+  for (std::size_t k = 5; k < scene.rows.size(); k += 101) scene.rows[k][index_of(scene, "scale_1")] = HUGE_VAL;
+  const std::string in = (dir / "in.ply").string(), out = (dir / "out.ply").string();
+  write_scene(scene, in, false);
+  const Matrix3 r = runtime::rotation_from_zyz(0.3, 0.5, 0.7);
+  const double t[3] = {0.5, 0, -0.25}, low[3] = {-2, -1.5, -3}, high[3] = {2, 2.5, 1}, least = 0.3;
+  std::uint64_t nonfinite = 0, outside = 0, transparent = 0;
+  std::vector<std::array<double, 4>> expected;  // x, y, z after, opacity
+  for (const std::vector<double>& row : scene.rows) {
+    if (!std::all_of(row.begin(), row.end(), [](double v) { return std::isfinite(v); })) {
+      ++nonfinite;
+      continue;
+    }
+    double p[3];
+    bool inside = true;
+    for (int i = 0; i < 3; ++i) {
+      p[i] = 2 * (r[3 * i] * row[x] + r[3 * i + 1] * row[x + 1] + r[3 * i + 2] * row[x + 2]) + t[i];
+      inside = inside && p[i] >= low[i] && p[i] <= high[i];
+    }
+    if (!inside) ++outside;
+    else if (1 / (1 + std::exp(-row[opacity])) < least) ++transparent;
+    else expected.push_back({p[0], p[1], p[2], row[opacity]});
+  }
+  ASSERT_GT(nonfinite, 0u);
+  ASSERT_GT(outside, 0u);
+  ASSERT_GT(transparent, 0u);
+  ASSERT_GT(expected.size(), 100u);
+  const test::RunResult run = test::run_zhf("splat --in '" + in + "' --out '" + out +
+                                            "' --zyz '0.3 0.5 0.7' --scale 2 --translate '0.5 0 -0.25' --crop-box '-2 -1.5 -3 2 2.5 1' "
+                                            "--min-opacity 0.3 --drop-nonfinite --quiet");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string line = "wrote " + std::to_string(expected.size()) + " of 3000 splats; left out " + std::to_string(nonfinite) +
+                           " with a NaN or infinite value, " + std::to_string(outside) + " outside the crop, " +
+                           std::to_string(transparent) + " below --min-opacity\n";
+  EXPECT_NE(run.err.find(line), std::string::npos) << run.err << "expected " << line;
+  std::ifstream file(out, std::ios::binary);
+  const io::ply::Header h = io::ply::read_header(file, out);
+  ASSERT_EQ(h.vertices, expected.size());
+  auto column = [&](const std::string& name) {
+    return *std::find_if(h.properties.begin(), h.properties.end(), [&](const io::ply::Property& p) { return p.name == name; });
+  };
+  const io::ply::Property columns[4] = {column("x"), column("y"), column("z"), column("opacity")};
+  std::vector<unsigned char> record(h.record_bytes);
+  for (std::size_t k = 0; k < expected.size(); ++k) {
+    ASSERT_TRUE(file.read(reinterpret_cast<char*>(record.data()), std::streamsize(record.size()))) << "splat " << k;
+    for (int i = 0; i < 3; ++i)
+      ASSERT_NEAR(io::ply::read_binary(record.data(), columns[i]), expected[k][i], kFloatStorage * std::max(1.0, std::abs(expected[k][i])))
+          << "splat " << k << ", " << "xyz"[i];
+    ASSERT_EQ(io::ply::read_binary(record.data(), columns[3]), float(expected[k][3])) << "splat " << k << ", opacity";
+  }
+  // A sphere, into .splat (32 bytes a splat), without a transform: the count computed here.
+  const std::string splat = (dir / "ball.splat").string();
+  std::size_t within = 0;
+  for (const std::vector<double>& row : scene.rows) {
+    const double d[3] = {row[x] - 0.5, row[x + 1], row[x + 2] + 1};
+    within += std::all_of(row.begin(), row.end(), [](double v) { return std::isfinite(v); }) && d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= 1.5 * 1.5;
+  }
+  const test::RunResult ball = test::run_zhf("splat --in '" + in + "' --out '" + splat + "' --crop-sphere '0.5 0 -1 1.5' --drop-nonfinite --quiet");
+  ASSERT_EQ(ball.exit_code, 0) << ball.err;
+  EXPECT_EQ(fs::file_size(splat), 32 * within);
+  EXPECT_NE(ball.err.find("wrote " + std::to_string(within) + " of 3000 splats"), std::string::npos) << ball.err;
+}
+
+// Bad filter options: one line naming the option, exit 2; a NaN without --drop-nonfinite and a
+// filtered .sog, exit 3; nothing written.
+TEST(Splat, BadFiltersAreRefusedAndNothingIsWritten) {
+  const test::TempDir dir;
+  std::mt19937_64 rng(74);
+  Scene scene = random_scene(0, 20, rng);
+  scene.rows[7][index_of(scene, "y")] = std::nan("");
+  const std::string in = (dir / "in.ply").string(), out = (dir / "out.ply").string();
+  write_scene(scene, in, false);
+  const struct {
+    std::string options, named;
+    int exit_code;
+  } bad[] = {
+      {"--crop-box '1 2 3'", "--crop-box", 2},
+      {"--crop-box '0 0 0 -1 1 1' --drop-nonfinite", "--crop-box", 2},
+      {"--crop-box '0 0 0 nan 1 1' --drop-nonfinite", "--crop-box", 2},
+      {"--crop-sphere '0 0 0 -1' --drop-nonfinite", "--crop-sphere", 2},
+      {"--crop-sphere '0 0 0'", "--crop-sphere", 2},
+      {"--min-opacity 1.5 --drop-nonfinite", "--min-opacity", 2},
+      {"--min-opacity x", "--min-opacity", 2},
+      {"--min-opacity 0.5", "property y", 3},
+  };
+  for (const auto& b : bad) {
+    const test::RunResult run = test::run_zhf("splat --in '" + in + "' --out '" + out + "' " + b.options);
+    EXPECT_EQ(run.exit_code, b.exit_code) << b.options << ": " << run.err;
+    EXPECT_EQ(test::line_count(run.err), 1) << b.options << ": " << run.err;
+    EXPECT_NE(run.err.find(b.named), std::string::npos) << b.options << ": " << run.err;
+    EXPECT_FALSE(fs::exists(out)) << b.options;
+  }
+  const test::RunResult info = test::run_zhf("splat --in '" + in + "' --info --min-opacity 0.5");
+  EXPECT_EQ(info.exit_code, 2) << info.err;
+  EXPECT_NE(info.err.find("--info"), std::string::npos) << info.err;
+  const test::RunResult sog = test::run_zhf("splat --in '" + test::data_path("uniform.sog") + "' --out '" + (dir / "x.sog").string() +
+                                            "' --min-opacity 0.5");
+  EXPECT_EQ(sog.exit_code, 3) << sog.err;
+  EXPECT_EQ(test::line_count(sog.err), 1) << sog.err;
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir.string()), fs::directory_iterator()), 1) << "something was written";
+}
+
 TEST(Splat, TransformingASplatFileMatchesTransformingItsPly) {
   const test::TempDir dir;
   std::mt19937_64 rng(32);

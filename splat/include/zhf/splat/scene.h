@@ -78,6 +78,9 @@ struct Summary {
   int dropped_extensions = 0;         // left out, as --drop-spz-extensions asks
   std::uint64_t palette_entries = 0;  // a .sog turned: its SH palette's entries, each turned once
   std::vector<std::string> left_out;  // what of the input the output does not hold, a phrase each (converted scenes)
+  // Splats the filters left out (Filters), by the first reason that applies, in this order.
+  std::uint64_t nonfinite = 0, outside = 0, transparent = 0;
+  std::uint64_t written() const { return splats - nonfinite - outside - transparent; }
   std::uint64_t clamped = 0;   // values outside the output's range, written as its nearest
   // Converted (any pair but .ply to .ply): per SH band (0: f_dc), the largest |written - exact|
   // of the transformed values, what the output format's steps cost; -1 for a band not written.
@@ -87,6 +90,18 @@ struct Summary {
     a.fill(-1);
     return a;
   }
+};
+
+// Which splats are written. Each splat is judged as read: its position where the transform puts
+// it (in the .ply's axes, s R p + t), its opacity, the finiteness of its values. Kept splats
+// stay in the input's order. With any filter a scene is read twice (the first pass counts the
+// splats the output's header needs), and a .ply goes through the canonical record.
+struct Filters {
+  bool drop_nonfinite = false;  // leave out a splat with a NaN or infinite value (else refused)
+  std::optional<std::array<double, 6>> crop_box;     // x0 y0 z0 x1 y1 z1: kept inside, bounds included
+  std::optional<std::array<double, 4>> crop_sphere;  // x y z r: kept within r of (x, y, z)
+  std::optional<double> min_opacity;                 // kept where sigmoid(opacity) >= it, in 0..1
+  bool any() const { return drop_nonfinite || crop_box || crop_sphere || min_opacity; }
 };
 
 // Splats per chunk: the memory bound (a degree-3 binary splat is 248 bytes).
@@ -108,6 +123,7 @@ struct Formats {
   // dropped energy error stays within max_sh_error; neither: all the output format holds.
   std::optional<int> sh_degree;
   std::optional<double> max_sh_error;
+  Filters filters;
 };
 Summary transform_file(const std::string& in, const std::string& out, const Transform& transform, int threads,
                        const std::function<void(std::uint64_t, std::uint64_t)>& progress, const Formats& formats = {});
