@@ -1,5 +1,5 @@
 // Files the reference .spz library (nianticlabs/spz) writes, and what it reads back from them,
-// for tests/splat/spz_reference_test.cc: a scene of 4 splats in the .ply's axes (RDF), written
+// for tests/splat/spz_test.cc: a scene of 4 splats in the .ply's axes (RDF), written
 // once per coordinate-system record 1..16 at SH degree 3 (sys_NN.spz), once at degree 4 with no
 // record, converted to RUB (rub_degree4.spz), and once as version 2 (gzip, the quaternion's x y z
 // in a byte each) at degree 3, values as they are (version2.spz); beside each, the library's reading of it
@@ -11,22 +11,21 @@
 #include <cstdio>
 #include <fstream>
 #include <memory>
-#include <random>
 #include <string>
 #include <vector>
 
 #include "coordinate-system-adobe.h"
 #include "load-spz.h"
+#include "zhf/sh/random.h"
 
 namespace {
 
 constexpr int kSplats = 4;
 
-// Uniform in [a, b) from the generator's raw bits (std::uniform_real_distribution is
-// implementation-defined).
+// Uniform in [a, b), from zhf's draws that every standard library makes alike.
 struct Uniform {
-  std::mt19937 bits{7};
-  float operator()(double a, double b) { return float(a + (b - a) * (bits() / 4294967296.0)); }
+  zhf::sh::Rng rng{7};
+  float operator()(double a, double b) { return float(a + (b - a) * zhf::sh::uniform01(rng)); }
 };
 
 spz::GaussianCloud scene(int degree) {

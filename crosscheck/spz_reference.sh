@@ -8,7 +8,7 @@ spz=$(cd "$1" && pwd)
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-g++ -std=c++17 -O1 -DSPZ_BUILD_EXTENSIONS -I"$spz/src/cc" -I"$spz/extensions/cc" "$root/crosscheck/spz_reference.cc" \
+g++ -std=c++17 -O1 -DSPZ_BUILD_EXTENSIONS -I"$spz/src/cc" -I"$spz/extensions/cc" -I"$root/sh/include" "$root/crosscheck/spz_reference.cc" \
   "$spz"/src/cc/*.cc "$spz"/extensions/cc/*.cc -lz -lzstd -o "$work/spz_reference"
 mkdir -p "$work/out"
 "$work/spz_reference" "$work/out" > /dev/null
