@@ -29,16 +29,6 @@ struct SplatOptions {
   bool drop_nonfinite = false;
 };
 
-std::array<double, 3> translation(const std::string& text) {
-  if (text.empty()) return {};
-  try {
-    const std::vector<double> v = io::parse_numbers(text, 3, "--translate");
-    return {v[0], v[1], v[2]};
-  } catch (const io::InputError& e) {
-    throw UsageError(e.what());
-  }
-}
-
 template <std::size_t N>
 std::array<double, N> numbers_option(const std::string& option, const std::string& text) {
   try {
@@ -126,7 +116,7 @@ int run_splat(const SplatOptions& o) {
     t.r = transform_matrix(o.transform, o.quiet);
   }
   t.scale = number_option("--scale", o.scale, splat::kMinSplatScale, splat::kMaxSplatScale);
-  t.translation = translation(o.translate);
+  if (!o.translate.empty()) t.translation = numbers_option<3>("--translate", o.translate);
   t.convention = convention;
   const int threads = threads_option(o.threads);
   splat::Formats formats;

@@ -392,15 +392,16 @@ Summary convert(const std::string& in, const std::string& out, FileFormat from, 
                 const Transform& transform, int threads, const std::function<void(std::uint64_t, std::uint64_t)>& progress) {
   const std::unique_ptr<SceneReader> reader = open_reader(from, in, formats);
   const bool filtering = formats.filters.any();
-  Selection counted(formats.filters, reader->axes(), transform), selection(formats.filters, reader->axes(), transform);
-  DegreeChoice choice = choose_degree(in, out, from, to, formats, *reader, counted);
+  // Its counts are the first pass's; the second judges again to leave the same splats out.
+  Selection selection(formats.filters, reader->axes(), transform);
+  DegreeChoice choice = choose_degree(in, out, from, to, formats, *reader, selection);
   const int degree = reader->degree(), kept = choice.kept;
   const bool cut = kept < degree && choice.dropped_by_format < 0;
   Summary summary;
   summary.splats = reader->splats();
-  summary.nonfinite = counted.nonfinite;
-  summary.outside = counted.outside;
-  summary.transparent = counted.transparent;
+  summary.nonfinite = selection.nonfinite;
+  summary.outside = selection.outside;
+  summary.transparent = selection.transparent;
   summary.sh_degree = degree;
   summary.in = from;
   summary.out = to;
@@ -459,17 +460,17 @@ Summary convert(const std::string& in, const std::string& out, FileFormat from, 
   for (std::uint64_t done = 0; done < reader->splats();) {
     const std::uint64_t count = std::min(kChunkSplats, reader->splats() - done);
     std::uint64_t n = count;  // the chunk's splats written
-    if (kept == degree && !filtering) {
+    if (kept == degree) {
       records.resize(count * size);
       reader->read(done, count, records.data());
+      if (filtering) n = selection.keep(records.data(), count, whole);
     } else {
       read.resize(count * whole.size());
       reader->read(done, count, read.data());
       if (filtering) n = selection.keep(read.data(), count, whole);
       records.resize(n * size);
       if (measure_energy) add_band_energy(read.data(), n, whole, choice.energy);
-      if (kept == degree) std::copy(read.begin(), read.begin() + n * size, records.begin());
-      else runtime::parallel_chunks(n, threads, [&](std::size_t begin, std::size_t end) {
+      runtime::parallel_chunks(n, threads, [&](std::size_t begin, std::size_t end) {
         if (colour) {
           const double e = colour->largest(&read[begin * whole.size()], end - begin, whole);
           const std::lock_guard<std::mutex> lock(colour_mutex);
