@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <memory>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include <unistd.h>
 
@@ -21,7 +23,8 @@ namespace zhf::cli {
 namespace {
 
 struct SplatOptions {
-  std::string in, out;
+  std::vector<std::string> in;  // several: merged into one output
+  std::string out;
   TransformOptions transform;
   std::string translate, scale = "1", convention = "3dgs", threads = "0", format, in_format, spz_version = "4", spz_axes = "raw";
   std::string sh_degree, max_sh_error, crop_box, crop_sphere, min_opacity;
@@ -74,7 +77,9 @@ void spz_axes_options(const SplatOptions& o, splat::Formats& formats) {
   formats.spz_as_reference = o.spz_as_reference;
 }
 
-// --info: what the scene holds, nothing written.
+void describe_one(const std::string& in, const splat::Formats& formats);
+
+// --info: what each scene holds, nothing written.
 int describe(const SplatOptions& o) {
   if (!o.out.empty()) throw UsageError("--info: writes nothing; drop --out");
   if (transform_given(o.transform) || o.identity || !o.translate.empty() || o.scale != "1")
@@ -83,8 +88,13 @@ int describe(const SplatOptions& o) {
   splat::Formats formats;
   formats.in = format_option("--in-format", o.in_format);
   spz_axes_options(o, formats);
-  const splat::SceneInfo info = splat::describe_file(o.in, formats);
-  std::printf("%s: %s, %llu splats, SH degree %d\n", o.in.c_str(), splat::file_format_extension(info.format),
+  for (const std::string& in : o.in) describe_one(in, formats);
+  return kExitOk;
+}
+
+void describe_one(const std::string& in, const splat::Formats& formats) {
+  const splat::SceneInfo info = splat::describe_file(in, formats);
+  std::printf("%s: %s, %llu splats, SH degree %d\n", in.c_str(), splat::file_format_extension(info.format),
               (unsigned long long)info.splats, info.sh_degree);
   std::printf("bounds in the .ply's axes: x %.6g .. %.6g, y %.6g .. %.6g, z %.6g .. %.6g\n", info.low[0], info.high[0], info.low[1],
               info.high[1], info.low[2], info.high[2]);
@@ -99,7 +109,6 @@ int describe(const SplatOptions& o) {
     }
     std::printf("extension records: %zu%s\n", info.extension_types.size(), types.empty() ? "" : (" (" + types + ")").c_str());
   }
-  return kExitOk;
 }
 
 int run_splat(const SplatOptions& o) {
@@ -131,7 +140,9 @@ int run_splat(const SplatOptions& o) {
   if (!o.max_sh_error.empty()) formats.max_sh_error = number_option("--max-sh-error", o.max_sh_error, 0, 1);
   formats.filters = filter_options(o);
   const bool bar = !o.quiet && isatty(STDERR_FILENO);
-  const splat::Summary summary = splat::transform_file(o.in, o.out, t, threads, [bar](std::uint64_t done, std::uint64_t total) {
+  if (o.in.size() > std::size_t(splat::kMaxMergedScenes))
+    throw UsageError("--in: " + std::to_string(o.in.size()) + " scenes; at most " + std::to_string(splat::kMaxMergedScenes) + " are merged at once");
+  const splat::Summary summary = splat::transform_files(o.in, o.out, t, threads, [bar](std::uint64_t done, std::uint64_t total) {
     if (bar) std::fprintf(stderr, "\rzhf splat: %3d%% (%llu of %llu splats)", int(100.0 * done / total), (unsigned long long)done,
                           (unsigned long long)total);
   }, formats);
@@ -149,7 +160,9 @@ int run_splat(const SplatOptions& o) {
   if (!summary.left_out.empty()) {
     std::string phrases = summary.left_out[0];
     for (std::size_t i = 1; i < summary.left_out.size(); ++i) phrases += "; " + summary.left_out[i];
-    std::fprintf(stderr, "zhf splat: %s: not kept from %s: %s\n", io::excerpt(o.out).c_str(), io::excerpt(o.in).c_str(), phrases.c_str());
+    // A merged scene's phrases name their input.
+    const std::string from = o.in.size() == 1 ? " from " + io::excerpt(o.in[0]) : "";
+    std::fprintf(stderr, "zhf splat: %s: not kept%s: %s\n", io::excerpt(o.out).c_str(), from.c_str(), phrases.c_str());
   }
   // What the filters left out is said even with --quiet, as a count by reason.
   if (formats.filters.any()) {
@@ -169,6 +182,7 @@ int run_splat(const SplatOptions& o) {
   if (!o.quiet) {
     const std::string from = summary.in == splat::FileFormat::kPly ? (summary.ascii ? "ascii .ply" : "binary .ply")
                                                                    : splat::file_format_extension(summary.in);
+    if (o.in.size() > 1) std::printf("merged %zu scenes, in the order given\n", o.in.size());
     std::printf("transformed %llu splats (%s, SH degree %s) into %s (%s)\n", (unsigned long long)summary.splats, from.c_str(),
                 summary.sh_degree < 0 ? "none" : std::to_string(summary.sh_degree).c_str(), o.out.c_str(),
                 splat::file_format_extension(summary.out));
@@ -199,7 +213,11 @@ void add_splat_command(CLI::App& app, Action& action) {
       "splat",
       "Transform a 3D Gaussian Splatting scene (.ply, .compressed.ply, .splat, .spz, .glb, .sog): p' = s R p + t (rotate and scale about the origin, then translate), "
       "orientations, normals, log-scales and SH colours with it, in the .ply's axes (.spz and .glb are turned into them: docs/conventions.md); or convert it to another format");
-  c->add_option("--in", o->in, "The scene: binary little-endian or ASCII .ply, compressed .ply, .splat, .spz, .glb (KHR_gaussian_splatting), or SOG (.sog, or a meta.json)")->required();
+  c->add_option("--in", o->in,
+                "The scene: binary little-endian or ASCII .ply, compressed .ply, .splat, .spz, .glb (KHR_gaussian_splatting), or SOG (.sog, or a "
+                "meta.json); given more than once, the scenes are merged into one output in that order (up to " +
+                    std::to_string(splat::kMaxMergedScenes) + ")")
+      ->required();
   c->add_option("--out", o->out, "Write the transformed scene here (.ply to .ply: same format, columns and comments)");
   c->add_flag("--info", o->info, "Say what the scene holds (format, splats, SH degree, bounds, axes, .spz records); write nothing");
   c->add_option("--format", o->format, "The output's format, " + splat::file_format_names() + " (default: --out's extension, else ply)");

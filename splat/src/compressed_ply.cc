@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "format_io.h"
-#include "formats.h"
+#include "scene_io.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/private_dir.h"
 #include "zhf/runtime/sh_eval.h"
@@ -40,7 +40,7 @@ constexpr std::array<const char*, kChunkFloats> kChunkNames = {
     "max_scale_x", "max_scale_y", "max_scale_z", "min_r", "min_g", "min_b", "max_r",       "max_g",       "max_b"};
 constexpr int kChunkWithoutColour = 12;
 constexpr std::array<const char*, 4> kPackedNames = {"packed_position", "packed_rotation", "packed_scale", "packed_color"};
-const double kSqrt2 = std::sqrt(2.0);
+using runtime::kSqrt2;
 
 double unorm(std::uint32_t value, int bits) {
   const std::uint32_t mask = (1u << bits) - 1;
@@ -395,9 +395,11 @@ class CompressedPlyWriter : public SceneWriter {
 
 }  // namespace
 
-std::unique_ptr<SceneReader> open_compressed_ply_reader(const std::string& path) { return std::make_unique<CompressedPlyReader>(path); }
-std::unique_ptr<SceneWriter> open_compressed_ply_writer(io::PendingFile& out, int degree, std::uint64_t splats, bool morton) {
-  return std::make_unique<CompressedPlyWriter>(out, degree, splats, morton);
+std::unique_ptr<SceneReader> open_compressed_ply_reader(const std::string& path, const Formats&) {
+  return std::make_unique<CompressedPlyReader>(path);
+}
+std::unique_ptr<SceneWriter> open_compressed_ply_writer(io::PendingFile& out, const WriteOptions& options) {
+  return std::make_unique<CompressedPlyWriter>(out, options.degree, options.splats, !options.keep_order);
 }
 
 }  // namespace zhf::splat

@@ -13,7 +13,7 @@
 
 namespace zhf::splat {
 
-// Where each field sits in the canonical record of one SH degree (formats.h).
+// Where each field sits in the canonical record of one SH degree (scene_io.h).
 struct Canonical {
   explicit Canonical(int degree) : rest(3 * ((degree + 1) * (degree + 1) - 1)) {}
   int rest;  // f_rest values

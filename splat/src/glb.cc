@@ -28,7 +28,7 @@
 #include <vector>
 
 #include "format_io.h"
-#include "formats.h"
+#include "scene_io.h"
 #include "splat_math.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/limits.h"
@@ -542,9 +542,9 @@ class GlbWriter : public SceneWriter {
 
 }  // namespace
 
-std::unique_ptr<SceneReader> open_glb_reader(const std::string& path) { return std::make_unique<GlbReader>(path); }
-std::unique_ptr<SceneWriter> open_glb_writer(io::PendingFile& out, int degree, std::uint64_t splats) {
-  return std::make_unique<GlbWriter>(out, degree, splats);
+std::unique_ptr<SceneReader> open_glb_reader(const std::string& path, const Formats&) { return std::make_unique<GlbReader>(path); }
+std::unique_ptr<SceneWriter> open_glb_writer(io::PendingFile& out, const WriteOptions& options) {
+  return std::make_unique<GlbWriter>(out, options.degree, options.splats);
 }
 
 }  // namespace zhf::splat

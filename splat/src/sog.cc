@@ -25,12 +25,13 @@
 #include <webp/encode.h>
 
 #include "format_io.h"
-#include "formats.h"
+#include "scene_io.h"
 #include "splat_math.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/io/json.h"
 #include "zhf/io/limits.h"
+#include "zhf/runtime/sh_eval.h"
 #include "zhf/splat/limits.h"
 #include "zip.h"
 
@@ -44,7 +45,7 @@ constexpr int kCodebook = 256;
 constexpr int kPaletteRow = 64;  // palette entries a centroid row holds
 constexpr int kQuatTag = 252;
 constexpr int kCodebookSteps = 10;  // Lloyd steps of a 256-level codebook
-const double kSqrt2 = std::sqrt(2.0);
+using runtime::kSqrt2;
 constexpr std::array<std::array<int, 3>, 4> kStoredComponents = {{{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}}};
 
 double log_transform(double x) { return std::copysign(std::log(std::abs(x) + 1), x); }
@@ -313,7 +314,7 @@ unsigned char nearest_level(const std::vector<double>& levels, double x) {
 
 }  // namespace
 
-std::unique_ptr<SceneReader> open_sog_reader(const std::string& path) { return std::make_unique<SogReader>(path); }
+std::unique_ptr<SceneReader> open_sog_reader(const std::string& path, const Formats&) { return std::make_unique<SogReader>(path); }
 
 // A SOG turned whole: each splat's position and orientation, the SH palette once; labels, scales
 // (their codebook shifted by log s) and colours carried.

@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "format_io.h"
-#include "formats.h"
+#include "scene_io.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/limits.h"
 #include "zhf/runtime/sh_eval.h"
@@ -111,7 +111,9 @@ class SplatFileWriter : public SceneWriter {
 
 }  // namespace
 
-std::unique_ptr<SceneReader> open_splat_reader(const std::string& path) { return std::make_unique<SplatFileReader>(path); }
-std::unique_ptr<SceneWriter> open_splat_writer(io::PendingFile& out, int degree) { return std::make_unique<SplatFileWriter>(out, degree); }
+std::unique_ptr<SceneReader> open_splat_reader(const std::string& path, const Formats&) { return std::make_unique<SplatFileReader>(path); }
+std::unique_ptr<SceneWriter> open_splat_writer(io::PendingFile& out, const WriteOptions& options) {
+  return std::make_unique<SplatFileWriter>(out, options.degree);
+}
 
 }  // namespace zhf::splat

@@ -15,7 +15,7 @@
 // Header flags: 1 antialiased, 2 extension records, which sit between the header and the table in
 // version 4 and after the attributes in the gzip stream of version 3 (type, byte length, payload).
 // The records are read here with their values as stored; the file's axes (a coordinate-system
-// record, else --spz-axes) go to the transform as a change of axes (formats.h: axes()).
+// record, else --spz-axes) go to the transform as a change of axes (scene_io.h: axes()).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -26,7 +26,7 @@
 #include <zstd.h>
 
 #include "format_io.h"
-#include "formats.h"
+#include "scene_io.h"
 #include "spz_records.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/limits.h"
@@ -589,8 +589,8 @@ class SpzWriter : public SceneWriter {
 
 }  // namespace
 
-std::unique_ptr<SceneReader> open_spz_reader(const std::string& path, SpzAxes axes, bool as_reference) {
-  return std::make_unique<SpzReader>(path, axes, as_reference);
+std::unique_ptr<SceneReader> open_spz_reader(const std::string& path, const Formats& formats) {
+  return std::make_unique<SpzReader>(path, formats.spz_axes, formats.spz_as_reference);
 }
 std::unique_ptr<SceneWriter> open_spz_writer(io::PendingFile& out, const WriteOptions& options) {
   return std::make_unique<SpzWriter>(out, options);

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "formats.h"
+#include "scene_io.h"
 #include "zhf/runtime/rotation.h"
 
 namespace zhf::splat {

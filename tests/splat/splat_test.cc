@@ -570,6 +570,99 @@ TEST(Splat, FiltersKeepTheSplatsTheTestComputes) {
   EXPECT_NE(ball.err.find("wrote " + std::to_string(within) + " of 3000 splats"), std::string::npos) << ball.err;
 }
 
+// Two scenes merged: a .ply of SH degree 1, and a .spz of degree 3 in x right, y up, z back
+// (--spz-axes rub: turned into the .ply's axes on reading), turned, scaled, shifted and cropped as
+// one. The degree-1 scene's count, order, positions and colours, and the zeros in the bands it
+// lacks, are computed here; the .spz's splats follow, each as zhf splat converts that file alone.
+TEST(Splat, MergedScenesAreEachTransformedAndKeptInOrder) {
+  const test::TempDir dir;
+  std::mt19937_64 rng(75);
+  const Scene a = random_scene(1, 300, rng), b = random_scene(3, 200, rng);
+  const std::string a_in = (dir / "a.ply").string(), b_ply = (dir / "b.ply").string(), b_in = (dir / "b.spz").string();
+  const std::string out = (dir / "merged.ply").string(), b_alone = (dir / "b_alone.ply").string();
+  write_scene(a, a_in, false);
+  write_scene(b, b_ply, false);
+  ASSERT_EQ(test::run_zhf("splat --in '" + b_ply + "' --out '" + b_in + "' --spz-axes rub --quiet").exit_code, 0);
+  const std::string transform = " --zyz '0.3 0.5 0.7' --scale 2 --translate '0.5 0 -0.25' --crop-sphere '0 0 0 3' --spz-axes rub";
+  const Matrix3 r = runtime::rotation_from_zyz(0.3, 0.5, 0.7);
+  const double t[3] = {0.5, 0, -0.25}, radius = 3;
+  std::vector<std::pair<std::size_t, std::array<double, 3>>> kept_a;  // a's row, its position after
+  const int x = index_of(a, "x");
+  for (std::size_t k = 0; k < a.rows.size(); ++k) {
+    const std::vector<double>& row = a.rows[k];
+    std::array<double, 3> p;
+    for (int i = 0; i < 3; ++i) p[i] = 2 * (r[3 * i] * row[x] + r[3 * i + 1] * row[x + 1] + r[3 * i + 2] * row[x + 2]) + t[i];
+    if (p[0] * p[0] + p[1] * p[1] + p[2] * p[2] <= radius * radius) kept_a.push_back({k, p});
+  }
+  const test::RunResult alone = test::run_zhf("splat --in '" + b_in + "' --out '" + b_alone + "'" + transform + " --quiet");
+  ASSERT_EQ(alone.exit_code, 0) << alone.err;
+  std::ifstream alone_file(b_alone, std::ios::binary);
+  const std::size_t kept_b = io::ply::read_header(alone_file, b_alone).vertices;
+  ASSERT_GT(kept_a.size(), 20u);
+  ASSERT_GT(kept_b, 20u);
+  ASSERT_LT(kept_a.size() + kept_b, 400u);
+  const std::size_t kept = kept_a.size() + kept_b;
+  const test::RunResult run = test::run_zhf("splat --in '" + a_in + "' --in '" + b_in + "' --out '" + out + "'" + transform);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("merged 2 scenes"), std::string::npos) << run.out;
+  EXPECT_NE(run.err.find("wrote " + std::to_string(kept) + " of 500 splats; left out " + std::to_string(500 - kept) + " outside the crop\n"),
+            std::string::npos)
+      << run.err;
+  Scene like = b;  // the output: degree 3, the canonical columns (b's, without its int column)
+  like.rows.assign(kept, b.rows[0]);
+  std::string header;
+  const Scene merged = read_scene(out, like, header);
+  ASSERT_NE(header.find("element vertex " + std::to_string(kept) + "\n"), std::string::npos) << header;
+  ASSERT_NE(header.find("property float f_rest_44\n"), std::string::npos) << header;
+  for (std::size_t k = 0; k < kept_a.size(); ++k) {
+    const std::vector<double>& in = a.rows[kept_a[k].first];
+    const std::vector<double>& got = merged.rows[k];
+    const std::string at = "merged splat " + std::to_string(k) + " (a.ply splat " + std::to_string(kept_a[k].first) + ")";
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(got[index_of(like, std::string(1, "xyz"[i]))], kept_a[k].second[i], kFloatStorage * 20) << at << ", position " << i;
+    for (int ch = 0; ch < 3; ++ch)
+      for (int j = 3; j < 15; ++j)  // bands 2 and 3 of each channel
+        EXPECT_EQ(got[index_of(like, "f_rest_" + std::to_string(ch * 15 + j))], 0) << at << ", channel " << ch << ", coefficient " << j + 1;
+    for (int trial = 0; trial < 3; ++trial) {
+      const Eigen::Vector3d v = sh::random_direction(rng);
+      const std::array<double, 3> d{v[0], v[1], v[2]};
+      std::array<double, 3> rd{};
+      for (int i = 0; i < 3; ++i) rd[i] = r[3 * i] * d[0] + r[3 * i + 1] * d[1] + r[3 * i + 2] * d[2];
+      for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(colour(like, got, ch, rd), colour(a, in, ch, d), kFloatStorage * 40) << at << ", channel " << ch;
+    }
+  }
+  Scene b_like = like;
+  b_like.rows.assign(kept_b, b.rows[0]);
+  const Scene b_rows = read_scene(b_alone, b_like, header);
+  for (std::size_t k = 0; k < kept_b; ++k)
+    for (std::size_t i = 0; i + 1 < like.names.size() + 1; ++i)
+      ASSERT_EQ(merged.rows[kept_a.size() + k][i], b_rows.rows[k][i]) << "merged splat " << kept_a.size() + k << " (b.spz's " << k << "th kept), " << like.names[i];
+}
+
+// Merging refused: a .sog output, too many inputs, a missing one; one line, nothing written.
+TEST(Splat, BadMergesAreRefusedAndNothingIsWritten) {
+  const test::TempDir dir;
+  std::mt19937_64 rng(76);
+  const std::string in = (dir / "in.ply").string(), out = (dir / "out.ply").string();
+  write_scene(random_scene(0, 20, rng), in, false);
+  std::string many;
+  for (int i = 0; i <= 64; ++i) many += " --in '" + in + "'";
+  const struct {
+    std::string options, named;
+    int exit_code;
+  } bad[] = {
+      {"--in '" + in + "' --in '" + in + "' --out '" + (dir / "x.sog").string() + "'", "x.sog", 3},
+      {many + " --out '" + out + "'", "--in", 2},
+      {"--in '" + in + "' --in '" + (dir / "missing.ply").string() + "' --out '" + out + "'", "missing.ply", 3},
+  };
+  for (const auto& c : bad) {
+    const test::RunResult run = test::run_zhf("splat " + c.options + " --quiet");
+    EXPECT_EQ(run.exit_code, c.exit_code) << c.options << ": " << run.err;
+    EXPECT_EQ(test::line_count(run.err), 1) << c.options << ": " << run.err;
+    EXPECT_NE(run.err.find(c.named), std::string::npos) << c.options << ": " << run.err;
+  }
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir.string()), fs::directory_iterator()), 1) << "something was written";
+}
+
 // Bad filter options: one line naming the option, exit 2; a NaN without --drop-nonfinite and a
 // filtered .sog, exit 3; nothing written.
 TEST(Splat, BadFiltersAreRefusedAndNothingIsWritten) {

@@ -52,6 +52,9 @@ inline constexpr int kMaxSogPalette = 1 << 16;
 inline constexpr std::uint64_t kMaxSogDecodedBytes = std::uint64_t(4) << 30;
 // sign(p) ln(|p| + 1) of a position: beyond 88 its inverse leaves float's range.
 inline constexpr double kMaxSogLogPosition = 88;
+// zhf splat with several --in: scenes merged into one output (their splats together: io's
+// kMaxPlyVertices, what a .ply written from them can hold).
+inline constexpr int kMaxMergedScenes = 64;
 // zhf splat --scale: a factor in [kMinSplatScale, kMaxSplatScale].
 inline constexpr double kMinSplatScale = 1e-30, kMaxSplatScale = 1e30;
 

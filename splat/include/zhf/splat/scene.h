@@ -127,6 +127,13 @@ struct Formats {
 };
 Summary transform_file(const std::string& in, const std::string& out, const Transform& transform, int threads,
                        const std::function<void(std::uint64_t, std::uint64_t)>& progress, const Formats& formats = {});
+// Several scenes merged into one output, in the order given: each read in its own format and
+// turned from its own axes into the .ply's, then all transformed alike. The output holds the
+// highest SH degree among them; a scene of a lower degree gets zeros in the bands it lacks (its
+// colours unchanged). Extension records of every .spz input are carried (or dropped) together;
+// the output is marked antialiased only where every input is. One input: transform_file.
+Summary transform_files(const std::vector<std::string>& in, const std::string& out, const Transform& transform, int threads,
+                        const std::function<void(std::uint64_t, std::uint64_t)>& progress, const Formats& formats = {});
 
 // What zhf splat --info reports of a scene, read whole (every value checked as a conversion checks
 // it) and nothing written: its format, splats, SH degree, the box of its positions in the .ply's

@@ -92,21 +92,20 @@ class SceneWriter {
   runtime::Matrix3 axes_ = runtime::kIdentity;
 };
 
-// A .spz's axes as formats.spz_axes and formats.spz_as_reference say.
-std::unique_ptr<SceneReader> open_reader(FileFormat format, const std::string& path, const Formats& formats);
-// Each format's own (splat_file.cc, compressed_ply.cc, spz.cc, glb.cc), behind open_reader and open_writer.
-std::unique_ptr<SceneReader> open_splat_reader(const std::string& path);
-std::unique_ptr<SceneWriter> open_splat_writer(io::PendingFile& out, int degree);
-std::unique_ptr<SceneReader> open_compressed_ply_reader(const std::string& path);
-std::unique_ptr<SceneWriter> open_compressed_ply_writer(io::PendingFile& out, int degree, std::uint64_t splats, bool morton);
-std::unique_ptr<SceneReader> open_spz_reader(const std::string& path, SpzAxes axes, bool as_reference);
+// Each format's own (ply_scene.cc, splat_file.cc, compressed_ply.cc, spz.cc, glb.cc, sog.cc), one
+// signature for all: registry.cc's rows hold them, and open_reader and open_writer pick one.
+std::unique_ptr<SceneReader> open_ply_reader(const std::string& path, const Formats& formats);
+std::unique_ptr<SceneWriter> open_ply_writer(io::PendingFile& out, const WriteOptions& options);
+std::unique_ptr<SceneReader> open_splat_reader(const std::string& path, const Formats& formats);
+std::unique_ptr<SceneWriter> open_splat_writer(io::PendingFile& out, const WriteOptions& options);
+std::unique_ptr<SceneReader> open_compressed_ply_reader(const std::string& path, const Formats& formats);
+std::unique_ptr<SceneWriter> open_compressed_ply_writer(io::PendingFile& out, const WriteOptions& options);
+std::unique_ptr<SceneReader> open_spz_reader(const std::string& path, const Formats& formats);
 std::unique_ptr<SceneWriter> open_spz_writer(io::PendingFile& out, const WriteOptions& options);
-std::unique_ptr<SceneReader> open_glb_reader(const std::string& path);
-std::unique_ptr<SceneReader> open_sog_reader(const std::string& path);
+std::unique_ptr<SceneReader> open_glb_reader(const std::string& path, const Formats& formats);
+std::unique_ptr<SceneWriter> open_glb_writer(io::PendingFile& out, const WriteOptions& options);
+std::unique_ptr<SceneReader> open_sog_reader(const std::string& path, const Formats& formats);
 // A .sog turned into a .sog: positions and orientations per splat, the SH palette once (sog.cc).
 Summary transform_sog(const std::string& in, const std::string& out, const Transform& transform, const Formats& formats, Summary summary);
-std::unique_ptr<SceneWriter> open_glb_writer(io::PendingFile& out, int degree, std::uint64_t splats);
-// Records of SH degree options.degree into `out`.
-std::unique_ptr<SceneWriter> open_writer(FileFormat format, io::PendingFile& out, const WriteOptions& options);
 
 }  // namespace zhf::splat

@@ -1,4 +1,4 @@
-#include "formats.h"
+#include "scene_io.h"
 
 #include <algorithm>
 #include <cmath>
@@ -164,24 +164,9 @@ ply::Header canonical_header(int degree, std::uint64_t splats) {
   return ply::read_header(in, "canonical header");
 }
 
-std::unique_ptr<SceneReader> open_reader(FileFormat format, const std::string& path, const Formats& formats) {
-  std::unique_ptr<SceneReader> reader;
-  if (format == FileFormat::kSplat) reader = open_splat_reader(path);
-  else if (format == FileFormat::kCompressedPly) reader = open_compressed_ply_reader(path);
-  else if (format == FileFormat::kSpz) reader = open_spz_reader(path, formats.spz_axes, formats.spz_as_reference);
-  else if (format == FileFormat::kGlb) reader = open_glb_reader(path);
-  else if (format == FileFormat::kSog) reader = open_sog_reader(path);
-  else reader = std::make_unique<PlyReader>(path);
-  if (formats.filters.drop_nonfinite) reader->keep_nonfinite();
-  return reader;
-}
-
-std::unique_ptr<SceneWriter> open_writer(FileFormat format, io::PendingFile& out, const WriteOptions& o) {
-  if (format == FileFormat::kSplat) return open_splat_writer(out, o.degree);
-  if (format == FileFormat::kCompressedPly) return open_compressed_ply_writer(out, o.degree, o.splats, !o.keep_order);
-  if (format == FileFormat::kSpz) return open_spz_writer(out, o);
-  if (format == FileFormat::kGlb) return open_glb_writer(out, o.degree, o.splats);
-  return std::make_unique<PlyWriter>(out, o.degree, o.splats);
+std::unique_ptr<SceneReader> open_ply_reader(const std::string& path, const Formats&) { return std::make_unique<PlyReader>(path); }
+std::unique_ptr<SceneWriter> open_ply_writer(io::PendingFile& out, const WriteOptions& options) {
+  return std::make_unique<PlyWriter>(out, options.degree, options.splats);
 }
 
 }  // namespace zhf::splat
