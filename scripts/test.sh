@@ -1,14 +1,14 @@
 #!/usr/bin/env bash
-# The whole test suite: set up and build everything, then
-#   1. every test on the Release build (ctest; the installed-package consumer test and the Python
-#      module's pytest suite among them);
-#   2. one clang build under AddressSanitizer + UndefinedBehaviorSanitizer: the tests of the
-#      runtime's memory paths and of the readers' libraries (tests/CMakeLists.txt's sanitized set;
-#      those that run the CLI run the Release build's), then each libFuzzer target for
+# The whole test suite: set up and build everything, then the three sets of tests/CMakeLists.txt:
+#   1. the release set on the Release build (ctest; the installed-package consumer test and the
+#      Python module's pytest suite among them);
+#   2. one clang build under AddressSanitizer + UndefinedBehaviorSanitizer: the sanitized set, the
+#      runtime's memory paths, the generated kernels and the readers' libraries (those that run the
+#      CLI run the Release build's), then each libFuzzer target for
 #      ZHF_FUZZ_SECONDS (default 10: a smoke run; longer runs by hand) on its seed corpus with its dictionary, one per core at a time;
 #      a fuzzer that finds a failing input, fails to start or runs no input fails the stage;
-#   3. the runtime's, the generated kernels' and zhf::dispatch's tests cross-built for aarch64 and
-#      run under qemu-aarch64 (scripts/test_aarch64.sh: correctness on ARM, never timing).
+#   3. the aarch64 set (the generated kernels, the batch paths, every method, zhf::dispatch)
+#      cross-built and run under qemu-aarch64 (scripts/test_aarch64.sh: correctness on ARM, never timing).
 # Non-zero exit on any failure. ZHF_QUICK=1 runs stage 1 only.
 set -euo pipefail
 # The web parts' tools first, so that the build configured next finds emscripten.
