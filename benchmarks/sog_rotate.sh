@@ -20,7 +20,7 @@ trap 'rm -rf "$work"' EXIT
 if [ $# -ge 1 ]; then
   cp "$1" "$work/scene.sog"
 else
-  /usr/bin/python3 -c "import sys; sys.path.insert(0, 'bench'); from splat_interop import write_scene; write_scene('$work/scene.ply', 1, 1000000, 77)"
+  /usr/bin/python3 -c "import sys; sys.path.insert(0, 'crosscheck'); from splat_interop import write_scene; write_scene('$work/scene.ply', 1, 1000000, 77)"
   "$st" -w -q -g cpu "$work/scene.ply" "$work/scene.sog"
 fi
 "$ZHF_BUILD/cli/zhf" splat --in "$work/scene.sog" --out "$work/decoded.ply" --quiet

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -27,7 +28,7 @@ struct SplatOptions {
   std::string out;
   TransformOptions transform;
   std::string translate, scale = "1", convention = "3dgs", threads = "0", format, in_format, spz_version = "4", spz_axes = "raw";
-  std::string sh_degree, max_sh_error, crop_box, crop_sphere, min_opacity;
+  std::string sh_degree, max_sh_error, crop_box, crop_sphere, min_opacity, seed = "1";
   bool identity = false, quiet = false, drop_spz_extensions = false, keep_order = false, info = false, spz_as_reference = false;
   bool drop_nonfinite = false;
 };
@@ -135,6 +136,7 @@ int run_splat(const SplatOptions& o) {
   spz_axes_options(o, formats);
   formats.drop_spz_extensions = o.drop_spz_extensions;
   formats.keep_order = o.keep_order;
+  formats.sog_seed = static_cast<std::uint64_t>(integer_option("--seed", o.seed, 0, std::numeric_limits<long long>::max()));
   if (!o.sh_degree.empty() && !o.max_sh_error.empty()) throw UsageError("--sh-degree: --max-sh-error is given too; give one or the other");
   if (!o.sh_degree.empty()) formats.sh_degree = static_cast<int>(integer_option("--sh-degree", o.sh_degree, 0, splat::kMaxSplatShDegree));
   if (!o.max_sh_error.empty()) formats.max_sh_error = number_option("--max-sh-error", o.max_sh_error, 0, 1);
@@ -230,6 +232,7 @@ void add_splat_command(CLI::App& app, Action& action) {
               "coordinate-system records LFD, RFD, LBU, RBU, and the sign of band 4's m = 4 coefficient (docs/formats.md)");
   c->add_flag("--drop-spz-extensions", o->drop_spz_extensions, "Leave out a .spz's extension records (else carried into a .spz, refused for other formats)");
   c->add_flag("--keep-order", o->keep_order, "A compressed .ply output keeps the input's splat order (default: Morton order, as splat-transform writes)");
+  c->add_option("--seed", o->seed, "A .sog written from another format: the seed of its SH palette's k-means (default 1)");
   c->add_option("--sh-degree", o->sh_degree, "Keep SH bands 0..K only (at most the scene's degree)");
   c->add_option("--max-sh-error", o->max_sh_error,
                 "Keep the fewest SH bands whose dropped energy, relative L2 over the scene as zhf analyze measures it, is at most E");

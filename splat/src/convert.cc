@@ -330,6 +330,8 @@ Summary convert(const std::vector<Input>& inputs, const std::string& out, FileFo
   options.spz_as_reference = formats.spz_as_reference;
   options.antialiased = reader->antialiased();
   options.keep_order = formats.keep_order;
+  options.seed = formats.sog_seed;
+  options.threads = threads;
   if (!reader->extensions().empty()) {
     const SpzExtension& first = reader->extensions().front();
     if (formats.drop_spz_extensions) {

@@ -15,7 +15,7 @@ constexpr FormatRow kFormats[] = {
     {FileFormat::kSplat, "splat", ".splat", 0, 0, open_splat_reader, open_splat_writer},
     {FileFormat::kSpz, "spz", ".spz", kMaxSplatShDegree, 1, open_spz_reader, open_spz_writer},
     {FileFormat::kGlb, "glb", ".glb", 3, 4, open_glb_reader, open_glb_writer},
-    {FileFormat::kSog, "sog", ".sog", 3, 0, open_sog_reader, nullptr},
+    {FileFormat::kSog, "sog", ".sog", 3, 0, open_sog_reader, open_sog_writer},
 };
 
 }  // namespace

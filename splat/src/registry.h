@@ -16,7 +16,6 @@ struct FormatRow {
   int max_sh_degree;
   int sh_value_bytes;  // one SH coefficient of one channel, as stored before any compression
   std::unique_ptr<SceneReader> (*open_reader)(const std::string& path, const Formats& formats);
-  // nullptr: written only whole, from a scene of its own format (a .sog: transform_sog).
   std::unique_ptr<SceneWriter> (*open_writer)(io::PendingFile& out, const WriteOptions& options);
 };
 

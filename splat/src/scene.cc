@@ -247,16 +247,16 @@ Summary transform_files(const std::vector<std::string>& ins, const std::string& 
   FileFormat to = FileFormat::kPly;
   if (formats.out) to = *formats.out;
   else file_format_of(out, to);
-  if (to == FileFormat::kSog) {
-    if (formats.filters.any() || inputs.size() > 1)
-      throw InputError(out + ": a .sog is written from one .sog whole (its palette turned once); filter or merge into another format");
-    if (from != FileFormat::kSog)
-      throw InputError(out + ": zhf writes a .sog from a .sog only (turning its palette); convert " + std::string(file_format_extension(from)) +
-                       " to .ply, .spz, .glb, compressed .ply or .splat");
+  // A .sog turned whole into a .sog: its palette turned once, its codebooks and labels kept.
+  if (to == FileFormat::kSog && from == FileFormat::kSog && inputs.size() == 1 && !formats.filters.any() && !formats.sh_degree &&
+      !formats.max_sh_error) {
+    if (std::filesystem::path(out).filename() == "meta.json") throw InputError(out + ": zhf writes a bundled .sog; name the output .sog");
     Summary summary;
     summary.in = summary.out = FileFormat::kSog;
     return transform_sog(in, out, transform, formats, summary);
   }
+  if (to == FileFormat::kSog && std::filesystem::path(out).filename() == "meta.json")
+    throw InputError(out + ": zhf writes a bundled .sog; name the output .sog");
   if (inputs.size() > 1 || from != FileFormat::kPly || to != FileFormat::kPly || formats.sh_degree || formats.max_sh_error || formats.filters.any())
     return convert(inputs, out, to, formats, transform, threads, progress);
   std::ifstream file(in, std::ios::binary);

@@ -71,6 +71,8 @@ struct WriteOptions {
   bool antialiased = false;                 // .spz's flag
   std::vector<SpzExtension> spz_extensions;  // carried into a .spz
   bool keep_order = false;                   // a compressed .ply in the input's order, not Morton's
+  std::uint64_t seed = 1;                    // a .sog's palette (k-means draws)
+  int threads = 0;                           // a .sog's palette fit: 0, all cores
 };
 
 class SceneWriter {
@@ -105,6 +107,7 @@ std::unique_ptr<SceneWriter> open_spz_writer(io::PendingFile& out, const WriteOp
 std::unique_ptr<SceneReader> open_glb_reader(const std::string& path, const Formats& formats);
 std::unique_ptr<SceneWriter> open_glb_writer(io::PendingFile& out, const WriteOptions& options);
 std::unique_ptr<SceneReader> open_sog_reader(const std::string& path, const Formats& formats);
+std::unique_ptr<SceneWriter> open_sog_writer(io::PendingFile& out, const WriteOptions& options);
 // A .sog turned into a .sog: positions and orientations per splat, the SH palette once (sog.cc).
 Summary transform_sog(const std::string& in, const std::string& out, const Transform& transform, const Formats& formats, Summary summary);
 

@@ -10,9 +10,10 @@
 //   shN_centroids     the palette: entry e at row e / 64, columns (e % 64) K .. + K - 1 for its K
 //                     coefficients, red, green, blue indices into meta's SH codebook
 // Per-splat images are width = ceil(sqrt(count) / 4) 4 by height = ceil(count / width / 4) 4.
-// zhf reads every SOG into the canonical record; it writes a SOG from a SOG only, turning the
-// positions and orientations of each splat and the SH palette once: the labels, scales and colours
-// are carried byte for byte.
+// zhf reads every SOG into the canonical record. A SOG turned into a SOG keeps its palette, turning
+// the positions and orientations of each splat and the palette's entries once: the labels, scales
+// and colours are carried byte for byte. From any other scene SogWriter fits the codebooks and
+// the palette anew.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -25,12 +26,14 @@
 #include <webp/encode.h>
 
 #include "format_io.h"
+#include "palette.h"
 #include "scene_io.h"
 #include "splat_math.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/files.h"
 #include "zhf/io/json.h"
 #include "zhf/io/limits.h"
+#include "zhf/io/signals.h"
 #include "zhf/runtime/sh_eval.h"
 #include "zhf/splat/limits.h"
 #include "zip.h"
@@ -312,15 +315,180 @@ unsigned char nearest_level(const std::vector<double>& levels, double x) {
   return static_cast<unsigned char>(x - *(above - 1) <= *above - x ? above - 1 - levels.begin() : above - levels.begin());
 }
 
+// Positions (x y z per splat) as 16 bits of their log transform between the scene's bounds,
+// which go to meta's mins and maxs.
+void encode_means(const std::vector<double>& positions, std::uint64_t n, Meta& meta, Image& low, Image& high) {
+  for (int a = 0; a < 3; ++a) {
+    double least = INFINITY, most = -INFINITY;
+    for (std::uint64_t i = 0; i < n; ++i) {
+      least = std::min(least, log_transform(positions[3 * i + a]));
+      most = std::max(most, log_transform(positions[3 * i + a]));
+    }
+    meta.mins[a] = n ? least : 0;
+    meta.maxs[a] = n ? most : 0;
+    for (std::uint64_t i = 0; i < n; ++i) {
+      const double t = most > least ? (log_transform(positions[3 * i + a]) - least) / (most - least) : 0;
+      const std::uint32_t v = std::uint32_t(std::clamp(std::nearbyint(65535 * t), 0.0, 65535.0));
+      low.rgba[4 * i + a] = static_cast<unsigned char>(v & 0xff);
+      high.rgba[4 * i + a] = static_cast<unsigned char>(v >> 8);
+    }
+  }
+}
+
+// Orientations (w x y z per splat, any norm): the three smallest components of the unit
+// quaternion with its largest made positive, and the largest's index in the tag.
+void encode_quats(const std::vector<double>& rotations, std::uint64_t n, Image& quats) {
+  for (std::uint64_t i = 0; i < n; ++i) {
+    const double* q = &rotations[4 * i];
+    const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    int largest = 0;
+    for (int a = 1; a < 4; ++a)
+      if (std::abs(q[a]) > std::abs(q[largest])) largest = a;
+    const double s = (q[largest] < 0 ? -1 : 1) * kSqrt2 / norm;
+    for (int k = 0; k < 3; ++k)
+      quats.rgba[4 * i + k] = static_cast<unsigned char>(std::clamp(std::nearbyint(255 * (q[kStoredComponents[largest][k]] * s * 0.5 + 0.5)), 0.0, 255.0));
+    quats.rgba[4 * i + 3] = static_cast<unsigned char>(kQuatTag + largest);
+  }
+}
+
+// The images of a SOG, encoded, by meta.json's file names.
+struct SogImages {
+  std::string means_low, means_high, scales, quats, sh0, centroids, labels;
+};
+
+// meta.json (its codebooks and bounds from `m`) and the images, bundled into out.
+void write_bundle(io::PendingFile& out, const Meta& m, const SogImages& images) {
+  nlohmann::ordered_json meta = {{"version", 2}, {"asset", {{"generator", "zhf splat"}}}, {"count", m.count}};
+  if (!m.model.empty()) meta["model"] = m.model;
+  meta["means"] = {{"mins", m.mins}, {"maxs", m.maxs}, {"files", {"means_l.webp", "means_u.webp"}}};
+  meta["scales"] = {{"codebook", m.scales}, {"files", {"scales.webp"}}};
+  meta["quats"] = {{"files", {"quats.webp"}}};
+  meta["sh0"] = {{"codebook", m.colours}, {"files", {"sh0.webp"}}};
+  std::vector<std::pair<std::string, std::string>> entries = {{"meta.json", ""},          {"means_l.webp", images.means_low},
+                                                              {"means_u.webp", images.means_high}, {"scales.webp", images.scales},
+                                                              {"quats.webp", images.quats}, {"sh0.webp", images.sh0}};
+  if (m.bands > 0) {
+    meta["shN"] = {{"count", m.palette}, {"bands", m.bands}, {"codebook", m.sh}, {"files", {"shN_centroids.webp", "shN_labels.webp"}}};
+    entries.emplace_back("shN_centroids.webp", images.centroids);
+    entries.emplace_back("shN_labels.webp", images.labels);
+  }
+  entries[0].second = io::json_text(meta);
+  write_zip(out, entries);
+}
+
+Image blank_image(std::uint64_t count) {
+  Image image;
+  const auto [width, height] = image_size(count);
+  image.width = width;
+  image.height = height;
+  image.rgba.assign(std::size_t(width) * height * 4, 0);
+  return image;
+}
+
+// A SOG from canonical records of any format: every splat held (in float) until finish(), then
+// the images: positions and orientations as above, log-scales and f_dc through 256-level
+// codebooks (fit_codebook), opacity as a byte of sigmoid(opacity), and the SH above band 0
+// through a palette (palette.h: at most kMaxSogPalette entries, a scene of that many splats or
+// fewer exactly) whose values go through a 256-level codebook of their own. The splats keep the
+// input's order.
+class SogWriter : public SceneWriter {
+ public:
+  SogWriter(io::PendingFile& out, const WriteOptions& options)
+      : out_(out), options_(options), size_(Canonical(options.degree).size()) {
+    records_.reserve(std::size_t(options.splats) * size_);
+  }
+  void write(std::uint64_t count, const double* records) override {
+    for (std::uint64_t i = 0; i < count * std::uint64_t(size_); ++i) records_.push_back(clamped_float(records[i], clamped_));
+  }
+  void finish() override {
+    const Canonical c(options_.degree);
+    const std::uint64_t n = records_.size() / size_;
+    const int per = c.rest / 3;
+    auto value = [&](std::uint64_t splat, int field) { return double(records_[splat * size_ + field]); };
+    Meta m;
+    m.count = n;
+    m.bands = options_.degree;
+    if (options_.antialiased) m.model = "antialiased";
+    std::vector<double> positions(3 * n), rotations(4 * n), scales(3 * n), colours(3 * n);
+    for (std::uint64_t i = 0; i < n; ++i) {
+      for (int a = 0; a < 3; ++a) {
+        positions[3 * i + a] = value(i, Canonical::kPosition + a);
+        scales[3 * i + a] = value(i, c.scale() + a);
+        colours[3 * i + a] = value(i, Canonical::kDc + a);
+      }
+      for (int a = 0; a < 4; ++a) rotations[4 * i + a] = value(i, c.rotation() + a);
+    }
+    Image means_low = blank_image(n), means_high = blank_image(n), quats = blank_image(n), scale_image = blank_image(n), sh0 = blank_image(n);
+    encode_means(positions, n, m, means_low, means_high);
+    encode_quats(rotations, n, quats);
+    m.scales = fit_codebook(scales);
+    m.colours = fit_codebook(colours);
+    for (std::uint64_t i = 0; i < n; ++i) {
+      for (int a = 0; a < 3; ++a) {
+        scale_image.rgba[4 * i + a] = nearest_level(m.scales, value(i, c.scale() + a));
+        const unsigned char level = nearest_level(m.colours, value(i, Canonical::kDc + a));
+        sh0.rgba[4 * i + a] = level;
+        stored(0, value(i, Canonical::kDc + a), m.colours[level]);
+      }
+      scale_image.rgba[4 * i + 3] = 255;
+      sh0.rgba[4 * i + 3] = static_cast<unsigned char>(std::clamp(std::nearbyint(255 * sigmoid(value(i, c.opacity()))), 0.0, 255.0));
+    }
+    io::throw_if_interrupted();
+    SogImages images;
+    if (m.bands > 0) {
+      std::vector<float> points(n * c.rest);
+      for (std::uint64_t i = 0; i < n; ++i)
+        std::copy(&records_[i * size_ + Canonical::kRest], &records_[i * size_ + Canonical::kRest] + c.rest, &points[i * c.rest]);
+      const Palette palette = fit_palette(points, n, c.rest, kMaxSogPalette, options_.seed, options_.threads);
+      m.palette = int(palette.entries.size() / c.rest);
+      m.sh = fit_codebook(std::vector<double>(palette.entries.begin(), palette.entries.end()));
+      Image centroids;
+      centroids.width = kPaletteRow * per;
+      centroids.height = (m.palette + kPaletteRow - 1) / kPaletteRow;
+      centroids.rgba.assign(std::size_t(centroids.width) * centroids.height * 4, 255);
+      std::vector<unsigned char> levels(palette.entries.size());
+      for (std::size_t k = 0; k < levels.size(); ++k) levels[k] = nearest_level(m.sh, palette.entries[k]);
+      for (int e = 0; e < m.palette; ++e)
+        for (int ch = 0; ch < 3; ++ch)
+          for (int j = 0; j < per; ++j) {
+            const std::uint64_t texel = std::uint64_t(e / kPaletteRow) * centroids.width + (e % kPaletteRow) * per + j;
+            centroids.rgba[4 * texel + ch] = levels[std::size_t(e) * c.rest + ch * per + j];
+          }
+      Image labels = blank_image(n);
+      for (std::uint64_t i = 0; i < n; ++i) {
+        const std::uint32_t entry = palette.labels[i];
+        labels.rgba[4 * i] = static_cast<unsigned char>(entry & 0xff);
+        labels.rgba[4 * i + 1] = static_cast<unsigned char>(entry >> 8);
+        labels.rgba[4 * i + 3] = 255;
+        for (int k = 0; k < c.rest; ++k)
+          stored(Canonical::band(k % per), points[i * c.rest + k], m.sh[levels[std::size_t(entry) * c.rest + k]]);
+      }
+      images.centroids = encode_webp(centroids);
+      images.labels = encode_webp(labels);
+    }
+    images.means_low = encode_webp(means_low);
+    images.means_high = encode_webp(means_high);
+    images.scales = encode_webp(scale_image);
+    images.quats = encode_webp(quats);
+    images.sh0 = encode_webp(sh0);
+    write_bundle(out_, m, images);
+  }
+
+ private:
+  io::PendingFile& out_;
+  WriteOptions options_;
+  int size_;
+  std::vector<float> records_;
+};
+
 }  // namespace
 
 std::unique_ptr<SceneReader> open_sog_reader(const std::string& path, const Formats&) { return std::make_unique<SogReader>(path); }
+std::unique_ptr<SceneWriter> open_sog_writer(io::PendingFile& out, const WriteOptions& options) { return std::make_unique<SogWriter>(out, options); }
 
 // A SOG turned whole: each splat's position and orientation, the SH palette once; labels, scales
 // (their codebook shifted by log s) and colours carried.
-Summary transform_sog(const std::string& in, const std::string& out, const Transform& transform, const Formats& formats, Summary summary) {
-  if (formats.sh_degree || formats.max_sh_error) throw InputError(in + ": a .sog turned into a .sog keeps its bands; convert it to cut them");
-  if (std::filesystem::path(out).filename() == "meta.json") throw InputError(out + ": zhf writes a bundled .sog; name the output .sog");
+Summary transform_sog(const std::string& in, const std::string& out, const Transform& transform, const Formats&, Summary summary) {
   const Sog sog = read_sog(in);
   const Meta& m = sog.meta;
   const std::uint64_t n = m.count;
@@ -342,32 +510,8 @@ Summary transform_sog(const std::string& in, const std::string& out, const Trans
   }
   Meta written = m;
   Image means_low = sog.means_low, means_high = sog.means_high, quats = sog.quats;
-  for (int a = 0; a < 3; ++a) {
-    double low = INFINITY, high = -INFINITY;
-    for (std::uint64_t i = 0; i < n; ++i) {
-      low = std::min(low, log_transform(positions[3 * i + a]));
-      high = std::max(high, log_transform(positions[3 * i + a]));
-    }
-    written.mins[a] = n ? low : 0;
-    written.maxs[a] = n ? high : 0;
-    for (std::uint64_t i = 0; i < n; ++i) {
-      const double t = high > low ? (log_transform(positions[3 * i + a]) - low) / (high - low) : 0;
-      const std::uint32_t v = std::uint32_t(std::clamp(std::nearbyint(65535 * t), 0.0, 65535.0));
-      means_low.rgba[4 * i + a] = static_cast<unsigned char>(v & 0xff);
-      means_high.rgba[4 * i + a] = static_cast<unsigned char>(v >> 8);
-    }
-  }
-  for (std::uint64_t i = 0; i < n; ++i) {
-    const double* q = &rotations[4 * i];
-    const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-    int largest = 0;
-    for (int a = 1; a < 4; ++a)
-      if (std::abs(q[a]) > std::abs(q[largest])) largest = a;
-    const double s = (q[largest] < 0 ? -1 : 1) * kSqrt2 / norm;
-    for (int k = 0; k < 3; ++k)
-      quats.rgba[4 * i + k] = static_cast<unsigned char>(std::clamp(std::nearbyint(255 * (q[kStoredComponents[largest][k]] * s * 0.5 + 0.5)), 0.0, 255.0));
-    quats.rgba[4 * i + 3] = static_cast<unsigned char>(kQuatTag + largest);
-  }
+  encode_means(positions, n, written, means_low, means_high);
+  encode_quats(rotations, n, quats);
   const double log_scale = std::log(transform.scale);
   for (double& x : written.scales) x = double(float(x + log_scale));
   // The palette: each entry's SH as a record of its own, turned once.
@@ -410,23 +554,10 @@ Summary transform_sog(const std::string& in, const std::string& out, const Trans
   summary.splats = n;
   summary.sh_degree = summary.kept_degree = m.bands;
   summary.antialiased = m.model == "antialiased";
-  nlohmann::ordered_json meta = {{"version", 2}, {"asset", {{"generator", "zhf splat"}}}, {"count", n}};
-  if (!m.model.empty()) meta["model"] = m.model;
-  meta["means"] = {{"mins", written.mins}, {"maxs", written.maxs}, {"files", {"means_l.webp", "means_u.webp"}}};
-  meta["scales"] = {{"codebook", written.scales}, {"files", {"scales.webp"}}};
-  meta["quats"] = {{"files", {"quats.webp"}}};
-  meta["sh0"] = {{"codebook", written.colours}, {"files", {"sh0.webp"}}};
-  std::vector<std::pair<std::string, std::string>> entries = {
-      {"meta.json", ""}, {"means_l.webp", encode_webp(means_low)}, {"means_u.webp", encode_webp(means_high)}, {"scales.webp", sog.scales_bytes},
-      {"quats.webp", encode_webp(quats)}, {"sh0.webp", sog.sh0_bytes}};
-  if (m.bands > 0) {
-    meta["shN"] = {{"count", m.palette}, {"bands", m.bands}, {"codebook", written.sh}, {"files", {"shN_centroids.webp", "shN_labels.webp"}}};
-    entries.emplace_back("shN_centroids.webp", centroids_bytes);
-    entries.emplace_back("shN_labels.webp", sog.labels_bytes);
-  }
-  entries[0].second = io::json_text(meta);
+  SogImages images{encode_webp(means_low), encode_webp(means_high), sog.scales_bytes, encode_webp(quats), sog.sh0_bytes, centroids_bytes,
+                   sog.labels_bytes};
   io::PendingFile pending(out);
-  write_zip(pending, entries);
+  write_bundle(pending, written, images);
   pending.commit();
   return summary;
 }

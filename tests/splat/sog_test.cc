@@ -38,6 +38,8 @@ constexpr int kBands = 2, kCoefficients = 8, kPalette = 100;
 const double kQuaternionEntry = 4 * 2 / 255.0;
 // A log-scale codebook entry plus log s, rounded to float twice (codebook, .ply), values below 8.
 constexpr double kShiftedLogScale = 16 * tolerance::kSplatFloatStorage;
+// A codebook level, or an alpha byte's value, read back through the .ply's float (values below 8).
+constexpr double kReadBackLevel = 16 * tolerance::kSplatFloatStorage;
 
 // A SOG's content, made here: n splats, kPalette palette entries, codebooks of 256.
 struct Built {
@@ -288,6 +290,123 @@ TEST(Sog, ATurnedSogMovesSplatsAndTurnsThePaletteOnce) {
   EXPECT_NE(sog.find(test::read_text((dir / "scene" / "sh0.webp").string())), std::string::npos);
 }
 
+// A binary .ply of the canonical record, SH degree `degree`, n splats of random values (positions
+// spread over a few units, opacities over the logit range, unit-ish quaternions).
+Ply write_random_ply(const std::string& path, int degree, int n, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  auto uniform = [&](double lo, double hi) { return lo + (hi - lo) * double(rng() >> 11) / 9007199254740992.0; };
+  Ply p;
+  p.names = {"x", "y", "z", "nx", "ny", "nz", "f_dc_0", "f_dc_1", "f_dc_2"};
+  const int rest = 3 * ((degree + 1) * (degree + 1) - 1);
+  for (int k = 0; k < rest; ++k) p.names.push_back("f_rest_" + std::to_string(k));
+  for (const char* name : {"opacity", "scale_0", "scale_1", "scale_2", "rot_0", "rot_1", "rot_2", "rot_3"}) p.names.push_back(name);
+  std::string text = "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(n) + "\n";
+  for (const std::string& name : p.names) text += "property float " + name + "\n";
+  text += "end_header\n";
+  for (int i = 0; i < n; ++i) {
+    std::vector<double> row;
+    for (const std::string& name : p.names) {
+      double v = name.rfind("f_rest", 0) == 0 ? uniform(-0.5, 0.5) : name.rfind("f_dc", 0) == 0 ? uniform(-2, 2)
+                 : name == "opacity"                                                   ? uniform(-6, 6)
+                 : name.rfind("scale", 0) == 0                                         ? uniform(-7, -1)
+                 : name.rfind("rot", 0) == 0                                           ? uniform(-1, 1)
+                 : name[0] == 'n'                                                      ? 0
+                                                                                       : uniform(-4, 4);
+      v = double(float(v));
+      row.push_back(v);
+      const float f = float(v);
+      text.append(reinterpret_cast<const char*>(&f), 4);
+    }
+    p.rows.push_back(row);
+  }
+  test::write_text(path, text);
+  return p;
+}
+
+// meta.json of a bundled .sog zhf wrote: the archive's first entry, stored (30-byte header, its name).
+nlohmann::json written_meta(const std::string& sog) {
+  std::uint32_t bytes;
+  std::memcpy(&bytes, sog.data() + 18, 4);
+  EXPECT_EQ(sog.substr(30, 9), "meta.json");
+  return nlohmann::json::parse(sog.substr(39, bytes));
+}
+
+double nearest_level_distance(const std::vector<double>& levels, double v) {
+  double best = INFINITY;
+  for (double level : levels) best = std::min(best, std::abs(level - v));
+  return best;
+}
+
+// A .ply written as a .sog (fewer splats than a palette holds: each its own entry) and read back:
+// every position within its 16-bit step, every scale, colour and SH value the nearest level of its
+// codebook in meta.json, opacity the nearest byte, orientations within their 8-bit steps.
+TEST(Sog, APlyWrittenAsSogKeepsEachFieldToItsNearestStep) {
+  const test::TempDir dir;
+  const std::string in = (dir / "in.ply").string(), sog = (dir / "out.sog").string(), back = (dir / "back.ply").string();
+  const Ply x = write_random_ply(in, 3, 3000, 11);
+  const test::RunResult run = test::run_zhf("splat --in '" + in + "' --out '" + sog + "' --quiet");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  ASSERT_EQ(test::run_zhf("splat --in '" + sog + "' --out '" + back + "' --quiet").exit_code, 0);
+  const nlohmann::json meta = written_meta(test::read_text(sog));
+  EXPECT_EQ(meta["count"], 3000);
+  EXPECT_EQ(meta["shN"]["bands"], 3);
+  EXPECT_EQ(meta["shN"]["count"], 3000);
+  const std::vector<double> scales = meta["scales"]["codebook"], colours = meta["sh0"]["codebook"], sh = meta["shN"]["codebook"];
+  const Ply y = read_ply(back);
+  ASSERT_EQ(y.rows.size(), 3000u);
+  for (std::size_t i = 0; i < y.rows.size(); ++i) {
+    const std::string at = "splat " + std::to_string(i);
+    for (int a = 0; a < 3; ++a) {
+      const std::string axis(1, "xyz"[a]), index = std::to_string(a);
+      const double p = x.rows[i][x.index(axis)];
+      const double step = (meta["means"]["maxs"][a].get<double>() - meta["means"]["mins"][a].get<double>()) / 65535 * (std::abs(p) + 1);
+      ASSERT_NEAR(y.rows[i][y.index(axis)], p, step) << at << ", " << axis;
+      const double s = x.rows[i][x.index("scale_" + index)], c = x.rows[i][x.index("f_dc_" + index)];
+      ASSERT_NEAR(std::abs(y.rows[i][y.index("scale_" + index)] - s), nearest_level_distance(scales, s), kReadBackLevel) << at << ", scale_" << a;
+      ASSERT_NEAR(std::abs(y.rows[i][y.index("f_dc_" + index)] - c), nearest_level_distance(colours, c), kReadBackLevel) << at << ", f_dc_" << a;
+    }
+    const double alpha = 1 / (1 + std::exp(-x.rows[i][x.index("opacity")]));
+    ASSERT_NEAR(1 / (1 + std::exp(-y.rows[i][y.index("opacity")])), std::nearbyint(255 * alpha) / 255, kReadBackLevel) << at << ", opacity";
+    for (int k = 0; k < 45; ++k) {
+      const double v = x.rows[i][x.index("f_rest_" + std::to_string(k))];
+      ASSERT_NEAR(std::abs(y.rows[i][y.index("f_rest_" + std::to_string(k))] - v), nearest_level_distance(sh, v), kReadBackLevel) << at << ", f_rest_" << k;
+    }
+    runtime::Matrix3 q_in, q_out;
+    runtime::rotation_from_quaternion(x.rows[i][x.index("rot_0")], x.rows[i][x.index("rot_1")], x.rows[i][x.index("rot_2")], x.rows[i][x.index("rot_3")], q_in);
+    runtime::rotation_from_quaternion(y.rows[i][y.index("rot_0")], y.rows[i][y.index("rot_1")], y.rows[i][y.index("rot_2")], y.rows[i][y.index("rot_3")], q_out);
+    for (int k = 0; k < 9; ++k) ASSERT_NEAR(q_out[k], q_in[k], kQuaternionEntry) << at << ", orientation " << k;
+  }
+}
+
+// More splats than a palette holds: the palette is fitted (k-means), the same bytes on one thread
+// and on two, other bytes with another seed; it fills its 65 536 entries, and the SH read back are
+// far nearer the input than the input's own spread.
+TEST(Sog, AFittedPaletteIsTheSameOnAnyThreadCount) {
+  const test::TempDir dir;
+  const int n = 70000;
+  const std::string in = (dir / "in.ply").string(), one = (dir / "one.sog").string(), two = (dir / "two.sog").string();
+  const std::string other = (dir / "other.sog").string(), back = (dir / "back.ply").string();
+  const Ply x = write_random_ply(in, 1, n, 12);
+  ASSERT_EQ(test::run_zhf("splat --in '" + in + "' --out '" + one + "' --threads 1 --quiet").exit_code, 0);
+  ASSERT_EQ(test::run_zhf("splat --in '" + in + "' --out '" + two + "' --threads 2 --quiet").exit_code, 0);
+  ASSERT_EQ(test::run_zhf("splat --in '" + in + "' --out '" + other + "' --seed 2 --quiet").exit_code, 0);
+  const std::string bytes = test::read_text(one);
+  EXPECT_TRUE(bytes == test::read_text(two)) << "one thread and two wrote different files";
+  EXPECT_FALSE(bytes == test::read_text(other)) << "--seed 2 changed nothing";
+  EXPECT_EQ(written_meta(bytes)["shN"]["count"], 65536);
+  ASSERT_EQ(test::run_zhf("splat --in '" + one + "' --out '" + back + "' --quiet").exit_code, 0);
+  const Ply y = read_ply(back);
+  ASSERT_EQ(y.rows.size(), std::size_t(n));
+  double error = 0, spread = 0;
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < 9; ++k) {
+      const double v = x.rows[i][x.index("f_rest_" + std::to_string(k))];
+      error += std::pow(y.rows[i][y.index("f_rest_" + std::to_string(k))] - v, 2);
+      spread += v * v;
+    }
+  EXPECT_LT(std::sqrt(error / spread), 0.1) << "the palette's relative RMS error";
+}
+
 TEST(Sog, HostileSogsAreRefusedInOneLine) {
   const test::TempDir dir;
   const Built b = build(300, 7);
@@ -355,12 +474,13 @@ TEST(Sog, HostileSogsAreRefusedInOneLine) {
   refused("a damaged entry", (dir / "damaged.sog").string(), "CRC mismatch");
   test::write_text((dir / "cut.sog").string(), bytes.substr(0, bytes.size() - 30));
   refused("a truncated archive", (dir / "cut.sog").string(), "cut.sog");
-  // Other formats are not written as SOG: one line, nothing written.
-  const std::string ply = (dir / "in.ply").string(), into = (dir / "from_ply.sog").string();
+  // zhf writes bundled SOGs only: an output named meta.json is refused in one line, nothing written.
+  const std::string ply = (dir / "in.ply").string(), into = (dir / "unbundled" / "meta.json").string();
   ASSERT_EQ(test::run_zhf("splat --in '" + meta + "' --out '" + ply + "' --quiet").exit_code, 0);
+  fs::create_directories(dir / "unbundled");
   const test::RunResult run = test::run_zhf("splat --in '" + ply + "' --out '" + into + "' --quiet");
   EXPECT_EQ(run.exit_code, 3) << run.err;
-  EXPECT_NE(run.err.find("zhf writes a .sog from a .sog only"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("name the output .sog"), std::string::npos) << run.err;
   EXPECT_FALSE(fs::exists(into));
 }
 

@@ -638,7 +638,7 @@ TEST(Splat, MergedScenesAreEachTransformedAndKeptInOrder) {
       ASSERT_EQ(merged.rows[kept_a.size() + k][i], b_rows.rows[k][i]) << "merged splat " << kept_a.size() + k << " (b.spz's " << k << "th kept), " << like.names[i];
 }
 
-// Merging refused: a .sog output, too many inputs, a missing one; one line, nothing written.
+// Merging refused: an unbundled SOG output, too many inputs, a missing one; one line, nothing written.
 TEST(Splat, BadMergesAreRefusedAndNothingIsWritten) {
   const test::TempDir dir;
   std::mt19937_64 rng(76);
@@ -650,7 +650,7 @@ TEST(Splat, BadMergesAreRefusedAndNothingIsWritten) {
     std::string options, named;
     int exit_code;
   } bad[] = {
-      {"--in '" + in + "' --in '" + in + "' --out '" + (dir / "x.sog").string() + "'", "x.sog", 3},
+      {"--in '" + in + "' --in '" + in + "' --out '" + (dir / "meta.json").string() + "'", "meta.json", 3},
       {many + " --out '" + out + "'", "--in", 2},
       {"--in '" + in + "' --in '" + (dir / "missing.ply").string() + "' --out '" + out + "'", "missing.ply", 3},
   };
@@ -695,10 +695,9 @@ TEST(Splat, BadFiltersAreRefusedAndNothingIsWritten) {
   const test::RunResult info = test::run_zhf("splat --in '" + in + "' --info --min-opacity 0.5");
   EXPECT_EQ(info.exit_code, 2) << info.err;
   EXPECT_NE(info.err.find("--info"), std::string::npos) << info.err;
-  const test::RunResult sog = test::run_zhf("splat --in '" + test::data_path("uniform.sog") + "' --out '" + (dir / "x.sog").string() +
-                                            "' --min-opacity 0.5");
-  EXPECT_EQ(sog.exit_code, 3) << sog.err;
-  EXPECT_EQ(test::line_count(sog.err), 1) << sog.err;
+  const test::RunResult seed = test::run_zhf("splat --in '" + in + "' --out '" + (dir / "x.sog").string() + "' --seed -1 --drop-nonfinite");
+  EXPECT_EQ(seed.exit_code, 2) << seed.err;
+  EXPECT_NE(seed.err.find("--seed"), std::string::npos) << seed.err;
   EXPECT_EQ(std::distance(fs::directory_iterator(dir.string()), fs::directory_iterator()), 1) << "something was written";
 }
 

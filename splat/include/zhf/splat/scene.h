@@ -119,6 +119,7 @@ struct Formats {
   bool spz_as_reference = false;
   bool drop_spz_extensions = false;  // records a non-.spz output cannot carry: left out (else refused)
   bool keep_order = false;           // a compressed .ply in the input's order (default: Morton order)
+  std::uint64_t sog_seed = 1;        // a .sog written from another format: its palette's k-means draws
   // The SH bands written: 0..sh_degree (at most the scene's), or the smallest degree whose
   // dropped energy error stays within max_sh_error; neither: all the output format holds.
   std::optional<int> sh_degree;
