@@ -15,8 +15,12 @@ its 0.5 offset and clamp): the RMS and the largest over splats, channels and dir
 RMS over all bands together; the RMS error of positions, log-scales and alpha.
 """
 import sys
+from pathlib import Path
 
 import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "examples"))
+from rotate_and_render import basis  # noqa: E402  3DGS's basis, bands 0..3
 
 STEPS = 65535
 BOUND = np.log(51.0)  # sign(p) ln(|p| + 1) of p = 50
@@ -76,24 +80,6 @@ def read_ply(path):
             cols.append(line.split()[2])
     data = np.frombuffer(raw, dtype="<f4", offset=end, count=count * len(cols)).reshape(count, len(cols)).astype(np.float64)
     return cols, data
-
-
-C0 = 0.28209479177387814
-C1 = 0.4886025119029199
-C2 = (1.0925484305920792, -1.0925484305920792, 0.31539156525252005, -1.0925484305920792, 0.5462742152960396)
-C3 = (-0.5900435899266435, 2.890611442640554, -0.4570457994644658, 0.3731763325901154, -0.4570457994644658,
-      1.445305721320277, -0.5900435899266435)
-
-
-def basis(d):
-    """3DGS's SH basis, bands 0..3, at directions d (k, 3): (k, 16)."""
-    x, y, z = d[:, 0], d[:, 1], d[:, 2]
-    xx, yy, zz = x * x, y * y, z * z
-    return np.stack([np.full_like(x, C0), -C1 * y, C1 * z, -C1 * x,
-                     C2[0] * x * y, C2[1] * y * z, C2[2] * (2 * zz - xx - yy), C2[3] * x * z, C2[4] * (xx - yy),
-                     C3[0] * y * (3 * xx - yy), C3[1] * x * y * z, C3[2] * y * (4 * zz - xx - yy),
-                     C3[3] * z * (2 * zz - 3 * xx - 3 * yy), C3[4] * x * (4 * zz - xx - yy), C3[5] * z * (xx - yy),
-                     C3[6] * x * (xx - 3 * yy)], axis=-1)
 
 
 def directions(k=64):
