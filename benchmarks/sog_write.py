@@ -9,7 +9,8 @@ logits in [-4, 4], log-scales in [-8, 3], unit quaternions), each position on th
 (16 bits of sign(p) ln(|p| + 1) between the bounds two corner splats pin), so that a decoded
 splat is found again whatever order a writer put it in.
 
-error: each decoded scene (a SOG read back as .ply) matched to SCENE by its grid point, then per
+error: each decoded scene (a SOG read back as .ply) matched to SCENE by its grid point (within a
+step on each axis: writers round differently), then per
 SH band the colour error over 64 view directions (a golden-angle spiral; 3DGS's basis, without
 its 0.5 offset and clamp): the RMS and the largest over splats, channels and directions, and the
 RMS over all bands together; the RMS error of positions, log-scales and alpha.
@@ -111,12 +112,20 @@ def error(scene_path, decoded_paths):
     print("| decoded | splats | " + " | ".join(f"band {l} RMS / max" for l in range(degree + 1)) +
           " | colour RMS | position RMS | log-scale RMS | alpha RMS |")
     print("| --- " * (degree + 7) + "|")
+    ref_keys = key_of(cols, ref)
+    sorted_keys = ref_keys[order]
     for path in decoded_paths:
         dcols, dec = read_ply(path)
-        keys = key_of(dcols, dec)
-        at = np.searchsorted(key_of(cols, ref)[order], keys)
-        match = order[np.clip(at, 0, len(order) - 1)]
-        if len(dec) != len(ref) or not np.array_equal(key_of(cols, ref)[match], keys):
+        # Each decoded splat's grid point, to within one step on each axis (writers round apart).
+        t = grid_point(dec[:, [dcols.index(a) for a in "xyz"]])
+        match = np.full(len(dec), -1)
+        for offset in np.ndindex(3, 3, 3):
+            u = t + np.array(offset) - 1
+            keys = (u[:, 0] * (STEPS + 1) + u[:, 1]) * (STEPS + 1) + u[:, 2]
+            at = np.clip(np.searchsorted(sorted_keys, keys), 0, len(order) - 1)
+            found = (match < 0) & (sorted_keys[at] == keys)
+            match[found] = order[at[found]]
+        if len(dec) != len(ref) or (match < 0).any() or len(np.unique(match)) != len(ref):
             sys.exit(f"{path}: its splats are not the scene's (count or grid points differ)")
         diff = sh_of(dcols, dec, degree) - ref_sh[match]
         cells, total = [], np.zeros((len(dec), 3, len(y)))
