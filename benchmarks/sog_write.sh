@@ -21,8 +21,8 @@ st_sog="$st -w -q -g cpu $work/scene.ply $work/st.sog"
 measure() {
   set -euo pipefail
   echo "## .ply to .sog, one run each (/usr/bin/time: wall seconds, peak resident KiB; farm-bench stops at an hour)"
-  /usr/bin/time -f "zhf splat: %e s, %M KiB" $zhf_sog
-  /usr/bin/time -f "splat-transform -g cpu: %e s, %M KiB" $st_sog
+  /usr/bin/time -f "zhf splat: %e s, %M KiB" $zhf_sog 2>&1
+  /usr/bin/time -f "splat-transform -g cpu: %e s, %M KiB" $st_sog 2>&1
   "$ZHF_BUILD/cli/zhf" splat --in "$work/zhf.sog" --out "$work/zhf_sog.ply" --quiet
   "$ZHF_BUILD/cli/zhf" splat --in "$work/st.sog" --out "$work/splat_transform_sog.ply" --quiet
   echo
