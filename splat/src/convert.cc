@@ -352,6 +352,8 @@ Summary convert(const std::vector<Input>& inputs, const std::string& out, FileFo
   const Canonical whole(degree), written(kept);
   const ply::Header header = canonical_header(kept, summary.written());
   const Layout layout = layout_of(header, "canonical record");
+  // WebP holds no empty image.
+  if (to == FileFormat::kSog && summary.written() == 0) throw InputError(out + ": no splats to write, and a .sog holds at least one");
   io::PendingFile pending(out);
   const std::unique_ptr<SceneWriter> writer = open_writer(to, pending, options);
   Transform into_ply, out_of_ply;

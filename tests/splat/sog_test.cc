@@ -376,6 +376,14 @@ TEST(Sog, APlyWrittenAsSogKeepsEachFieldToItsNearestStep) {
     runtime::rotation_from_quaternion(y.rows[i][y.index("rot_0")], y.rows[i][y.index("rot_1")], y.rows[i][y.index("rot_2")], y.rows[i][y.index("rot_3")], q_out);
     for (int k = 0; k < 9; ++k) ASSERT_NEAR(q_out[k], q_in[k], kQuaternionEntry) << at << ", orientation " << k;
   }
+  // No splats (WebP holds no empty image): refused in one line, nothing written.
+  const std::string empty = (dir / "empty.ply").string(), empty_sog = (dir / "empty.sog").string();
+  write_random_ply(empty, 1, 0, 1);
+  const test::RunResult none = test::run_zhf("splat --in '" + empty + "' --out '" + empty_sog + "' --quiet");
+  EXPECT_EQ(none.exit_code, 3) << none.err;
+  EXPECT_EQ(test::line_count(none.err), 1) << none.err;
+  EXPECT_NE(none.err.find("empty.sog: no splats to write"), std::string::npos) << none.err;
+  EXPECT_FALSE(fs::exists(empty_sog));
 }
 
 // More splats than a palette holds: the palette is fitted (k-means), the same bytes on one thread
