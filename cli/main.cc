@@ -1,4 +1,5 @@
 // zhf: sparse zonal-harmonic factorisation of SH rotation. Thin front end over the libraries.
+#include <algorithm>
 #include <iostream>
 #include <new>
 #include <string>
@@ -6,6 +7,8 @@
 #include "commands.h"
 #include "options.h"
 #include "zhf/dispatch/isa.h"
+#include "zhf/dispatch/rotator.h"
+#include "zhf/runtime/limits.h"
 #include "zhf/io/errors.h"
 #include "zhf/io/signals.h"
 
@@ -68,6 +71,15 @@ std::string help_command(CLI::App& app, int argc, char** argv) {
   return command + " --help";
 }
 
+// "order N: float P, double Q" lines for the orders 1..zxzxz's limit where the choice can change.
+std::string kernels_by_order() {
+  std::string lines;
+  for (int order = 1; order <= zhf::runtime::kMaxZxzxzOrder; order = order < 16 ? order + 1 : 2 * order)
+    lines += "\norder " + std::to_string(order) + ": float " + zhf::dispatch::Rotator<float>::make(order).path() + ", double " +
+             zhf::dispatch::Rotator<double>::make(order).path();
+  return lines;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -81,7 +93,11 @@ int main(int argc, char** argv) {
     return fail(kExitUsage, e.what());
   }
   CLI::App app{"zhf " ZHF_VERSION ": fast real spherical-harmonic rotation by sparse zonal-harmonic factorisation"};
-  app.set_version_flag("--version", "zhf " ZHF_VERSION " (rotation path " + isa + ")");
+  // --version --verbose: the kernels each order takes on that path, as zhf::dispatch picks them.
+  std::string version = "zhf " ZHF_VERSION " (rotation path " + isa + ")";
+  if (std::any_of(argv + 1, argv + argc, [](const char* a) { return std::string(a) == "--verbose"; })) version += kernels_by_order();
+  app.set_version_flag("--version", version);
+  app.add_flag("--verbose", "With --version: the kernels each order takes, in float and double");
   app.require_subcommand(1);
   Action action;
   const std::string command = recorded_command(argc, argv);

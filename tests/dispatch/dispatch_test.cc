@@ -238,6 +238,14 @@ TEST_F(DispatchTest, TheCliNamesItsPathAndRefusesAWrongZhfIsa) {
     const test::RunResult forced = test::run_zhf({"--version"}, "", {"ZHF_ISA=" + std::string(dispatch::isa_name(isa))});
     EXPECT_NE(forced.out.find(std::string("rotation path ") + dispatch::isa_name(isa)), std::string::npos) << forced.out;
   }
+  // --verbose: each order's kernels, as this process's zhf::dispatch picks them on the same path.
+  const test::RunResult verbose = test::run_zhf(std::string("--version --verbose"));
+  EXPECT_EQ(verbose.exit_code, 0) << verbose.err;
+  for (int order : {1, 2, 3, 8, 9, 16, 32, 128}) {
+    const std::string line = "order " + std::to_string(order) + ": float " + Rotator<float>::make(order).path() + ", double " +
+                             Rotator<double>::make(order).path() + "\n";
+    EXPECT_NE(verbose.out.find(line), std::string::npos) << verbose.out << "lacks " << line;
+  }
   const test::RunResult wrong = test::run_zhf({"--version"}, "", {"ZHF_ISA=avx1024"});
   EXPECT_EQ(wrong.exit_code, 2);
   EXPECT_EQ(test::line_count(wrong.err), 1) << wrong.err;
