@@ -51,7 +51,7 @@ class Rotator {
   int order() const;
   int coefficients() const { return order() * order(); }
   Isa isa() const { return isa_; }
-  // Which kernels run: "copy" (order 1), "scalar", "lanes", "band_rows", "bands01" or "zxzxz".
+  // Which kernels run: "scalar", "lanes", "band_rows", "bands01" or "zxzxz" (order 1 among its orders).
   std::string path() const;
 
   // R must be a proper rotation; in and out must not overlap (as every call below).
