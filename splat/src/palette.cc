@@ -61,7 +61,7 @@ class Centroids {
 // Lloyd's k-means of the points `members` (indices into points, ascending) into k centroids,
 // started from k of them drawn by rng; labels[i] is member i's centroid. Its assignment spread
 // over `threads`; the update summed in member order.
-Centroids lloyd(const std::vector<float>& points, int dim, const std::vector<std::uint32_t>& members, int k, sh::Rng& rng, int threads,
+Centroids lloyd(const float* points, std::size_t stride, int dim, const std::vector<std::uint32_t>& members, int k, sh::Rng& rng, int threads,
                 std::vector<std::uint32_t>& labels) {
   const std::size_t m = members.size();
   labels.assign(m, 0);
@@ -72,7 +72,7 @@ Centroids lloyd(const std::vector<float>& points, int dim, const std::vector<std
   for (int c = 0; c < k; ++c) {
     const std::size_t pick = std::size_t(c) + std::size_t(sh::uniform01(rng) * double(m - std::size_t(c)));
     std::swap(order[c], order[std::min(pick, m - 1)]);
-    centroids.set(c, &points[std::size_t(members[order[c]]) * dim]);
+    centroids.set(c, points + std::size_t(members[order[c]]) * stride);
   }
   std::vector<float> distance(m);
   std::vector<double> sums(std::size_t(k) * dim);
@@ -80,7 +80,7 @@ Centroids lloyd(const std::vector<float>& points, int dim, const std::vector<std
   for (int step = 0; step <= kPaletteSteps; ++step) {
     runtime::parallel_chunks(m, threads, [&](std::size_t begin, std::size_t end) {
       for (std::size_t i = begin; i < end; ++i) {
-        const auto [c, d] = centroids.nearest(&points[std::size_t(members[i]) * dim]);
+        const auto [c, d] = centroids.nearest(points + std::size_t(members[i]) * stride);
         labels[i] = std::uint32_t(c);
         distance[i] = d;
       }
@@ -90,7 +90,7 @@ Centroids lloyd(const std::vector<float>& points, int dim, const std::vector<std
     std::fill(counts.begin(), counts.end(), 0);
     for (std::size_t i = 0; i < m; ++i) {
       const std::uint32_t c = labels[i];
-      const float* p = &points[std::size_t(members[i]) * dim];
+      const float* p = points + std::size_t(members[i]) * stride;
       for (int d = 0; d < dim; ++d) sums[std::size_t(c) * dim + d] += p[d];
       ++counts[c];
     }
@@ -100,7 +100,7 @@ Centroids lloyd(const std::vector<float>& points, int dim, const std::vector<std
         // An empty centroid moves to the member farthest from its own (the lowest such).
         const std::size_t far = std::size_t(std::max_element(distance.begin(), distance.end()) - distance.begin());
         distance[far] = 0;
-        centroids.set(c, &points[std::size_t(members[far]) * dim]);
+        centroids.set(c, points + std::size_t(members[far]) * stride);
         continue;
       }
       for (int d = 0; d < dim; ++d) mean[d] = float(sums[std::size_t(c) * dim + d] / double(counts[c]));
@@ -113,11 +113,11 @@ Centroids lloyd(const std::vector<float>& points, int dim, const std::vector<std
 
 }  // namespace
 
-Palette fit_palette(const std::vector<float>& points, std::size_t count, int dim, int max_entries, std::uint64_t seed, int threads) {
+Palette fit_palette(const float* points, std::size_t stride, std::size_t count, int dim, int max_entries, std::uint64_t seed, int threads) {
   Palette palette;
   palette.labels.resize(count);
   if (count <= std::size_t(max_entries)) {
-    palette.entries.assign(points.begin(), points.begin() + std::ptrdiff_t(count * dim));
+    for (std::size_t i = 0; i < count; ++i) palette.entries.insert(palette.entries.end(), points + i * stride, points + i * stride + dim);
     std::iota(palette.labels.begin(), palette.labels.end(), 0u);
     return palette;
   }
@@ -125,15 +125,15 @@ Palette fit_palette(const std::vector<float>& points, std::size_t count, int dim
   sh::Rng rng(seed);
   const int clusters = std::max(1, int(std::sqrt(double(max_entries))));
   std::vector<std::uint32_t> sample;
-  const std::size_t stride = std::max<std::size_t>(1, count / kPaletteSample);
-  for (std::size_t i = 0; i < count; i += stride) sample.push_back(std::uint32_t(i));
-  std::vector<std::uint32_t> cluster(count);
-  const Centroids top = lloyd(points, dim, sample, clusters, rng, threads, cluster);  // the sample's labels, replaced next
+  const std::size_t every = std::max<std::size_t>(1, count / kPaletteSample);
+  for (std::size_t i = 0; i < count; i += every) sample.push_back(std::uint32_t(i));
+  std::vector<std::uint32_t> sample_labels, cluster(count);
+  const Centroids top = lloyd(points, stride, dim, sample, clusters, rng, threads, sample_labels);
   runtime::parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) cluster[i] = std::uint32_t(top.nearest(&points[i * dim]).first);
+    for (std::size_t i = begin; i < end; ++i) cluster[i] = std::uint32_t(top.nearest(points + i * stride).first);
   });
-  // Level two: each cluster's share of the entries (at least one, at most its points; the
-  // remainder by the largest fractions, then the lower cluster).
+  // Level two: each cluster's share of the entries (at least one, at most its points, at most
+  // max_entries together; the remainder by the largest fractions, then the lower cluster).
   std::vector<std::vector<std::uint32_t>> members(clusters);
   for (std::size_t i = 0; i < count; ++i) members[cluster[i]].push_back(std::uint32_t(i));
   std::vector<int> share(clusters, 0);
@@ -145,6 +145,11 @@ Palette fit_palette(const std::vector<float>& points, std::size_t count, int dim
     share[c] = int(std::min<double>(std::max(1.0, std::floor(exact)), double(members[c].size())));
     given += share[c];
     remainders.push_back({exact - std::floor(exact), c});
+  }
+  // The one-entry floor can overshoot: the largest shares (the lower cluster first) give back.
+  while (given > max_entries) {
+    --*std::max_element(share.begin(), share.end());
+    --given;
   }
   std::stable_sort(remainders.begin(), remainders.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
   for (std::size_t r = 0; given < max_entries && r < remainders.size(); ++r) {
@@ -162,7 +167,7 @@ Palette fit_palette(const std::vector<float>& points, std::size_t count, int dim
     if (members[c].empty()) return;
     sh::Rng own(seed ^ (0x9e3779b97f4a7c15ull * std::uint64_t(c + 1)));
     std::vector<std::uint32_t> labels;
-    const Centroids part = lloyd(points, dim, members[c], share[c], own, 1, labels);
+    const Centroids part = lloyd(points, stride, dim, members[c], share[c], own, 1, labels);
     for (int e = 0; e < share[c]; ++e)
       for (int d = 0; d < dim; ++d) palette.entries[std::size_t(first[c] + e) * dim + d] = part.get(e, d);
     for (std::size_t i = 0; i < members[c].size(); ++i) palette.labels[members[c][i]] = std::uint32_t(first[c]) + labels[i];

@@ -18,6 +18,7 @@ struct Palette {
   std::vector<std::uint32_t> labels;  // per point
 };
 
-Palette fit_palette(const std::vector<float>& points, std::size_t count, int dim, int max_entries, std::uint64_t seed, int threads);
+// Point i's dim values at points + i * stride.
+Palette fit_palette(const float* points, std::size_t stride, std::size_t count, int dim, int max_entries, std::uint64_t seed, int threads);
 
 }  // namespace zhf::splat

@@ -436,10 +436,8 @@ class SogWriter : public SceneWriter {
     io::throw_if_interrupted();
     SogImages images;
     if (m.bands > 0) {
-      std::vector<float> points(n * c.rest);
-      for (std::uint64_t i = 0; i < n; ++i)
-        std::copy(&records_[i * size_ + Canonical::kRest], &records_[i * size_ + Canonical::kRest] + c.rest, &points[i * c.rest]);
-      const Palette palette = fit_palette(points, n, c.rest, kMaxSogPalette, options_.seed, options_.threads);
+      const float* rest = records_.data() + Canonical::kRest;  // splat i's SH above band 0 at rest + i * size_
+      const Palette palette = fit_palette(rest, std::size_t(size_), n, c.rest, kMaxSogPalette, options_.seed, options_.threads);
       m.palette = int(palette.entries.size() / c.rest);
       m.sh = fit_codebook(std::vector<double>(palette.entries.begin(), palette.entries.end()));
       Image centroids;
@@ -461,7 +459,7 @@ class SogWriter : public SceneWriter {
         labels.rgba[4 * i + 1] = static_cast<unsigned char>(entry >> 8);
         labels.rgba[4 * i + 3] = 255;
         for (int k = 0; k < c.rest; ++k)
-          stored(Canonical::band(k % per), points[i * c.rest + k], m.sh[levels[std::size_t(entry) * c.rest + k]]);
+          stored(Canonical::band(k % per), rest[i * size_ + k], m.sh[levels[std::size_t(entry) * c.rest + k]]);
       }
       images.centroids = encode_webp(centroids);
       images.labels = encode_webp(labels);

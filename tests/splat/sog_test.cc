@@ -413,6 +413,14 @@ TEST(Sog, AFittedPaletteIsTheSameOnAnyThreadCount) {
       spread += v * v;
     }
   EXPECT_LT(std::sqrt(error / spread), 0.1) << "the palette's relative RMS error";
+  // Over twice the palette: the first level is fitted on a sample; still the same on any thread count.
+  const std::string big = (dir / "big.ply").string(), big_one = (dir / "big_one.sog").string(), big_two = (dir / "big_two.sog").string();
+  write_random_ply(big, 1, 140000, 13);
+  ASSERT_EQ(test::run_zhf("splat --in '" + big + "' --out '" + big_one + "' --threads 1 --quiet").exit_code, 0);
+  ASSERT_EQ(test::run_zhf("splat --in '" + big + "' --out '" + big_two + "' --threads 2 --quiet").exit_code, 0);
+  const std::string big_bytes = test::read_text(big_one);
+  EXPECT_TRUE(big_bytes == test::read_text(big_two)) << "one thread and two wrote different files (140 000 splats)";
+  EXPECT_EQ(written_meta(big_bytes)["shN"]["count"], 65536);
 }
 
 TEST(Sog, HostileSogsAreRefusedInOneLine) {
