@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Writing a SOG from a .ply: zhf splat against splat-transform 3.7 (-g cpu) on the same scene
 # (benchmarks/sog_write.py scene: 10^6 splats of SH degree 3 by default), one run each, wall time
-# and peak memory (/usr/bin/time), then both SOGs read back by zhf and compared with the scene: the
+# and CPU seconds (the machine is shared: CPU time is what another job disturbs least) and peak
+# memory (/usr/bin/time), then both SOGs read back by zhf and compared with the scene: the
 # colour error per SH band over view directions, positions, log-scales and alpha
 # (benchmarks/sog_write.py error). Into benchmarks/results/sog_write.txt through
 # benchmarks/record.sh; docs/formats.md quotes it. splat-transform clusters on one core for a long
@@ -20,9 +21,9 @@ zhf_sog="$ZHF_BUILD/cli/zhf splat --in $work/scene.ply --out $work/zhf.sog --qui
 st_sog="$st -w -q -g cpu $work/scene.ply $work/st.sog"
 measure() {
   set -euo pipefail
-  echo "## .ply to .sog, one run each (/usr/bin/time: wall seconds, peak resident KiB; farm-bench stops at an hour)"
-  /usr/bin/time -f "zhf splat: %e s, %M KiB" $zhf_sog 2>&1
-  /usr/bin/time -f "splat-transform -g cpu: %e s, %M KiB" $st_sog 2>&1
+  echo "## .ply to .sog, one run each (/usr/bin/time: wall seconds, user and system CPU seconds, peak resident KiB)"
+  /usr/bin/time -f "zhf splat: %e s wall, %U s user, %S s system, %M KiB" $zhf_sog 2>&1
+  /usr/bin/time -f "splat-transform -g cpu: %e s wall, %U s user, %S s system, %M KiB" $st_sog 2>&1
   "$ZHF_BUILD/cli/zhf" splat --in "$work/zhf.sog" --out "$work/zhf_sog.ply" --quiet
   "$ZHF_BUILD/cli/zhf" splat --in "$work/st.sog" --out "$work/splat_transform_sog.ply" --quiet
   echo
