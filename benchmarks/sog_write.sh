@@ -32,13 +32,13 @@ measure() {
   /usr/bin/time -f "zhf splat: %e s wall, %U s user, %S s system, %M KiB" $zhf_sog 2>&1
   local decoded=("$work/zhf_sog.ply")
   local status=0
-  /usr/bin/time -o "$work/st_time" -f "splat-transform -g cpu: %e s wall, %U s user, %S s system, %M KiB" \
+  /usr/bin/time -o "$work/st_time" -f "%e s wall, %U s user, %S s system, %M KiB" \
     timeout "$st_limit" $st_sog > "$work/st_log" 2>&1 || status=$?
   if [ "$status" = 0 ]; then
-    cat "$work/st_time"
+    echo "splat-transform -g cpu: $(tail -1 "$work/st_time")"
     decoded+=("$work/splat_transform_sog.ply")
   elif [ "$status" = 124 ]; then
-    echo "splat-transform -g cpu: stopped after $st_limit s (ST_LIMIT), unfinished; $(tail -1 "$work/st_time")"
+    echo "splat-transform -g cpu: stopped after $st_limit s (ST_LIMIT), unfinished: $(tail -1 "$work/st_time")"
     echo "its log up to then:"
     sed 's/^/    /' "$work/st_log"
   else
