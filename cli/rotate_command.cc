@@ -2,7 +2,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <memory>
 #include <optional>
 #include <vector>
 
@@ -15,12 +14,9 @@
 #include "zhf/io/files.h"
 #include "zhf/io/limits.h"
 #include "zhf/io/signals.h"
-#include "zhf/pipeline/data_root.h"
 #include "zhf/runtime/conventions.h"
 #include "zhf/runtime/limits.h"
-#include "zhf/runtime/orthogonal.h"
 #include "zhf/runtime/rotation.h"
-#include "zhf/runtime/rotator.h"
 #include "zhf/runtime/table_io.h"
 
 namespace zhf::cli {
@@ -43,30 +39,20 @@ int run_rotate(const RotateOptions& o) {
   io::PendingFile out_file(o.out);  // refuse an unwritable output before the work
   const io::CoefficientFile file = io::read_coefficients(o.coeffs, o.channels);
   const int order = file.order;
-  // Order 1 is band 0 alone, which no rotation changes. The generated orders run on the CPU's
-  // fastest path (zhf::dispatch); the orders above them through their lobe tables.
-  std::optional<dispatch::Rotator<double>> fastest;
-  std::unique_ptr<runtime::Rotator<double>> rotator;
-  if (order > 1 && order <= runtime::kMaxGeneratedOrder) {
-    fastest.emplace(dispatch::Rotator<double>::make(order));
-  } else if (order > runtime::kMaxGeneratedOrder) {
-    const std::string tables = o.tables.empty() ? pipeline::data_root().lobes() : o.tables;
-    const std::string table = runtime::table_path(tables, order);
-    if (order > runtime::kMaxTableOrder || !std::filesystem::exists(table))
-      throw io::InputError(o.coeffs + ": order " + std::to_string(order) + " has no lobe table (" + table + ")");
-    rotator = std::make_unique<runtime::Rotator<double>>(runtime::Rotator<double>::from_table(runtime::read_lobe_table(table, order)));
+  // Every order through zhf::dispatch: its fastest kernels, or with --tables the order's lobe table
+  // from that folder (order 1, band 0 alone, has no lobes to take).
+  std::optional<runtime::LobeTable> table;
+  if (!o.tables.empty() && order > 1) {
+    const std::string path = runtime::table_path(o.tables, order);
+    if (order > runtime::kMaxTableOrder || !std::filesystem::exists(path))
+      throw io::InputError("--tables: order " + std::to_string(order) + " has no lobe table (" + path + ")");
+    table = runtime::read_lobe_table(path, order);
   }
+  const auto rotator = dispatch::Rotator<double>::make(order, table ? &*table : nullptr);
   const size_t n = static_cast<size_t>(order) * order, count = file.signals.size();
   std::vector<double> in(count * n), out(count * n);
   for (size_t v = 0; v < count; ++v) std::copy(file.signals[v].begin(), file.signals[v].end(), in.begin() + n * v);
-  if (fastest) {
-    fastest->transform_shared(count, r.data(), in.data(), out.data(), 1);
-  } else if (rotator) {
-    const runtime::OrthogonalTransform<double> transform(*rotator, r.data());
-    for (size_t v = 0; v < count; ++v) transform.apply(in.data() + n * v, out.data() + n * v);
-  } else {
-    out = in;
-  }
+  rotator.transform_shared(count, r.data(), in.data(), out.data(), 1);
   nlohmann::ordered_json vectors = nlohmann::ordered_json::array();
   for (size_t s = 0; s < count; s += file.channels) {
     nlohmann::ordered_json channels = nlohmann::ordered_json::array();
@@ -77,8 +63,8 @@ int run_rotate(const RotateOptions& o) {
   out_file.write(io::json_text(vectors));
   io::throw_if_interrupted();
   out_file.commit();
-  std::printf("rotated %s (order %d, %d channel%s) into %s\n", counted(file.signals.size() / file.channels, "vector").c_str(), order, file.channels,
-              file.channels == 1 ? "" : "s", o.out.c_str());
+  std::printf("rotated %s (order %d, %d channel%s; %s path, %s kernels) into %s\n", counted(file.signals.size() / file.channels, "vector").c_str(),
+              order, file.channels, file.channels == 1 ? "" : "s", dispatch::isa_name(rotator.isa()), rotator.path().c_str(), o.out.c_str());
   return kExitOk;
 }
 
@@ -93,7 +79,7 @@ void add_rotate_command(CLI::App& app, Action& action) {
   c->add_option("--convention", o->convention,
                 "The coefficients' convention, the rotation in the same system's axes: " + runtime::convention_names() +
                     " (docs/conventions.md)");
-  c->add_option("--tables", o->tables, "Lobe tables for orders above 8 (default generated/lobes)");
+  c->add_option("--tables", o->tables, "Rotate through the lobe table order_N.json in this folder instead of the fastest kernels");
   c->add_option("--out", o->out, "Write the rotated vectors here (JSON)")->required();
   c->callback([o, &action] { action = [o] { return run_rotate(*o); }; });
 }

@@ -28,6 +28,18 @@ std::unique_ptr<zhf_dispatch_api::Backend<double>> zhf_dispatch_api::make_backen
 }
 
 template <>
+std::unique_ptr<zhf_dispatch_api::Backend<float>> zhf_dispatch_api::make_table_backend<zhf::dispatch_unit::kIsa, float>(const TableData& table) {
+  using namespace zhf;
+  return std::make_unique<dispatch_unit::IsaBackend<float>>(runtime::Rotator<float>::from_table(table_of<runtime::LobeTable>(table)));
+}
+
+template <>
+std::unique_ptr<zhf_dispatch_api::Backend<double>> zhf_dispatch_api::make_table_backend<zhf::dispatch_unit::kIsa, double>(const TableData& table) {
+  using namespace zhf;
+  return std::make_unique<dispatch_unit::IsaBackend<double>>(runtime::Rotator<double>::from_table(table_of<runtime::LobeTable>(table)));
+}
+
+template <>
 bool zhf_dispatch_api::all_finite_on<zhf::dispatch_unit::kIsa, float>(const float* p, std::size_t count) {
   return zhf::runtime::all_finite(p, count);
 }

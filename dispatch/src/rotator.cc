@@ -35,13 +35,22 @@ bool all_finite(const float* p, std::size_t count) { return all_finite_active(p,
 bool all_finite(const double* p, std::size_t count) { return all_finite_active(p, count); }
 
 template <class T>
-Rotator<T> Rotator<T>::make(int order) {
+Rotator<T> Rotator<T>::make(int order, const runtime::LobeTable* table) {
   if (order < 1 || order > runtime::kMaxZxzxzOrder)
     throw std::invalid_argument("zhf::dispatch::Rotator: order " + std::to_string(order) + " is outside 1.." +
                                 std::to_string(runtime::kMaxZxzxzOrder));
   Rotator r;
   r.isa_ = active_isa();
-  r.backend_ = on_path<ZHF_DISPATCH_PATHS>(r.isa_, [&](auto path) { return detail::make_backend<path.value, T>(order); });
+  if (!table) {
+    r.backend_ = on_path<ZHF_DISPATCH_PATHS>(r.isa_, [&](auto path) { return detail::make_backend<path.value, T>(order); });
+    return r;
+  }
+  if (table->order != order)
+    throw runtime::InputError("table: order " + std::to_string(table->order) + ", but the rotation's is " + std::to_string(order));
+  // Checked here, in zhf's own types: the path's units throw their own (renamed) error types.
+  runtime::validate_lobe_table(*table, "table", runtime::TableCheck::kShape);
+  const detail::TableData data = detail::table_data(*table);
+  r.backend_ = on_path<ZHF_DISPATCH_PATHS>(r.isa_, [&](auto path) { return detail::make_table_backend<path.value, T>(data); });
   return r;
 }
 

@@ -10,8 +10,6 @@
 #include <atomic>
 #include <cmath>
 #include <cstddef>
-#include <functional>
-#include <memory>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -24,9 +22,10 @@
 #include "zhf/io/lobe_table_writer.h"
 #include "zhf/runtime/conventions.h"
 #include "zhf/runtime/table_io.h"
-#include "zhf/runtime/orthogonal.h"
+#include "zhf/runtime/dense_rotation.h"
+#include "zhf/runtime/limits.h"
+#include "zhf/runtime/parallel.h"
 #include "zhf/runtime/rotation.h"
-#include "zhf/runtime/rotator.h"
 #include "zhf/sh/analysis.h"
 #include "zhf/sh/limits.h"
 #include "zhf/tolerances/tolerances.h"
@@ -40,58 +39,12 @@ namespace {
 template <class T>
 using Array = py::array_t<T, py::array::c_style>;
 
-// The rotation of one order: without a table, zhf::dispatch's on the CPU's fastest path (orders
-// 1..8, the generated kernels); with one, the table's (runtime::Rotator::from_table).
-template <class T>
-class Rotation {
- public:
-  Rotation(int order, const rt::LobeTable* table) {
-    if (!table) {
-      fastest_.emplace(zd::Rotator<T>::make(order));
-      return;
-    }
-    if (table->order != order)
-      throw rt::InputError("table: order " + std::to_string(table->order) + ", but coeffs have order " + std::to_string(order));
-    table_ = std::make_shared<const rt::Rotator<T>>(rt::Rotator<T>::from_table(*table));
-  }
-
-  // count vectors, each under its own orthogonal q[9 v + k], on the calling thread.
-  void each(std::size_t count, const T* q, const T* in, T* out) const {
-    if (fastest_) return fastest_->transform_each(count, q, in, out, 1);
-    const std::size_t n = std::size_t(table_->coefficients());
-    for (std::size_t v = 0; v < count; ++v) rt::OrthogonalTransform<T>(*table_, q + 9 * v).apply(in + n * v, out + n * v);
-  }
-
-  // One orthogonal q prepared for count vectors: apply(part, in, out) on the calling thread.
-  std::function<void(std::size_t, const T*, T*)> shared(const T* q, std::size_t count) const {
-    if (fastest_) {
-      auto prepared = fastest_->prepare(q, count);
-      return [prepared](std::size_t part, const T* in, T* out) { prepared.apply(part, in, out, 1); };
-    }
-    auto transform = std::make_shared<const rt::OrthogonalTransform<T>>(*table_, q);
-    auto prepared = std::make_shared<const typename rt::OrthogonalTransform<T>::Prepared>(transform->prepare(count));
-    const std::size_t n = std::size_t(table_->coefficients());
-    return [rotator = table_, transform, prepared, n](std::size_t part, const T* in, T* out) {
-      for (std::size_t v = 0; v < part; ++v) prepared->apply(in + n * v, out + n * v);
-    };
-  }
-
-  std::vector<std::vector<T>> band_matrices(const T* q) const {
-    if (fastest_) return fastest_->band_matrices(q);
-    return rt::OrthogonalTransform<T>(*table_, q).dense().bands();
-  }
-
- private:
-  std::optional<zd::Rotator<T>> fastest_;
-  std::shared_ptr<const rt::Rotator<T>> table_;  // shared with what shared() hands out, which refers to it
-};
-
 int order_of(const py::buffer_info& coeffs) {
   const auto n = static_cast<std::size_t>(coeffs.shape[1]);
-  for (int order = 1; order <= rt::kMaxTableOrder; ++order)
+  for (int order = 1; order <= rt::kMaxZxzxzOrder; ++order)
     if (static_cast<std::size_t>(order) * order == n) return order;
   throw rt::InputError("coeffs: a last axis of " + std::to_string(n) + " is not N^2 for an order N <= " +
-                       std::to_string(rt::kMaxTableOrder));
+                       std::to_string(rt::kMaxZxzxzOrder));
 }
 
 // Throws InputError naming the first non-finite entry of data[from, total) (vectors of n), if any.
@@ -159,8 +112,8 @@ Array<T> rotate_shared(const Array<T>& coeffs, const Array<double>& rotation, co
   T* dst = out.mutable_data();
   {
     py::gil_scoped_release release;
-    const auto apply = Rotation<T>(order, table).shared(r, count);
-    rotate_checked(src, dst, count, n, threads, [&](std::size_t, std::size_t part, const T* f, T* g) { apply(part, f, g); });
+    const auto prepared = zd::Rotator<T>::make(order, table).prepare(r, count);
+    rotate_checked(src, dst, count, n, threads, [&](std::size_t, std::size_t part, const T* f, T* g) { prepared.apply(part, f, g, 1); });
   }
   return out;
 }
@@ -182,14 +135,14 @@ Array<T> rotate_each(const Array<T>& coeffs, const Array<double>& rotations, con
     py::gil_scoped_release release;
     for (std::size_t v = 0; v < count; ++v)
       if (!rt::rotation_accepted(r + 9 * v, zhf::tolerance::kRotationDefect, rt::Handedness::kEither)) check_rotation(r + 9 * v, v, true);
-    const Rotation<T> rotation(order, table);
+    const auto rotator = zd::Rotator<T>::make(order, table);
     rotate_checked(src, dst, count, n, threads, [&](std::size_t v, std::size_t part, const T* f, T* g) {
       if constexpr (std::is_same_v<T, double>) {
-        rotation.each(part, r + 9 * v, f, g);
+        rotator.transform_each(part, r + 9 * v, f, g, 1);
       } else {
         T block[9 * kCheckedBlock];  // the block's rotations in T, converted where they are used
         std::copy(r + 9 * v, r + 9 * (v + part), block);
-        rotation.each(part, block, f, g);
+        rotator.transform_each(part, block, f, g, 1);
       }
     });
   }
@@ -207,7 +160,7 @@ std::vector<Array<double>> band_matrices(const Array<double>& rotation, int orde
     bands.push_back(one);
     return bands;
   }
-  const std::vector<std::vector<double>> matrices = Rotation<double>(order, table).band_matrices(rotation.data());
+  const std::vector<std::vector<double>> matrices = zd::Rotator<double>::make(order, table).band_matrices(rotation.data());
   for (int l = 0; l < order; ++l) {
     const auto size = static_cast<std::size_t>(rt::band_size(l));
     Array<double> band({size, size});
@@ -322,8 +275,10 @@ PYBIND11_MODULE(_zhf, m) {
     for (zd::Isa isa : zd::supported_isas()) names.push_back(zd::isa_name(isa));
     return names;
   }, "the instruction-set paths this CPU runs, fastest first");
-  m.attr("max_table_order") = rt::kMaxTableOrder;
-  m.attr("max_generated_order") = rt::kMaxGeneratedOrder;
+  m.def("kernels", [](int order, bool double_precision) {
+    return double_precision ? zd::Rotator<double>::make(order).path() : zd::Rotator<float>::make(order).path();
+  }, py::arg("order"), py::arg("double_precision"), "the kernels rotations of an order take on isa()'s path");
+  m.attr("max_order") = rt::kMaxZxzxzOrder;
   m.attr("max_threads") = rt::kMaxThreads;
   m.attr("default_zonal_fit") = zhf::sh::kDefaultZonalFit;
   // The named tolerances the Python tests hold results to (tolerances/tolerances.h).
@@ -357,8 +312,6 @@ PYBIND11_MODULE(_zhf, m) {
                std::to_string(t.zeros) + " zeros of " + std::to_string(t.entries) + ">";
       });
 
-  m.def("table_path", [](const std::string& dir, int order) { return rt::table_path(dir, order); }, py::arg("dir"),
-        py::arg("order"), "dir/order_N.json: where the lobe table of an order lives in a tables folder");
   m.def("read_lobe_table", [](const std::string& path, int order) { return rt::read_lobe_table(path, order); },
         py::arg("path"), py::arg("order") = 0);
   m.def("write_lobe_table", [](const rt::LobeTable& table, const std::string& path) {

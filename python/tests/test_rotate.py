@@ -9,7 +9,7 @@ from zhf import _zhf
 from reference import random_directions, random_rotation, real_sh, rotation_about_axis
 
 TOL = _zhf.tolerances
-SHIPPED_ORDERS = list(range(1, 13)) + [16]
+ORDERS = list(range(1, 14)) + [16, 33]
 
 
 def unit_vectors(rng, shape):
@@ -17,7 +17,7 @@ def unit_vectors(rng, shape):
     return f / np.linalg.norm(f, axis=-1, keepdims=True)
 
 
-@pytest.mark.parametrize("order", SHIPPED_ORDERS)
+@pytest.mark.parametrize("order", ORDERS)
 def test_rotated_coefficients_are_the_rotated_function(order):
     # g(w) = f(R^T w) at random directions, with SH evaluated independently of zhf.
     rng = np.random.default_rng(order)
@@ -30,6 +30,21 @@ def test_rotated_coefficients_are_the_rotated_function(order):
     error = np.abs(g_at_w - f_at_rtw).max()
     # A coefficient error e moves the value by at most e sqrt(N^2 / 4 pi).
     assert error <= TOL["pointwise"] * max(1.0, order / np.sqrt(4 * np.pi)), f"order {order}: {error:.3g}"
+
+
+@pytest.mark.parametrize("order", [2, 8, 9, 16, 128])
+def test_every_order_runs_zhf_dispatch_and_names_its_kernels(order):
+    # Without a table every order takes zhf::dispatch's kernels (no lobe tables are shipped):
+    # the generated ones up to 8, zxzxz above (in float through the band rows where they hold).
+    for dtype in (np.float32, np.float64):
+        kernels = zhf.kernels(order, dtype)
+        if order <= 8:
+            assert kernels in ("scalar", "lanes", "band_rows", "bands01"), f"order {order}, {dtype}: {kernels}"
+        else:
+            assert kernels in (("zxzxz", "band_rows") if dtype == np.float32 else ("zxzxz",)), f"order {order}: {kernels}"
+    f = np.zeros(order * order)
+    f[0] = 1
+    np.testing.assert_allclose(zhf.rotate(f, random_rotation(np.random.default_rng(order))), f, atol=TOL["double"])
 
 
 @pytest.mark.parametrize("order", range(2, 9))
@@ -202,7 +217,7 @@ def test_torch_tensors_through_numpy():
         (lambda: zhf.rotate(np.zeros(16), np.eye(2)), "rotation: expected matrices"),
         (lambda: zhf.rotate(np.zeros((4, 16)), np.stack([np.eye(3)] * 3)), "does not broadcast"),
         (lambda: zhf.rotate(np.zeros(16, dtype=complex), np.eye(3)), "coeffs: dtype complex128"),
-        (lambda: zhf.rotate(np.zeros(169), np.eye(3)), "order 13 has no shipped lobe table"),
+        (lambda: zhf.rotate(np.zeros(129 * 129), np.eye(3)), "is not N^2 for an order N <= 128"),
         (lambda: zhf.rotate(np.zeros(16), np.eye(3), threads=-1), "threads: -1"),
         (lambda: zhf.rotate(np.float64(1.0), np.eye(3)), "coeffs: expected an array"),
     ],

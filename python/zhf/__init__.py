@@ -11,8 +11,6 @@ leading axis, e.g. (splats, 3, 16) for RGB at order 4. float32 stays float32, fl
 float64, other real dtypes are computed in float64. NaN and infinity are refused (ValueError).
 """
 
-from functools import lru_cache
-from pathlib import Path
 import warnings
 
 import numpy as np
@@ -28,6 +26,7 @@ __all__ = [
     "convert",
     "isa",
     "isas",
+    "kernels",
     "matrix_from_quaternion",
     "order_of",
     "read_lobe_table",
@@ -47,10 +46,20 @@ def order_of(coeffs) -> int:
     """The SH order N of an array whose last axis holds N*N coefficients (ValueError otherwise)."""
     n = np.shape(coeffs)[-1] if np.ndim(coeffs) > 0 else 0
     order = int(round(n ** 0.5))
-    if n < 1 or order * order != n or order > _zhf.max_table_order:
+    if n < 1 or order * order != n or order > _zhf.max_order:
         raise ValueError(
-            f"coeffs: a last axis of {n} is not N^2 for an order N <= {_zhf.max_table_order}")
+            f"coeffs: a last axis of {n} is not N^2 for an order N <= {_zhf.max_order}")
     return order
+
+
+def kernels(order: int, dtype=np.float64) -> str:
+    """The kernels rotate() runs for coefficients of this order and dtype (float32 or float64),
+    without a table, on zhf.isa()'s path: "scalar", "lanes", "band_rows", "bands01" or "zxzxz"."""
+    if not isinstance(order, (int, np.integer)) or not 1 <= order <= _zhf.max_order:
+        raise ValueError(f"order: {order!r} is not an order in 1..{_zhf.max_order}")
+    if np.dtype(dtype) not in (np.float32, np.float64):
+        raise ValueError(f"dtype: {dtype!r} is not float32 or float64")
+    return _zhf.kernels(int(order), np.dtype(dtype) == np.float64)
 
 
 def matrix_from_quaternion(quaternions, order: str, *, _stacklevel: int = 2) -> np.ndarray:
@@ -77,9 +86,8 @@ def rotate(coeffs, rotation, *, quaternion_order=None, convention="zhf", table=N
            out=None) -> np.ndarray:
     """Rotated SH coefficients, a new array of the shape (and float dtype) of coeffs, or out.
 
-    coeffs:   (..., N*N), any order N with kernels or a lobe table: 1..8 generated (the fastest
-              verified path for this machine), 9, 10, 11, 12, 16 and 32 from the shipped tables,
-              any other order up to 32 with table=.
+    coeffs:   (..., N*N), any order N up to 128, on the fastest kernels of the order for this
+              machine (zhf.kernels): the generated ones at 2..8, zxzxz above.
     rotation: one rotation for all, (3, 3) or a quaternion (4,), which takes the batch path (band
               matrices built once, then a small dense product per vector); or one per item,
               (..., 3, 3) or (..., 4), broadcast against coeffs.shape[:-1] like NumPy. For
@@ -88,7 +96,8 @@ def rotate(coeffs, rotation, *, quaternion_order=None, convention="zhf", table=N
     quaternion_order: "wxyz" or "xyzw"; required when rotation holds quaternions.
     convention: the coefficients' convention (zhf.conventions), the rotation written in the
               same system's axes: "3dgs" for 3D Gaussian Splatting data, for instance.
-    table:    a LobeTable (read_lobe_table) to rotate with instead of the shipped kernels.
+    table:    a LobeTable (read_lobe_table) of coeffs' order to rotate with instead of the fastest
+              kernels.
     threads:  0 for all cores; large batches are split over them, the GIL released.
     out:      an array to write the result into (C-contiguous, the result's shape and dtype, not
               overlapping coeffs), returned; saves allocating (and first touching) a new one.
@@ -103,8 +112,6 @@ def rotate(coeffs, rotation, *, quaternion_order=None, convention="zhf", table=N
     n = order * order
     matrices = _in_zhf_terms(_matrices(rotation, quaternion_order), convention)
     threads = _threads(threads)
-    if table is None:
-        table = _shipped_table(order)
     if matrices.shape == (3, 3):
         flat = np.ascontiguousarray(c).reshape(-1, n)
         into = _output(out, c.shape, c, n)
@@ -129,13 +136,11 @@ def band_matrices(rotation, order: int, *, quaternion_order=None, convention="zh
     Rotating band l of f is D_l @ f_l, so np.einsum with these is the plain dense way to apply a
     rotation (what zhf.rotate's batch path does in C++).
     """
-    if not isinstance(order, (int, np.integer)) or not 1 <= order <= _zhf.max_table_order:
-        raise ValueError(f"order: {order!r} is not an order in 1..{_zhf.max_table_order}")
+    if not isinstance(order, (int, np.integer)) or not 1 <= order <= _zhf.max_order:
+        raise ValueError(f"order: {order!r} is not an order in 1..{_zhf.max_order}")
     matrices = _in_zhf_terms(_matrices(rotation, quaternion_order), convention)
     if matrices.shape != (3, 3):
         raise ValueError(f"rotation: expected one rotation, not a batch of shape {matrices.shape[:-2]}")
-    if table is None:
-        table = _shipped_table(int(order))
     return _zhf.band_matrices(matrices.reshape(9), int(order), table)
 
 
@@ -230,14 +235,3 @@ def _threads(threads):
     return int(threads)
 
 
-@lru_cache(maxsize=None)
-def _shipped_table(order):
-    if order <= _zhf.max_generated_order:
-        return None
-    path = Path(_zhf.table_path(str(Path(__file__).parent / "lobes"), order))
-    if not path.is_file():
-        shipped = sorted(int(p.stem.split("_")[1]) for p in path.parent.glob("order_*.json"))
-        raise ValueError(
-            f"coeffs: order {order} has no shipped lobe table (orders 1..{_zhf.max_generated_order}, "
-            f"{', '.join(map(str, shipped))}); pass table=zhf.read_lobe_table(...)")
-    return _zhf.read_lobe_table(str(path), order)

@@ -13,6 +13,7 @@ conventions: list[str]
 def isa() -> str: ...  # the instruction-set path rotations take ("sse2", "avx2", "avx512", "neon")
 def isas() -> list[str]: ...  # the paths this CPU runs, fastest first
 def use_isa(name: str) -> None: ...  # forces one of isas() for the rotations that follow
+def kernels(order: int, dtype: npt.DTypeLike = ...) -> str: ...  # "scalar", "lanes", "band_rows", "bands01" or "zxzxz"
 
 class LobeTable:
     order: int

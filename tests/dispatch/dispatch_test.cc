@@ -17,6 +17,7 @@
 #include "zhf/dispatch/rotator.h"
 #include "zhf/runtime/limits.h"
 #include "zhf/runtime/sh_eval.h"
+#include "zhf/runtime/table_io.h"
 #include "zhf/runtime/tolerances.h"
 #include "zhf/sh/random.h"
 #include "zhf/sh/rotation_matrix.h"
@@ -226,6 +227,56 @@ TEST_F(DispatchTest, UnknownPathsAndPathsTheCpuLacksAreRefusedInOneLine) {
   }
   EXPECT_THROW(Rotator<float>::make(0), std::invalid_argument);
   EXPECT_THROW(Rotator<double>::make(runtime::kMaxZxzxzOrder + 1), std::invalid_argument);
+}
+
+// make(order, &table): the table's rotation on each path, within the path's tolerance; a table of
+// another order is refused.
+TEST_F(DispatchTest, ALobeTableRotatesOnEveryPath) {
+  std::mt19937_64 rng(55);
+  for (Isa isa : dispatch::supported_isas()) {
+    dispatch::use_isa(dispatch::isa_name(isa));
+    for (int order : {3, 9, 16}) {
+      const runtime::LobeTable table = runtime::read_lobe_table(test::checked_in_table(order), order);
+      const auto f = Rotator<float>::make(order, &table);
+      const auto d = Rotator<double>::make(order, &table);
+      ASSERT_EQ(f.isa(), isa);
+      for (int k = 0; k < 5; ++k) {
+        const sh::RotationMatrix r = sh::random_rotation(rng);
+        int at = 0;
+        EXPECT_LE(worst_error(f, r, rng, at), test::rotation_tolerance<float>(order))
+            << dispatch::isa_name(isa) << " (" << f.path() << "), float, order " << order << ", band " << runtime::band_of(at) << ", index " << at;
+        EXPECT_LE(worst_error(d, r, rng, at), test::rotation_tolerance<double>(order))
+            << dispatch::isa_name(isa) << " (" << d.path() << "), double, order " << order << ", band " << runtime::band_of(at) << ", index " << at;
+      }
+    }
+    const runtime::LobeTable nine = runtime::read_lobe_table(test::checked_in_table(9), 9);
+    EXPECT_THROW(Rotator<double>::make(10, &nine), runtime::InputError);
+  }
+}
+
+// zhf rotate goes through zhf::dispatch at every order and names the path and kernels it took:
+// those this process's dispatch picks on the same path.
+TEST_F(DispatchTest, ZhfRotateTakesTheDispatchPathAtEveryOrder) {
+  if (test::zhf_binary().empty()) GTEST_SKIP() << "this build has no zhf binary (the runtime alone)";
+  const test::TempDir dir;
+  for (int order : {5, 16, 40}) {
+    const std::string in = (dir / "in.json").string(), out = (dir / "out.json").string();
+    std::string vector = "[[1";  // band 0 alone: any rotation keeps it
+    for (int i = 1; i < order * order; ++i) vector += ",0";
+    test::write_text(in, vector + "]]");
+    for (Isa isa : dispatch::supported_isas()) {
+      const std::string name = dispatch::isa_name(isa);
+      dispatch::use_isa(name);
+      const std::string expected = name + " path, " + Rotator<double>::make(order).path() + " kernels";
+      const test::RunResult r = test::run_zhf({"rotate", "--coeffs", in, "--zyz", "0.1 0.2 0.3", "--out", out}, "", {"ZHF_ISA=" + name});
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+      EXPECT_NE(r.out.find("(order " + std::to_string(order) + ", 1 channel; " + expected + ")"), std::string::npos)
+          << "order " << order << ": " << r.out << "lacks " << expected;
+      if (order > runtime::kMaxGeneratedOrder) {
+        EXPECT_EQ(Rotator<double>::make(order).path(), "zxzxz") << "order " << order;
+      }
+    }
+  }
 }
 
 TEST_F(DispatchTest, TheCliNamesItsPathAndRefusesAWrongZhfIsa) {

@@ -4,8 +4,10 @@
 // the result holding the coefficients of f(R^T w); float or double.
 //
 // make(order) takes, for the path picked, the fastest verified kernels of the order: the
-// generated ones at orders 2..8 (zhf_kernels.h's fastest_kernels), zxzxz at orders 9..128
-// (runtime::Rotator::zxzxz), a copy at order 1. Accuracy and cost are the chosen kernels'
+// generated ones at orders 2..8 (zhf_kernels.h's fastest_kernels), zxzxz at orders 1 and 9..128
+// (runtime::Rotator::zxzxz); make(order, &table) a lobe table's rotation
+// (runtime::Rotator::from_table) on that path. Every caller in zhf (the CLI, the Python module,
+// splat) comes in through make, so which kernels run is decided here alone. Accuracy and cost are the chosen kernels'
 // (docs/performance.md); each call below costs one indirect call on top, which the batch calls
 // pay once per call, not per vector.
 #pragma once
@@ -16,6 +18,7 @@
 #include <vector>
 
 #include "zhf/dispatch/isa.h"
+#include "zhf/runtime/lobe_table.h"
 
 namespace zhf::dispatch {
 
@@ -44,9 +47,11 @@ class PreparedTransform {
 template <class T>
 class Rotator {
  public:
-  // The fastest rotator of an order 1..128 on active_isa(). Throws std::invalid_argument for any
-  // other order, or when ZHF_ISA is wrong (isa.h).
-  static Rotator make(int order);
+  // The fastest rotator of an order 1..128 on active_isa(); with a table (not null), that table's
+  // rotation instead, of its order (2..32). Throws std::invalid_argument for any other order,
+  // runtime::InputError for a table of another order or shape (validate_lobe_table's kShape), or
+  // std::invalid_argument when ZHF_ISA is wrong (isa.h).
+  static Rotator make(int order, const runtime::LobeTable* table = nullptr);
 
   int order() const;
   int coefficients() const { return order() * order(); }
