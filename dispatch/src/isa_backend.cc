@@ -88,7 +88,7 @@ template <class T>
 void IsaBackend<T>::transform_each(std::size_t count, const T* q, const T* in, T* out, int threads) const {
   const std::size_t n = static_cast<std::size_t>(rotator_.coefficients());
   runtime::parallel_chunks(count, threads, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t v = begin; v < end; ++v) runtime::OrthogonalTransform<T>(rotator_, q + 9 * v).apply(in + n * v, out + n * v);
+    runtime::transform_each(rotator_, end - begin, q + 9 * begin, in + n * begin, out + n * begin);
   });
 }
 template <class T>

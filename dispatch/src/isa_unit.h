@@ -34,6 +34,7 @@
 #include "zhf/runtime/orthogonal.h"
 #include "zhf/runtime/parallel.h"
 #include "zhf/runtime/rotator.h"
+#include "zhf/runtime/soa_batch.h"
 #include "zhf_paths.h"
 
 namespace zhf::dispatch_unit {
@@ -81,11 +82,26 @@ class IsaBackend final : public api::Backend<T> {
 extern template class IsaBackend<float>;
 extern template class IsaBackend<double>;
 
+// Whether per-item rotations of order N in T (rotate_batch, transform_each) run through SoA
+// blocks (runtime::rotate_items) rather than the kernel set's own batch: where they measured
+// faster (benchmarks/results/per_item_<path>.txt), in float at orders 3..8 on the x86-64 paths,
+// in double at 3..8 with AVX-512 and 4..8 with AVX2 (at order 3 the transposes outweigh the 4
+// double lanes). Order 2 keeps its own (bands 0 and 1 in one register). Paths not measured keep
+// their own.
+template <int N, class T>
+constexpr bool items_in_lanes() {
+  if constexpr (gen::Kernels<N>::kLobeStage != 0 || N < 3) return false;
+  if constexpr (std::is_same_v<T, float>) return kIsa == api::Isa::kSse2 || kIsa == api::Isa::kAvx2 || kIsa == api::Isa::kAvx512;
+  return kIsa == api::Isa::kAvx512 || (kIsa == api::Isa::kAvx2 && N >= 4);
+}
+
 // The fastest kernels of generated order N (zhf_paths.h's choice for this instruction set; the
-// unit includes zhf_orderN.h).
+// unit includes zhf_orderN.h), with the per-item batch items_in_lanes picks.
 template <int N, class T>
 std::unique_ptr<api::Backend<T>> generated() {
-  return std::make_unique<IsaBackend<T>>(runtime::Rotator<T>::with(gen::fastest_kernels<N, T>()));
+  runtime::KernelSet<T> kernels = gen::fastest_kernels<N, T>();
+  if constexpr (items_in_lanes<N, T>()) kernels.rotate_batch = &runtime::rotate_items<N, T>;
+  return std::make_unique<IsaBackend<T>>(runtime::Rotator<T>::with(kernels));
 }
 
 }  // namespace zhf::dispatch_unit

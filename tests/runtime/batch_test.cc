@@ -19,6 +19,7 @@
 #include "test_tolerances.h"
 #include "zhf/dispatch/rotator.h"
 #include "zhf/runtime/limits.h"
+#include "zhf/runtime/orthogonal.h"
 #include "zhf/runtime/pack.h"
 #include "zhf/runtime/rotation.h"
 #include "zhf/runtime/rotator.h"
@@ -31,6 +32,7 @@
 #include "zhf_order3.h"
 #include "zhf_order4.h"
 #include "zhf_order5.h"
+#include "zhf_kernels.h"
 
 namespace zhf {
 namespace {
@@ -86,6 +88,58 @@ TEST(Batch, SharedRotationMatchesTheReferenceAtEveryGeneratedOrder) {
     for (int order = 2; order <= runtime::kMaxGeneratedOrder; ++order) {
       check_shared<double>(path, order, kDouble);
       check_shared<float>(path, order, kFloatRotation);
+    }
+  });
+}
+
+// Per-item transforms on a path (transform_each: rotations in runs through the per-item batch,
+// SoA blocks where dispatch picks them; reflections and axis maps one by one) at every count
+// 1..33, so every partial block and run, against the generated scalar kernel vector by vector
+// (OrthogonalTransform over runtime::scalar_kernels), within the lanes-against-scalar bound (the
+// kernels' contraction differs); the same through rotate_batch on rotations alone.
+template <class T>
+void check_each(const std::string& path, int order, double tolerance) {
+  std::mt19937_64 rng(300 + order);
+  const auto rotator = dispatch::Rotator<T>::make(order);
+  const auto scalar = runtime::Rotator<T>::with(gen::scalar_kernels<T>(order));
+  const std::size_t n = std::size_t(order) * order;
+  for (std::size_t count = 1; count <= 33; ++count) {
+    std::vector<T> q(9 * count), r(9 * count);
+    for (std::size_t v = 0; v < count; ++v) {
+      const sh::RotationMatrix m = sh::random_rotation(rng);
+      // Every fifth a reflection, every seventh the y-x swap (an exact axis map), the rest rotations.
+      const double sign = v % 5 == 4 ? -1 : 1;
+      for (int k = 0; k < 9; ++k) q[9 * v + k] = T(sign * m(k / 3, k % 3)), r[9 * v + k] = T(m(k / 3, k % 3));
+      if (v % 7 == 6) {
+        const T swap[9] = {0, 1, 0, 1, 0, 0, 0, 0, 1};
+        std::copy(swap, swap + 9, &q[9 * v]);
+      }
+    }
+    const std::vector<T> in = unit_vectors<T>(count, order, rng);
+    std::vector<T> each(in.size()), batch(in.size()), expected(in.size());
+    rotator.transform_each(count, q.data(), in.data(), each.data(), 1);
+    rotator.rotate_batch(count, r.data(), in.data(), batch.data(), 1);
+    for (std::size_t v = 0; v < count; ++v) {
+      runtime::OrthogonalTransform<T>(scalar, &q[9 * v]).apply(&in[n * v], &expected[n * v]);
+      T single[runtime::kMaxGeneratedOrder * runtime::kMaxGeneratedOrder];
+      scalar.rotate(&r[9 * v], &in[n * v], single);
+      for (std::size_t i = 0; i < n; ++i) {
+        ASSERT_NEAR(double(each[n * v + i]), double(expected[n * v + i]), tolerance)
+            << path << ", transform_each, order " << order << ", band " << runtime::band_of(int(i)) << ", index " << i << ", vector " << v
+            << " of " << count;
+        ASSERT_NEAR(double(batch[n * v + i]), double(single[i]), tolerance)
+            << path << ", rotate_batch, order " << order << ", band " << runtime::band_of(int(i)) << ", index " << i << ", vector " << v
+            << " of " << count;
+      }
+    }
+  }
+}
+
+TEST(Batch, PerItemTransformsMatchTheScalarKernelAtEveryCountTo33) {
+  test::on_every_dispatch_path([](const std::string& path) {
+    for (int order = 2; order <= runtime::kMaxGeneratedOrder; ++order) {
+      check_each<double>(path, order, kDouble);
+      check_each<float>(path, order, kFloatLobeStageWorstUnitInput);
     }
   });
 }

@@ -156,4 +156,29 @@ class OrthogonalTransform {
   T rotation_[9];
 };
 
+// count vectors, each under its own orthogonal q[9 v + k] (as OrthogonalTransform): runs of
+// rotations whose entries are not all 0 and +-1 go to the rotator's per-item batch together
+// (rotate_batch, in lanes where its kernels have them); reflections and the axis maps (exact)
+// vector by vector. in and out must not overlap.
+template <class T>
+void transform_each(const Rotator<T>& rotator, std::size_t count, const T* q, const T* in, T* out) {
+  const std::size_t n = static_cast<std::size_t>(rotator.coefficients());
+  auto batched = [](const T* m) {
+    for (int i = 0; i < 9; ++i)
+      if (m[i] != 0 && m[i] != 1 && m[i] != -1) return determinant(m) > 0;
+    return false;
+  };
+  for (std::size_t v = 0; v < count;) {
+    std::size_t end = v;
+    while (end < count && batched(q + 9 * end)) ++end;
+    if (end > v) {
+      rotator.rotate_batch(end - v, q + 9 * v, in + n * v, out + n * v, 1);
+      v = end;
+    } else {
+      OrthogonalTransform<T>(rotator, q + 9 * v).apply(in + n * v, out + n * v);
+      ++v;
+    }
+  }
+}
+
 }  // namespace zhf::runtime

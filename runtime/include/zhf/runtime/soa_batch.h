@@ -158,6 +158,42 @@ void rotate_soa(std::size_t count, const T* R, const T* coeffs, T* rotated, int 
   rotate_soa<N>(count, count, R, coeffs, rotated, threads);
 }
 
+// rotate_items<N>: count vectors in the usual layout (R[9 v + k], coeffs[N^2 v + i], rotated
+// likewise), each under its own rotation, on rotate_soa's lanes: kLanes vectors at a time are
+// transposed into packs through a local block, rotated by the generated order-N kernel on packs
+// and transposed back; the last block's spare lanes hold the identity and zeros. A
+// KernelSet::Batch (the per-item batch of zhf::dispatch's generated orders). Convention and
+// accuracy per lane as gen::Kernels<N>::rotate<T>; cost: the kernel's operation count per kLanes
+// vectors, plus (9 + 2 N^2) scalar moves per vector for the transposes; no allocation.
+template <int N, class T>
+void rotate_items(std::size_t count, const T* R, const T* coeffs, T* rotated) {
+  static_assert(gen::Kernels<N>::kLobeStage == 0, "rotate_items: this order's kernel runs its lobe stage in double");
+  using P = Pack<T>;
+  constexpr std::size_t L = P::kLanes, n = std::size_t(N) * N;
+  T lanes[9 + n][L];
+  P r[9], f[n], g[n];
+  for (std::size_t v = 0; v < count; v += L) {
+    const std::size_t used = std::min(L, count - v);
+    if (used == L) {
+      for (int k = 0; k < 9; ++k)
+        for (std::size_t j = 0; j < L; ++j) lanes[k][j] = R[9 * (v + j) + k];
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = 0; j < L; ++j) lanes[9 + i][j] = coeffs[n * (v + j) + i];
+    } else {
+      for (std::size_t j = 0; j < L; ++j) {
+        for (int k = 0; k < 9; ++k) lanes[k][j] = j < used ? R[9 * (v + j) + k] : T(k % 4 == 0);
+        for (std::size_t i = 0; i < n; ++i) lanes[9 + i][j] = j < used ? coeffs[n * (v + j) + i] : T(0);
+      }
+    }
+    for (int k = 0; k < 9; ++k) r[k] = P::load(lanes[k]);
+    for (std::size_t i = 0; i < n; ++i) f[i] = P::load(lanes[9 + i]);
+    gen::Kernels<N>::template rotate<P>(r, f, g);
+    for (std::size_t i = 0; i < n; ++i) g[i].store(lanes[i]);
+    for (std::size_t j = 0; j < used; ++j)
+      for (std::size_t i = 0; i < n; ++i) rotated[n * (v + j) + i] = lanes[i][j];
+  }
+}
+
 // A plane stride for count rotations of order N in T: count itself where rotate_soa<N> reads
 // planes that far apart directly already, or never does (above kSoaDirectMaxOrder); otherwise the
 // smallest multiple of a cache line's values (16 floats, 8 doubles) from count up at which every
