@@ -1226,6 +1226,19 @@ TEST(Splat, GlbHoldsTheLayoutInGltfAxesAndReadsBackExactly) {
   EXPECT_EQ(primitive["mode"], 0);
   EXPECT_EQ(primitive["extensions"]["KHR_gaussian_splatting"]["kernel"], "ellipse");
   EXPECT_EQ(primitive["attributes"].size(), 4u + 16u);
+  // What the extension's Release Candidate text (Khronos glTF, April 2026) requires besides: the
+  // extension used, a colour space it names, and each attribute's accessor type, float, one per splat.
+  const nlohmann::json& used = g.json["extensionsUsed"];
+  EXPECT_NE(std::find(used.begin(), used.end(), "KHR_gaussian_splatting"), used.end()) << used;
+  const std::string space = primitive["extensions"]["KHR_gaussian_splatting"]["colorSpace"];
+  EXPECT_TRUE(space == "srgb_rec709_display" || space == "lin_rec709_display") << space;
+  for (const auto& [semantic, index] : primitive["attributes"].items()) {
+    const nlohmann::json& accessor = g.json["accessors"][index.get<int>()];
+    const std::string type = semantic == "KHR_gaussian_splatting:ROTATION" ? "VEC4" : semantic == "KHR_gaussian_splatting:OPACITY" ? "SCALAR" : "VEC3";
+    EXPECT_EQ(accessor["type"], type) << semantic;
+    EXPECT_EQ(accessor["componentType"], 5126) << semantic;
+    EXPECT_EQ(accessor["count"], n) << semantic;
+  }
   ASSERT_EQ(test::run_zhf("splat --in '" + out + "' --out '" + back + "' --identity --quiet").exit_code, 0);
   std::string header;
   const Scene got = read_scene(back, scene, header);
@@ -1257,6 +1270,10 @@ TEST(Splat, GlbHoldsTheLayoutInGltfAxesAndReadsBackExactly) {
     }
     const float opacity = glb_float(g, "KHR_gaussian_splatting:OPACITY", k, 0);
     ASSERT_EQ(opacity, float(1 / (1 + std::exp(-value("opacity"))))) << at;
+    ASSERT_TRUE(opacity >= 0 && opacity <= 1) << at << ": opacity " << opacity;  // linear, in [0, 1]
+    double norm = 0;
+    for (int i = 0; i < 4; ++i) norm += std::pow(double(glb_float(g, "KHR_gaussian_splatting:ROTATION", k, i)), 2);
+    ASSERT_NEAR(norm, 1, kFloatStorage) << at << ": the rotation is a unit quaternion (each component rounded to float once)";
     ASSERT_EQ(row[index_of(scene, "opacity")], float(test::opacity_of_alpha(opacity))) << at;
     // Stored x y z w: the unit quaternion turned by the half turn k (k q = (-z, -y, x, w) as w x y z).
     const double w = value("rot_0"), x = value("rot_1"), y = value("rot_2"), z = value("rot_3");
