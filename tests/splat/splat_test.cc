@@ -1271,9 +1271,9 @@ TEST(Splat, GlbHoldsTheLayoutInGltfAxesAndReadsBackExactly) {
     const float opacity = glb_float(g, "KHR_gaussian_splatting:OPACITY", k, 0);
     ASSERT_EQ(opacity, float(1 / (1 + std::exp(-value("opacity"))))) << at;
     ASSERT_TRUE(opacity >= 0 && opacity <= 1) << at << ": opacity " << opacity;  // linear, in [0, 1]
-    double norm = 0;
-    for (int i = 0; i < 4; ++i) norm += std::pow(double(glb_float(g, "KHR_gaussian_splatting:ROTATION", k, i)), 2);
-    ASSERT_NEAR(norm, 1, kFloatStorage) << at << ": the rotation is a unit quaternion (each component rounded to float once)";
+    double squared_length = 0;
+    for (int i = 0; i < 4; ++i) squared_length += std::pow(double(glb_float(g, "KHR_gaussian_splatting:ROTATION", k, i)), 2);
+    ASSERT_NEAR(squared_length, 1, kFloatStorage) << at << ": the rotation is a unit quaternion (each component rounded to float once)";
     ASSERT_EQ(row[index_of(scene, "opacity")], float(test::opacity_of_alpha(opacity))) << at;
     // Stored x y z w: the unit quaternion turned by the half turn k (k q = (-z, -y, x, w) as w x y z).
     const double w = value("rot_0"), x = value("rot_1"), y = value("rot_2"), z = value("rot_3");
