@@ -39,8 +39,9 @@ int run_rotate(const RotateOptions& o) {
   io::PendingFile out_file(o.out);  // refuse an unwritable output before the work
   const io::CoefficientFile file = io::read_coefficients(o.coeffs, o.channels);
   const int order = file.order;
-  // Every order through zhf::dispatch: its fastest kernels, or with --tables the order's lobe table
-  // from that folder (order 1, band 0 alone, has no lobes to take).
+  // Every order through zhf::dispatch: its fastest kernels, or with --tables the rotation of the
+  // order's lobe table from that folder (runtime::Rotator::from_table; order 1, band 0 alone, has
+  // no lobes to take).
   std::optional<runtime::LobeTable> table;
   if (!o.tables.empty() && order > 1) {
     const std::string path = runtime::table_path(o.tables, order);
@@ -79,7 +80,7 @@ void add_rotate_command(CLI::App& app, Action& action) {
   c->add_option("--convention", o->convention,
                 "The coefficients' convention, the rotation in the same system's axes: " + runtime::convention_names() +
                     " (docs/conventions.md)");
-  c->add_option("--tables", o->tables, "Rotate through the lobe table order_N.json in this folder instead of the fastest kernels");
+  c->add_option("--tables", o->tables, "Rotate with the lobe table order_N.json in this folder (its lobes where they are the faster path, else zxzxz; the kernels printed say which)");
   c->add_option("--out", o->out, "Write the rotated vectors here (JSON)")->required();
   c->callback([o, &action] { action = [o] { return run_rotate(*o); }; });
 }

@@ -39,18 +39,22 @@ class Backend {
 };
 
 // A lobe table in standard types, to cross from the library into a path's units, where the
-// runtime's LobeTable is another type (isa_unit.h renames its namespace). Both sides convert with
-// the templates below, field by field, from and into their own LobeTable.
+// runtime's LobeTable is another type (isa_unit.h renames its namespace). Its fields have
+// LobeTable's names, so one template copies either way (copy_table).
 struct TableData {
   struct Lobe {
-    double theta, phi;
-    std::array<double, 3> xyz;
+    double theta = 0, phi = 0;
+    std::array<double, 3> xyz{};
+  };
+  struct Inverse {
+    int rows = 0, cols = 0;
+    std::vector<double> values;
   };
   struct Band {
-    int l, rows, cols, zeros;
-    double condition;
+    int l = 0, zeros = 0;
+    double condition = 0;
     std::vector<int> lobes;
-    std::vector<double> inverse;
+    Inverse inverse;
   };
   int order = 0, zeros = 0, entries = 0;
   bool lobe_sharing = true;
@@ -58,30 +62,22 @@ struct TableData {
   std::vector<Band> bands;
 };
 
-template <class Table>
-TableData table_data(const Table& t) {
-  TableData d;
-  d.order = t.order, d.zeros = t.zeros, d.entries = t.entries, d.lobe_sharing = t.lobe_sharing;
-  for (const auto& lobe : t.lobes) d.lobes.push_back({lobe.theta, lobe.phi, lobe.xyz});
-  for (const auto& b : t.bands) d.bands.push_back({b.l, b.inverse.rows, b.inverse.cols, b.zeros, b.condition, b.lobes, b.inverse.values});
-  return d;
-}
-
-template <class Table>
-Table table_of(const TableData& d) {
-  Table t;
-  t.order = d.order, t.zeros = d.zeros, t.entries = d.entries, t.lobe_sharing = d.lobe_sharing;
-  for (const TableData::Lobe& lobe : d.lobes) {
-    t.lobes.emplace_back();
-    t.lobes.back().theta = lobe.theta, t.lobes.back().phi = lobe.phi, t.lobes.back().xyz = lobe.xyz;
+// The fields a rotation reads, from one table type into another (LobeTable <-> TableData).
+template <class To, class From>
+To copy_table(const From& from) {
+  To to;
+  to.order = from.order, to.zeros = from.zeros, to.entries = from.entries, to.lobe_sharing = from.lobe_sharing;
+  to.lobes.resize(from.lobes.size());
+  for (std::size_t i = 0; i < from.lobes.size(); ++i)
+    to.lobes[i].theta = from.lobes[i].theta, to.lobes[i].phi = from.lobes[i].phi, to.lobes[i].xyz = from.lobes[i].xyz;
+  to.bands.resize(from.bands.size());
+  for (std::size_t i = 0; i < from.bands.size(); ++i) {
+    const auto& f = from.bands[i];
+    auto& t = to.bands[i];
+    t.l = f.l, t.zeros = f.zeros, t.condition = f.condition, t.lobes = f.lobes;
+    t.inverse.rows = f.inverse.rows, t.inverse.cols = f.inverse.cols, t.inverse.values = f.inverse.values;
   }
-  for (const TableData::Band& b : d.bands) {
-    t.bands.emplace_back();
-    auto& band = t.bands.back();
-    band.l = b.l, band.zeros = b.zeros, band.condition = b.condition, band.lobes = b.lobes;
-    band.inverse.rows = b.rows, band.inverse.cols = b.cols, band.inverse.values = b.inverse;
-  }
-  return t;
+  return to;
 }
 
 // The fastest backend of an order 1..kMaxZxzxzOrder on path I (isa_backend.cc, one unit per path).

@@ -30,13 +30,13 @@ std::unique_ptr<zhf_dispatch_api::Backend<double>> zhf_dispatch_api::make_backen
 template <>
 std::unique_ptr<zhf_dispatch_api::Backend<float>> zhf_dispatch_api::make_table_backend<zhf::dispatch_unit::kIsa, float>(const TableData& table) {
   using namespace zhf;
-  return std::make_unique<dispatch_unit::IsaBackend<float>>(runtime::Rotator<float>::from_table(table_of<runtime::LobeTable>(table)));
+  return std::make_unique<dispatch_unit::IsaBackend<float>>(runtime::Rotator<float>::from_table(copy_table<runtime::LobeTable>(table)));
 }
 
 template <>
 std::unique_ptr<zhf_dispatch_api::Backend<double>> zhf_dispatch_api::make_table_backend<zhf::dispatch_unit::kIsa, double>(const TableData& table) {
   using namespace zhf;
-  return std::make_unique<dispatch_unit::IsaBackend<double>>(runtime::Rotator<double>::from_table(table_of<runtime::LobeTable>(table)));
+  return std::make_unique<dispatch_unit::IsaBackend<double>>(runtime::Rotator<double>::from_table(copy_table<runtime::LobeTable>(table)));
 }
 
 template <>

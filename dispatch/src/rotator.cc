@@ -49,7 +49,7 @@ Rotator<T> Rotator<T>::make(int order, const runtime::LobeTable* table) {
     throw runtime::InputError("table: order " + std::to_string(table->order) + ", but the rotation's is " + std::to_string(order));
   // Checked here, in zhf's own types: the path's units throw their own (renamed) error types.
   runtime::validate_lobe_table(*table, "table", runtime::TableCheck::kShape);
-  const detail::TableData data = detail::table_data(*table);
+  const auto data = detail::copy_table<detail::TableData>(*table);
   r.backend_ = on_path<ZHF_DISPATCH_PATHS>(r.isa_, [&](auto path) { return detail::make_table_backend<path.value, T>(data); });
   return r;
 }
