@@ -16,7 +16,7 @@ using codegen::KernelKind;
 
 // The call a harness makes for one mode. The harness holds r[9], axis[3], c[4][n] / c1
 // (channel 0), z[4][N] / z1, o[4][n] / o1 and mats; multi-channel kernels take the planar arrays.
-std::string call(const Mode& m, int order) {
+std::string cpp_call(const Mode& m, int order) {
   const std::string n = std::to_string(order);
   const bool multi = m.channels > 1;
   const std::string c = multi ? "c" : "c1", o = multi ? "o" : "o1", z = multi ? "z" : "z1";
@@ -76,7 +76,7 @@ std::string harness(int order, const std::vector<Mode>& modes, const std::string
         << "      for (int i = 0; i < kN; ++i) { c[ch][i] = T(co[kN * ((v + ch) % count) + i]); o[ch][i] = T(0); }\n"
         << "      for (int l = 0; l < kOrder; ++l) z[ch][l] = c[ch][l];\n"
         << "    }\n"
-        << "    " << call(m, order) << "\n"
+        << "    " << cpp_call(m, order) << "\n"
         << "    for (int ch = 0; ch < 4; ++ch) for (int i = 0; i < kN; ++i) res[kBlock * size_t(v) + ch * kN + i] = double(o[ch][i]);\n"
         << "  }\n";
     }

@@ -21,7 +21,7 @@ using codegen::KernelKind;
 
 // The call for one mode: single-channel calls use c1/z1/o1, multi-channel ones the vector arrays
 // cvW/zvW/ovW of their width W.
-std::string call(const Mode& m, int order) {
+std::string shader_call(const Mode& m, int order) {
   const std::string w = std::to_string(m.channels);
   const bool multi = m.channels > 1;
   const std::string c = multi ? "cv" + w : "c1", o = multi ? "ov" + w : "o1", z = multi ? "zv" + w : "z1";
@@ -189,7 +189,7 @@ std::string wrapper(bool glsl, int order, const std::string& kernels, const std:
       << vec(w) << "(0.0" << std::string(w == 4 ? ", 0.0, 0.0, 0.0" : ", 0.0, 0.0") << "); }\n"
       << "  for (int k = 0; k < " << order << "; ++k) zv" << w << "[k] = " << vec(w) << "(" << zargs << ");\n";
   }
-  for (size_t k = 0; k < modes.size(); ++k) s << "  if (mode == " << k << "u) { " << call(modes[k], order) << " }\n";
+  for (size_t k = 0; k < modes.size(); ++k) s << "  if (mode == " << k << "u) { " << shader_call(modes[k], order) << " }\n";
   s << "  uint base = (mode * params.count + v) * " << block << "u;\n"
     << "  for (int k = 0; k < " << ns << "; ++k) {\n"
     << "    results[base + uint(k)] = o1[k];\n";
